@@ -1,0 +1,49 @@
+/* Internal: per-element energies of the skin (DESIGN.md, "The skin model").
+ *
+ * Each function evaluates one element on flat arrays of its vertex positions
+ * and returns the element's energy; gradient and Hessian are written where the
+ * pointers are non-NULL. Hessians are dense, row-major, in the element's own
+ * vertex order (xyz of vertex 0, then vertex 1, ...), symmetric, and projected
+ * to positive semi-definite (negative eigenvalues clamped to zero) so that the
+ * Newton system is always positive definite together with inertia.
+ * None of them allocates; all are deterministic and NaN-free for finite input
+ * (degenerate and inverted elements included). */
+#ifndef SKIN_SIM_ENERGY_H
+#define SKIN_SIM_ENERGY_H
+
+/* ---- membrane: 2D Stable Neo-Hookean (Smith, de Goes, Kim 2018) ----------
+ * F = [x1-x0, x2-x0] Dm^-1 (3x2), I_C = tr(F^T F), J = sqrt(det(F^T F)),
+ * Psi = mu/2 (I_C - 2) + lam/2 (J - alpha)^2, alpha = 1 + mu/lam,
+ * energy = rest_area * Psi. */
+
+/* Lamé parameters for the stable form from Young's modulus E (Pa, as energy
+ * per rest area here: thickness folded in) and Poisson ratio nu (plane stress,
+ * lambda + mu as the stable form wants). */
+void ss_membrane_lame(double young, double poisson, double *mu, double *lam);
+
+/* Rest data of a triangle: Dm^-1 (2x2 row-major) of its rest edges in the
+ * triangle's own 2D frame, and its rest area. Returns 0, or -1 if the rest
+ * triangle is degenerate (then dm_inv is the identity and area 0). */
+int ss_membrane_rest(const double x0[3], const double x1[3], const double x2[3],
+                     double dm_inv[4], double *area);
+
+/* x: 9 doubles (three vertices). grad: 9, hess: 81. */
+double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_area,
+                        double mu, double lam, double *grad, double *hess);
+
+/* ---- bending: dihedral hinge ------------------------------------------------
+ * x: 12 doubles, vertices (e0, e1, o0, o1): the shared edge e0-e1 and the two
+ * opposite vertices, o0 in the face (e0, e1, o0) and o1 in (e1, e0, o1).
+ * energy = k (theta - theta0)^2 |e|^2 / A_e with theta the signed dihedral
+ * angle from atan2 and A_e the rest area of the two faces (precomputed in
+ * `weight` = k |e_rest|^2 / A_e). The Hessian is the Gauss-Newton part
+ * 2 weight grad(theta) grad(theta)^T, plus the PSD projection of the rest. */
+double ss_hinge_angle(const double x[12]);
+double ss_hinge_eval(const double x[12], double theta0, double weight, double *grad,
+                     double *hess);
+
+/* ---- projection of a small symmetric matrix to PSD ------------------------
+ * In place, n <= 12, by a Jacobi eigen-decomposition (clamps eigenvalues < 0). */
+void ss_project_psd(double *m, int n);
+
+#endif
