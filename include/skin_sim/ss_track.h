@@ -37,7 +37,7 @@ typedef struct ss_track_stats {
   double mean_steps;               /* edges crossed per walk */
   double ms_per_frame_median;      /* anchor-update time per frame (excludes pose and metrics) */
   double ms_per_anchor_update_median;
-  double max_surface_jump;         /* largest surface distance of one update, in mean edge lengths */
+  double mean_edge_length;         /* of the body at rest, metres */
 } ss_track_stats;
 
 /* Called after each frame (may be NULL); returning non-zero stops the run. */

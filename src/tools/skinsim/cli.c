@@ -1,0 +1,130 @@
+/* skinsim: argument parsing, JSON output and the progress bar. */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "skin_sim/ss_track.h"
+
+void cli_error(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fputs("skinsim: ", stderr);
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+}
+
+int cli_int(const char *opt, const char *text, long min, long max, int *out) {
+  char *end = NULL;
+  errno = 0;
+  long v = text ? strtol(text, &end, 10) : 0;
+  if (!text || !*text || *end || errno || v < min || v > max) {
+    cli_error("%s expects a whole number from %ld to %ld, got '%s'", opt, min, max,
+              text ? text : "");
+    return -1;
+  }
+  *out = (int)v;
+  return 0;
+}
+
+int cli_double(const char *opt, const char *text, double min, double max, double *out) {
+  char *end = NULL;
+  errno = 0;
+  double v = text ? strtod(text, &end) : 0.0;
+  if (!text || !*text || *end || errno || !isfinite(v) || v < min || v > max) {
+    cli_error("%s expects a number from %g to %g, got '%s'", opt, min, max, text ? text : "");
+    return -1;
+  }
+  *out = v;
+  return 0;
+}
+
+const char *cli_value(int argc, char **argv, int *i) {
+  if (*i + 1 >= argc) {
+    cli_error("%s needs a value", argv[*i]);
+    return NULL;
+  }
+  return argv[++*i];
+}
+
+static void json_key(json_out *j, const char *key) {
+  fprintf(j->f, "%s\n  \"%s\": ", j->count++ ? "," : "", key);
+}
+
+void json_begin(json_out *j, FILE *f) {
+  j->f = f;
+  j->count = 0;
+  fputc('{', f);
+}
+
+void json_str(json_out *j, const char *key, const char *value) {
+  json_key(j, key);
+  fputc('"', j->f);
+  for (const char *c = value; c && *c; c++) {
+    if (*c == '"' || *c == '\\') fprintf(j->f, "\\%c", *c);
+    else if ((unsigned char)*c < 0x20) fprintf(j->f, "\\u%04x", (unsigned char)*c);
+    else fputc(*c, j->f);
+  }
+  fputc('"', j->f);
+}
+
+void json_int(json_out *j, const char *key, long long value) {
+  json_key(j, key);
+  fprintf(j->f, "%lld", value);
+}
+
+void json_num(json_out *j, const char *key, double value) {
+  json_key(j, key);
+  if (isfinite(value)) fprintf(j->f, "%.6g", value);
+  else fputs("null", j->f);
+}
+
+void json_hex(json_out *j, const char *key, unsigned long long value) {
+  json_key(j, key);
+  fprintf(j->f, "\"%016llx\"", value);
+}
+
+void json_end(json_out *j) {
+  fputs("\n}\n", j->f);
+  fflush(j->f);
+}
+
+FILE *cli_open_json(const char *path) {
+  if (strcmp(path, "-") == 0) return stdout;
+  FILE *f = fopen(path, "w");
+  if (!f) cli_error("cannot write JSON to '%s': %s", path, strerror(errno));
+  return f;
+}
+
+void cli_close_json(FILE *f) {
+  if (f && f != stdout) fclose(f);
+}
+
+void progress_begin(progress *p, const char *label) {
+  p->enabled = isatty(STDERR_FILENO);
+  p->label = label;
+  p->start_ms = ss_now_ms();
+}
+
+int progress_update(void *user, int done, int total) {
+  progress *p = user;
+  if (!p->enabled || total <= 0) return 0;
+  const int width = 30;
+  int filled = (int)((long long)width * done / total);
+  double elapsed = (ss_now_ms() - p->start_ms) / 1000.0;
+  double eta = done > 0 ? elapsed * (total - done) / done : 0.0;
+  fprintf(stderr, "\r%-12s [", p->label);
+  for (int i = 0; i < width; i++) fputc(i < filled ? '#' : '.', stderr);
+  fprintf(stderr, "] %d/%d  %.1fs, %.1fs left ", done, total, elapsed, eta);
+  fflush(stderr);
+  return 0;
+}
+
+void progress_end(progress *p) {
+  if (p->enabled) fputs("\r\033[K", stderr);
+}

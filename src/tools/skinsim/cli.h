@@ -1,0 +1,47 @@
+/* skinsim: helpers shared by the subcommands — argument parsing with clear
+ * errors, a small JSON object writer, and a progress bar for terminals. */
+#ifndef SKINSIM_CLI_H
+#define SKINSIM_CLI_H
+
+#include <stdio.h>
+
+/* Exit codes: 0 ok, 1 the run failed, 2 bad usage or input. */
+enum { EXIT_RUN_FAILED = 1, EXIT_USAGE = 2 };
+
+/* Prints "skinsim: <message>" to stderr. */
+void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Parse the value of option `opt`; on error print one message and return -1. */
+int cli_int(const char *opt, const char *text, long min, long max, int *out);
+int cli_double(const char *opt, const char *text, double min, double max, double *out);
+
+/* Returns the value after argv[*i] (advancing *i), or NULL with a message. */
+const char *cli_value(int argc, char **argv, int *i);
+
+/* A flat JSON object written as it goes. */
+typedef struct json_out {
+  FILE *f;
+  int count;
+} json_out;
+void json_begin(json_out *j, FILE *f);
+void json_str(json_out *j, const char *key, const char *value);
+void json_int(json_out *j, const char *key, long long value);
+void json_num(json_out *j, const char *key, double value); /* non-finite -> null */
+void json_hex(json_out *j, const char *key, unsigned long long value);
+void json_end(json_out *j);
+
+/* Opens the --json destination: "-" is stdout. Returns NULL with a message. */
+FILE *cli_open_json(const char *path);
+void cli_close_json(FILE *f);
+
+/* Progress bar on stderr, drawn only when stderr is a terminal. */
+typedef struct progress {
+  int enabled;
+  const char *label;
+  double start_ms;
+} progress;
+void progress_begin(progress *p, const char *label);
+int progress_update(void *p, int done, int total); /* an ss_progress_fn */
+void progress_end(progress *p);
+
+#endif

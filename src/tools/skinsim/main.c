@@ -1,0 +1,43 @@
+/* skinsim: the skin_sim core from the command line, no ROS needed.
+ * One subcommand per job; each parses its own options (see usage()). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+
+static void usage(FILE *f) {
+  fputs(
+      "usage: skinsim COMMAND [options]\n"
+      "\n"
+      "commands:\n"
+      "  scenes                      list the built-in scenes: name, triangles, frames, what it stresses\n"
+      "  track --scene NAME [--method walk|project|nring] [--rings N] [--tris N] [--frames N]\n"
+      "        [--max-steps N] [--lift L] [--json FILE|-]\n"
+      "                              the anchor experiment without dynamics: anchors ride on the\n"
+      "                              moving body, are pulled towards where they were (lifted L mean\n"
+      "                              edge lengths off the surface, default 0.1) and moved there by\n"
+      "                              the method; counts snags and failures\n"
+      "  compare [--frames N]        every scene with every method: the table of where methods snag\n"
+      "  help                        this text\n"
+      "\n"
+      "exit status: 0 ok, 1 the run failed, 2 bad usage or input\n",
+      f);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    usage(stderr);
+    return EXIT_USAGE;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "help") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+    usage(stdout);
+    return 0;
+  }
+  if (strcmp(cmd, "scenes") == 0) return cmd_scenes(argc - 1, argv + 1);
+  if (strcmp(cmd, "track") == 0) return cmd_track(argc - 1, argv + 1);
+  if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
+  cli_error("unknown command '%s' (try: skinsim help)", cmd);
+  return EXIT_USAGE;
+}

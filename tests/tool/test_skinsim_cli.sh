@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# skinsim from the command line: scenes listing, track JSON with every field
+# the issue names, and one clear error (exit 2, no crash) for bad input.
+set -u
+bld="$1"
+exe=$(find "$bld" -type f -name skinsim -perm -u+x | head -n 1)
+[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
+fail=0
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+
+"$exe" scenes > "$tmp/scenes.txt"; rc=$?
+check "scenes exits 0" "[ $rc -eq 0 ]"
+for s in armpit elbow fold twist slivers boundary; do
+  check "scenes lists $s" "grep -q '^$s ' '$tmp/scenes.txt'"
+done
+
+"$exe" track --scene fold --method walk --frames 5 --json "$tmp/t.json" > /dev/null; rc=$?
+check "track exits 0" "[ $rc -eq 0 ]"
+for k in scene method triangles anchors frames snags failures anchors_at_boundary \
+         anchors_at_crease ms_per_frame_median ms_per_anchor_update_median; do
+  check "track JSON has $k" "grep -q '\"$k\":' '$tmp/t.json'"
+done
+check "track JSON parses, frames = 5" \
+  "/usr/bin/python3 -c 'import json,sys; d=json.load(open(\"$tmp/t.json\")); sys.exit(0 if d[\"frames\"]==5 and d[\"method\"]==\"walk\" else 1)'"
+"$exe" track --scene fold --method project --frames 3 --json - > "$tmp/p.json"; rc=$?
+check "track --json - writes JSON to stdout" \
+  "[ $rc -eq 0 ] && /usr/bin/python3 -c 'import json; json.load(open(\"$tmp/p.json\"))'"
+
+bad() { # bad <description> <args...>: exit 2, one line on stderr naming the problem
+  local what="$1"; shift
+  "$exe" "$@" > /dev/null 2> "$tmp/err"; local rc=$?
+  check "$what: exit 2" "[ $rc -eq 2 ]"
+  check "$what: one message" "[ \$(wc -l < '$tmp/err') -eq 1 ] && grep -q 'skinsim: ' '$tmp/err'"
+}
+bad "unknown scene" track --scene nosuchscene
+bad "unknown method" track --scene fold --method teleport
+bad "negative tris" track --scene fold --tris -5
+bad "tris not a number" track --scene fold --tris abc
+bad "too few tris" track --scene fold --tris 3
+bad "missing value" track --scene
+bad "unknown option" track --scene fold --bogus
+bad "unknown command" frobnicate
+exit $fail
