@@ -5,7 +5,11 @@
  * character: parts rotate rigidly about joints, and across a joint's blend
  * region the rotation angle ramps smoothly (a smoothstep of the rest
  * coordinate), which keeps limbs round where matrix blending would pinch them.
- * Units are metres, 30 frames per second; frame 0 is the rest pose, bit for bit.
+ * Capsules are latitude-longitude meshes with every other ring turned half a
+ * segment (near-equilateral triangles; thin fans at the poles); sheets are
+ * grids of right triangles. Units are metres, 30 frames per second; frame 0
+ * is the rest pose, bit for bit; poses are defined for any frame >= 0 (armpit
+ * and elbow hold their end pose, twist keeps spinning, the rest oscillate).
  * The anchor tracking experiment (track.c) seeds anchors at every vertex and
  * face barycenter, lets them ride with the body, pulls each back towards where
  * it was a frame ago lifted 0.1 edge lengths off the surface (lagging skin) and
@@ -14,15 +18,18 @@
  *  armpit   A torso (capsule, radius 0.28 m) and an arm (capsule, radius
  *           0.075 m) hinged at the shoulder. The arm swings down from a
  *           T-pose by 97 degrees, past vertical, and presses into the torso:
- *           at the end the arm's inner side lies up to ~0.05 m (about one edge
+ *           at the end the arm's inner side lies up to ~0.056 m (1.3 edges
  *           at the default size) inside the torso. The two parts are SEPARATE
  *           closed components of one mesh (arm not welded to the torso; its
  *           root cap sits 1 cm from the torso). Lagging points on the arm lie
  *           nearer the torso than their own sheet: projection jumps across
  *           (a snag); the walk stays on the arm.
- *  elbow    A capsule tube bent at its middle by 135 degrees about a joint
- *           with a blend one radius wide: the inner side of the crease folds
- *           sharply (locally inverts), the outer side stretches.
+ *  elbow    A capsule tube (radius 0.09 m) bent at its middle by 135 degrees
+ *           about a hinge 0.8 radii towards the outer side, blended over
+ *           +-1.5 radii: the inner side of the crease folds sharply (it
+ *           inverts and passes through itself), the outer side stretches
+ *           by at most ~25%. (A hinge on the axis stretches the outer side
+ *           ~2x, and edge-path surface distances then overstate walks there.)
  *  fold     A closed thin flap (plate 0.8 x 0.5 m, thickness 0.4 grid
  *           spacings: its two sides are closer than one edge) hinged at its
  *           root, flapping +-0.5 rad every second: the tip moves several edge
@@ -73,7 +80,8 @@ static const double ARM_TORSO_R = 0.28, ARM_TORSO_HC = 0.45; /* torso radius, ha
 static const double ARM_R = 0.075, ARM_HC = 0.275;           /* arm radius, half cylinder */
 static const double ARM_GAP = 0.01, ARM_SHOULDER_Z = 0.32;
 static const double ARM_SWING = (97.0 / 180.0) * SS_PI, ARM_SWING_FRAMES = 45.0;
-static const double ELBOW_R = 0.09, ELBOW_HC = 0.5, ELBOW_BLEND = 1.0; /* blend half-width in radii */
+static const double ELBOW_R = 0.09, ELBOW_HC = 0.5;
+static const double ELBOW_BLEND = 1.5, ELBOW_AXIS_Z = -0.8; /* blend half-width, axis offset: radii */
 static const double ELBOW_BEND = (135.0 / 180.0) * SS_PI, ELBOW_FRAMES = 50.0;
 static const double FOLD_L = 0.8, FOLD_W = 0.5, FOLD_THICK = 0.4; /* thickness in grid spacings */
 static const double FOLD_X0 = 0.08, FOLD_X1 = 0.28;              /* hinge blend region */
@@ -339,10 +347,10 @@ static double wave(double t, double period, double phase) {
   return sin(2.0 * SS_PI * t / period + phase) * ss_smooth(t / 8.0);
 }
 
-/* Rotates p about the y-parallel line through (x, 0, 0) by a times the blend
+/* Rotates p about the y-parallel line through (x, 0, z) by a times the blend
  * weight of rest coordinate rx across [x - w, x + w]. */
-static void joint_y(double p[3], double rx, double x, double w, double a) {
-  const double c[3] = {x, 0.0, 0.0};
+static void joint_y(double p[3], double rx, double x, double z, double w, double a) {
+  const double c[3] = {x, 0.0, z};
   ss_rotate(p, 1, c, a * ss_smooth((rx - (x - w)) / (2.0 * w)));
 }
 
@@ -364,13 +372,13 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
     case ELBOW: {
       double a = -ELBOW_BEND * ss_smooth(t / ELBOW_FRAMES);
       for (int v = 0; v < nv; v++)
-        joint_y(pos + 3 * v, rest[3 * v], 0.0, ELBOW_BLEND * ELBOW_R, a);
+        joint_y(pos + 3 * v, rest[3 * v], 0.0, ELBOW_AXIS_Z * ELBOW_R, ELBOW_BLEND * ELBOW_R, a);
       break;
     }
     case FOLD: {
       double a = FOLD_AMP * wave(t, FOLD_PERIOD, 0.0);
       double mid = 0.5 * (FOLD_X0 + FOLD_X1), half = 0.5 * (FOLD_X1 - FOLD_X0);
-      for (int v = 0; v < nv; v++) joint_y(pos + 3 * v, rest[3 * v], mid, half, a);
+      for (int v = 0; v < nv; v++) joint_y(pos + 3 * v, rest[3 * v], mid, 0.0, half, a);
       break;
     }
     case TWIST: {
@@ -384,8 +392,8 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
     case SLIVERS: {
       double a1 = 0.45 * wave(t, SLIV_PERIOD, 0.0), a2 = 0.6 * wave(t, SLIV_PERIOD, 1.0);
       for (int v = 0; v < nv; v++) { /* distal joint first, in rest space */
-        joint_y(pos + 3 * v, rest[3 * v], 0.2, 0.08, a2);
-        joint_y(pos + 3 * v, rest[3 * v], -0.15, 0.08, a1);
+        joint_y(pos + 3 * v, rest[3 * v], 0.2, 0.0, 0.08, a2);
+        joint_y(pos + 3 * v, rest[3 * v], -0.15, 0.0, 0.08, a1);
       }
       break;
     }
@@ -395,7 +403,7 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
       double dx = 0.15 * wave(t, 45.0, 0.0), dy = 0.05 * wave(t, 30.0, 0.0);
       for (int v = 0; v < nv; v++) {
         double *p = pos + 3 * v;
-        joint_y(p, rest[3 * v], 0.2, 0.1, bend);
+        joint_y(p, rest[3 * v], 0.2, 0.0, 0.1, bend);
         ss_rotate(p, 2, o, turn);
         p[0] += dx;
         p[1] += dy;

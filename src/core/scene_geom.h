@@ -20,7 +20,8 @@ int ss_mb_vert(ss_mb *mb, double x, double y, double z); /* returns the new inde
 void ss_mb_tri(ss_mb *mb, int a, int b, int c);
 
 /* Capsule of radius r around a cylinder of half-length hc, as a latitude-
- * longitude mesh: two poles, nring rings of nseg vertices, 2 nseg nring faces.
+ * longitude mesh: two poles, nring rings of nseg vertices (every other ring
+ * turned half a segment, so triangles are near equilateral), 2 nseg nring faces.
  * Its axis runs along world axis `axis` (0 x, 2 z) through center. */
 void ss_mb_capsule(ss_mb *mb, const double center[3], int axis, double r, double hc, int nseg,
                    int nring);
