@@ -6,8 +6,9 @@
  * region the rotation angle ramps smoothly (a smoothstep of the rest
  * coordinate), which keeps limbs round where matrix blending would pinch them.
  * Capsules are latitude-longitude meshes with every other ring turned half a
- * segment (near-equilateral triangles; thin fans at the poles); sheets are
- * grids of right triangles. Units are metres, 30 frames per second; frame 0
+ * segment (near-equilateral triangles; thin fans at the poles); the boundary
+ * sheet is a near-equilateral lattice; fold and slivers are grids of right
+ * triangles. Units are metres, 30 frames per second; frame 0
  * is the rest pose, bit for bit; poses are defined for any frame >= 0 (armpit
  * and elbow hold their end pose, twist keeps spinning, the rest oscillate).
  * The anchor tracking experiment (track.c) seeds anchors at every vertex and
@@ -151,8 +152,8 @@ static plan make_plan(int kind, int n) {
     case BOUNDARY: {
       double len = kind == FOLD ? FOLD_L : kind == SLIVERS ? SLIV_L : BND_L;
       double wid = kind == FOLD ? FOLD_W : kind == SLIVERS ? SLIV_W : BND_W;
-      p.h = wid / n;
-      p.a = (int)lround(len / p.h);
+      p.h = wid / n; /* row spacing; boundary's lattice spaces columns 2/sqrt(3) wider */
+      p.a = (int)lround(len / (kind == BOUNDARY ? 1.1547005383792515 * p.h : p.h));
       if (p.a < 2) p.a = 2;
       p.b = n;
       break;
@@ -167,7 +168,7 @@ static long long plan_faces(int kind, const plan *p) {
     case ELBOW:
     case TWIST: return 2LL * p->a * p->b;
     case FOLD: return 4LL * p->a * p->b + 4LL * (p->a + p->b);
-    case BOUNDARY: return 2LL * p->a * p->b;
+    case BOUNDARY: return (2LL * p->a + 1) * p->b;
     case SLIVERS: {
       int nx = sliver_coords(p->a, p->h, SLIV_L, 4, NULL);
       int ny = sliver_coords(p->b, p->h, SLIV_W, 5, NULL);
@@ -246,29 +247,25 @@ static int build(ss_scene *s, ss_mb *mb, int n) {
       ss_mb_plate(mb, 0.0, FOLD_L, FOLD_W, FOLD_THICK * p.h, p.a, p.b);
       break;
     case BOUNDARY:
+      ss_mb_lattice(mb, -0.5 * BND_L, BND_L, -0.5 * BND_W, BND_W, p.a, p.b);
+      break;
     case SLIVERS: {
-      int sl = s->kind == SLIVERS;
-      int nx = sl ? sliver_coords(p.a, p.h, SLIV_L, 4, NULL) : p.a;
-      int ny = sl ? sliver_coords(p.b, p.h, SLIV_W, 5, NULL) : p.b;
+      int nx = sliver_coords(p.a, p.h, SLIV_L, 4, NULL);
+      int ny = sliver_coords(p.b, p.h, SLIV_W, 5, NULL);
       double *xs = malloc(sizeof(double) * (size_t)(nx + 1));
       double *ys = malloc(sizeof(double) * (size_t)(ny + 1));
-      unsigned char *tflag = sl ? calloc((size_t)nx * (size_t)ny, 1) : NULL;
-      if (!xs || !ys || (sl && !tflag)) {
+      unsigned char *tflag = calloc((size_t)nx * (size_t)ny, 1);
+      if (!xs || !ys || !tflag) {
         free(xs);
         free(ys);
         free(tflag);
         return SS_E_NOMEM;
       }
-      if (sl) {
-        sliver_coords(p.a, p.h, SLIV_L, 4, xs);
-        sliver_coords(p.b, p.h, SLIV_W, 5, ys);
-        for (int j = 0; j < ny; j++)
-          for (int c = 0; c < nx; c++)
-            tflag[(size_t)j * nx + c] = (unsigned char)sliver_tcell(c, j, xs, ys, p.h);
-      } else {
-        for (int i = 0; i <= nx; i++) xs[i] = -0.5 * BND_L + BND_L * i / nx;
-        for (int j = 0; j <= ny; j++) ys[j] = -0.5 * BND_W + BND_W * j / ny;
-      }
+      sliver_coords(p.a, p.h, SLIV_L, 4, xs);
+      sliver_coords(p.b, p.h, SLIV_W, 5, ys);
+      for (int j = 0; j < ny; j++)
+        for (int c = 0; c < nx; c++)
+          tflag[(size_t)j * nx + c] = (unsigned char)sliver_tcell(c, j, xs, ys, p.h);
       ss_mb_sheet(mb, xs, nx, ys, ny, tflag);
       free(xs);
       free(ys);

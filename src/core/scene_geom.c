@@ -202,6 +202,44 @@ void ss_mb_sheet(ss_mb *mb, const double *xs, int nx, const double *ys, int ny,
     }
 }
 
+/* ------------------------------------------------------------- lattice */
+
+void ss_mb_lattice(ss_mb *mb, double x0, double lx, double y0, double ly, int nx, int ny) {
+  int prev = -1, nprev = 0;
+  for (int j = 0; j <= ny; j++) {
+    int first = mb->nv, odd = j & 1;
+    double y = y0 + ly * j / ny;
+    ss_mb_vert(mb, x0, y, 0.0);
+    for (int i = 0; i < nx; i++) /* odd rows: midpoints, then the far corner */
+      ss_mb_vert(mb, odd ? x0 + lx * (i + 0.5) / nx : x0 + lx * (i + 1) / nx, y, 0.0);
+    if (odd) ss_mb_vert(mb, x0 + lx, y, 0.0);
+    int n = mb->nv - first;
+    if (prev >= 0 && !mb->failed) {
+      /* zip the strip between the rows, advancing along the lower row (l) or
+       * the upper row (u), whichever's next vertex lies further left */
+      int l = 0, u = 0;
+      while (l + 1 < nprev || u + 1 < n) {
+        int up;
+        if (l + 1 >= nprev)
+          up = 1;
+        else if (u + 1 >= n)
+          up = 0;
+        else
+          up = mb->pos[3 * (first + u + 1)] < mb->pos[3 * (prev + l + 1)];
+        if (up) {
+          ss_mb_tri(mb, prev + l, first + u + 1, first + u);
+          u++;
+        } else {
+          ss_mb_tri(mb, prev + l, prev + l + 1, first + u);
+          l++;
+        }
+      }
+    }
+    prev = first;
+    nprev = n;
+  }
+}
+
 /* ------------------------------------------------------------- motion */
 
 double ss_smooth(double u) {

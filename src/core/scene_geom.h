@@ -41,6 +41,11 @@ void ss_mb_plate(ss_mb *mb, double x0, double lx, double ly, double t, int nx, i
 void ss_mb_sheet(ss_mb *mb, const double *xs, int nx, const double *ys, int ny,
                  const unsigned char *tflag);
 
+/* An open sheet in the plane z = 0 (normal +z) over [x0, x0 + lx] x [y0, y0 + ly]
+ * as a near-equilateral lattice: ny + 1 rows, odd rows shifted half of the
+ * lx / nx spacing (with corner vertices at both ends). ny (2 nx + 1) faces. */
+void ss_mb_lattice(ss_mb *mb, double x0, double lx, double y0, double ly, int nx, int ny);
+
 /* Smoothstep of u clamped to [0, 1]: 0 below, 1 above, C1. */
 double ss_smooth(double u);
 /* Rotates p in place about the axis parallel to world axis `axis` through c by
