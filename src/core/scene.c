@@ -40,8 +40,8 @@
  *  twist    A capsule (radius 0.15 m) spinning about its axis at 4.3 grid
  *           segments per frame after a short ramp: every anchor must cross
  *           many faces per frame (cost and step limits of the walk).
- *  slivers  An open wavy sheet of badly conditioned triangles: columns and
- *           rows 1/300 of a grid spacing wide (aspect ratio ~300) and
+ *  slivers  An open wavy sheet of badly conditioned triangles: every fourth
+ *           column is 1/300 of the row spacing wide (aspect ratio ~300) and
  *           T-junctions closed by exactly zero-area faces (three collinear
  *           corners; they stay collinear in every pose since the motion maps
  *           points by their x and z alone). Two joints bend it to and fro.
@@ -97,7 +97,6 @@ struct ss_scene {
   int nvert, nface;
   double *rest;
   int *faces;
-  double h;       /* grid spacing the mesh was built with */
   int arm_first;  /* armpit: first vertex of the arm */
   double omega;   /* twist: peak angular speed, radians per frame */
 };
@@ -109,14 +108,15 @@ typedef struct plan {
   int a, b, c, d;   /* per scene: segments/rings, cells, ... */
 } plan;
 
-/* Slivers: grid coordinates with thin columns/rows; counts only if arrays are NULL. */
+/* Slivers: n + 1 grid coordinates over len, plus a thin cell after every
+ * period-th (none if period is 0); writes xs unless NULL; returns the cells. */
 static int sliver_coords(int n, double h, double len, int period, double *xs) {
   int k = 0;
   for (int i = 0; i <= n; i++) {
     double x = -0.5 * len + len * i / n;
     if (xs) xs[k] = x;
     k++;
-    if (i % period == period / 2 && i < n) {
+    if (period > 0 && i % period == period / 2 && i < n) {
       if (xs) xs[k] = x + SLIV_THIN * h;
       k++;
     }
@@ -153,7 +153,9 @@ static plan make_plan(int kind, int n) {
       double len = kind == FOLD ? FOLD_L : kind == SLIVERS ? SLIV_L : BND_L;
       double wid = kind == FOLD ? FOLD_W : kind == SLIVERS ? SLIV_W : BND_W;
       p.h = wid / n; /* row spacing; boundary's lattice spaces columns 2/sqrt(3) wider */
-      p.a = (int)lround(len / (kind == BOUNDARY ? 1.1547005383792515 * p.h : p.h));
+      p.a = (int)lround(len / (kind == BOUNDARY ? 1.1547005383792515 * p.h
+                               : kind == SLIVERS  ? 1.25 * p.h
+                                                  : p.h));
       if (p.a < 2) p.a = 2;
       p.b = n;
       break;
@@ -169,25 +171,14 @@ static long long plan_faces(int kind, const plan *p) {
     case TWIST: return 2LL * p->a * p->b;
     case FOLD: return 4LL * p->a * p->b + 4LL * (p->a + p->b);
     case BOUNDARY: return (2LL * p->a + 1) * p->b;
-    case SLIVERS: {
+    case SLIVERS: { /* thin columns only: T-cells counted on column indices */
       int nx = sliver_coords(p->a, p->h, SLIV_L, 4, NULL);
-      int ny = sliver_coords(p->b, p->h, SLIV_W, 5, NULL);
-      /* T-cells need the coordinates; a count on uniform ones is exact since
-       * the thin columns/rows are the only narrow ones */
       long long nt = 0;
-      int ci = 0;
-      for (int i = 0; i < p->a; i++) {
-        int cols = (i % 4 == 2) ? 2 : 1; /* normal column after a thin one */
-        ci += cols;
-        int c = ci - 1;
-        int rj = 0;
-        for (int j = 0; j < p->b; j++) {
-          rj += (j % 5 == 2) ? 2 : 1;
-          int r = rj - 1;
-          if (c >= 1 && (3 * c + 5 * r) % 13 == 0) nt++;
-        }
+      for (int i = 0, c = -1; i < p->a; i++) {
+        c += (i % 4 == 2) ? 2 : 1; /* this normal column, after any thin one */
+        for (int j = 0; j < p->b; j++) nt += c >= 1 && (3 * c + 5 * j) % 13 == 0;
       }
-      return 2LL * nx * ny + 2 * nt;
+      return 2LL * nx * p->b + 2 * nt;
     }
   }
   return 0;
@@ -223,7 +214,6 @@ static int choose_n(int kind, int tris) {
 
 static int build(ss_scene *s, ss_mb *mb, int n) {
   plan p = make_plan(s->kind, n);
-  s->h = p.h;
   switch (s->kind) {
     case ARMPIT: {
       const double torso[3] = {0.0, 0.0, 0.0};
@@ -251,7 +241,7 @@ static int build(ss_scene *s, ss_mb *mb, int n) {
       break;
     case SLIVERS: {
       int nx = sliver_coords(p.a, p.h, SLIV_L, 4, NULL);
-      int ny = sliver_coords(p.b, p.h, SLIV_W, 5, NULL);
+      int ny = sliver_coords(p.b, p.h, SLIV_W, 0, NULL);
       double *xs = malloc(sizeof(double) * (size_t)(nx + 1));
       double *ys = malloc(sizeof(double) * (size_t)(ny + 1));
       unsigned char *tflag = calloc((size_t)nx * (size_t)ny, 1);
@@ -262,7 +252,7 @@ static int build(ss_scene *s, ss_mb *mb, int n) {
         return SS_E_NOMEM;
       }
       sliver_coords(p.a, p.h, SLIV_L, 4, xs);
-      sliver_coords(p.b, p.h, SLIV_W, 5, ys);
+      sliver_coords(p.b, p.h, SLIV_W, 0, ys);
       for (int j = 0; j < ny; j++)
         for (int c = 0; c < nx; c++)
           tflag[(size_t)j * nx + c] = (unsigned char)sliver_tcell(c, j, xs, ys, p.h);
