@@ -34,6 +34,10 @@ typedef struct ss_frames {
                         so it is always finite. */
   double *normal;    /* (nface x 3) unit normal (zero on a degenerate face) */
   double *area;      /* (nface) area */
+  unsigned char *degenerate; /* (nface) 1 where the face is too thin for its QR to be
+                                inverted in this pose (zero area, collinear corners):
+                                to_canon is then the regularised pseudo-inverse and
+                                walks pass straight through the face */
 } ss_frames;
 
 int ss_frames_create(ss_frames **out, int nface);

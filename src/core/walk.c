@@ -1,0 +1,353 @@
+/* The anchor walk of Kautzman, Cameron and Kim, "Robust Skin Simulation in
+ * Incredibles 2" (SIGGRAPH 2018 Talks), section 2, and the per-face canonical
+ * frames it runs on.
+ *
+ * Canonical frames. For face (v0, v1, v2), Dm = [v1 - v0, v2 - v0] = Q R
+ * (Gram-Schmidt QR, Q 3x2 orthonormal, R 2x2 upper triangular). The map
+ * T = R^-1 Q^T takes a world vector to canonical (u, v): the face becomes the
+ * triangle (0,0), (1,0), (0,1), and T (p - v0) is the orthogonal projection
+ * of p onto the face's plane in those coordinates. T is computed once per face
+ * and pose (ss_frames_update), so a step of the walk costs a 2x3 product and
+ * three line tests. Faces too thin for R to be inverted (|r22| tiny against
+ * |r11|: zero-area and collinear faces) get the regularised pseudo-inverse
+ * (Dm^T Dm + eps I)^-1 Dm^T instead, which is finite, moves a point along the
+ * degenerate face's line, and is zero on a face collapsed to a point.
+ *
+ * The walk. From a point p inside face f, the ray p + t d_hat with
+ * d_hat = T (a* - world(p)) is traced against the three canonical edges. If it
+ * ends inside (t = 1 reached), that point is the new anchor and it is the
+ * orthogonal projection of a* onto the face, as the paper asks. Otherwise it
+ * leaves through edge k at h: with no face across k (boundary or non-manifold
+ * edge) the walk stops at h; across k lies g: if g was already visited in this
+ * walk the surface folds back (a crease) and the walk stops at h, on the edge;
+ * else h is carried to the same point of the shared edge in g (matched by
+ * welded vertex ids, so neighbours of either orientation work), and tracing
+ * starts again in g towards a*. Points are clamped into the canonical
+ * triangle after every crossing and at the end (the paper's "simple clamp"),
+ * and the number of crossings is bounded.
+ *
+ * Zero-area faces are the one place where the paper's recipe is silent: a
+ * ray cannot be traced across a face with no interior, and a walk entering
+ * one would stop there as if at a crease. Such a face has all its edges on
+ * one line, so the entry point also lies on one of its other edges: the walk
+ * passes straight through onto the neighbour across that edge (a crossing
+ * like any other, counted and bounded), and traces on from there. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "skin_sim/ss_anchor.h"
+
+/* ---- frames ------------------------------------------------------------- */
+
+int ss_frames_create(ss_frames **out, int nface) {
+  if (!out || nface <= 0) return SS_E_ARG;
+  *out = NULL;
+  ss_frames *fr = calloc(1, sizeof *fr);
+  if (!fr) return SS_E_NOMEM;
+  fr->nface = nface;
+  fr->origin = malloc(sizeof(double) * 3 * (size_t)nface);
+  fr->edge = malloc(sizeof(double) * 6 * (size_t)nface);
+  fr->to_canon = malloc(sizeof(double) * 6 * (size_t)nface);
+  fr->normal = malloc(sizeof(double) * 3 * (size_t)nface);
+  fr->area = malloc(sizeof(double) * (size_t)nface);
+  fr->degenerate = malloc((size_t)nface);
+  if (!fr->origin || !fr->edge || !fr->to_canon || !fr->normal || !fr->area ||
+      !fr->degenerate) {
+    ss_frames_destroy(fr);
+    return SS_E_NOMEM;
+  }
+  *out = fr;
+  return SS_OK;
+}
+
+void ss_frames_destroy(ss_frames *fr) {
+  if (!fr) return;
+  free(fr->origin);
+  free(fr->edge);
+  free(fr->to_canon);
+  free(fr->normal);
+  free(fr->area);
+  free(fr->degenerate);
+  free(fr);
+}
+
+static double dot3(const double *a, const double *b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* T for one face from its edges e1, e2 (see the file comment). Returns 1
+ * where the face is degenerate and T is the regularised pseudo-inverse. */
+static int canonical_map(const double e1[3], const double e2[3], double t[6]) {
+  const double r11 = sqrt(dot3(e1, e1));
+  if (r11 > 0.0 && isfinite(r11)) {
+    double q1[3] = {e1[0] / r11, e1[1] / r11, e1[2] / r11};
+    const double r12 = dot3(q1, e2);
+    double w[3] = {e2[0] - r12 * q1[0], e2[1] - r12 * q1[1], e2[2] - r12 * q1[2]};
+    const double r22 = sqrt(dot3(w, w));
+    if (r22 > 1e-10 * r11) {
+      /* R^-1 = [[1/r11, -r12/(r11 r22)], [0, 1/r22]]; rows of R^-1 Q^T */
+      const double a = 1.0 / r11, b = -r12 / (r11 * r22), c = 1.0 / r22;
+      for (int i = 0; i < 3; i++) {
+        double q2 = w[i] / r22;
+        t[i] = a * q1[i] + b * q2;
+        t[3 + i] = c * q2;
+      }
+      return 0;
+    }
+  }
+  /* degenerate: (Dm^T Dm + eps I)^-1 Dm^T */
+  double m00 = dot3(e1, e1), m01 = dot3(e1, e2), m11 = dot3(e2, e2);
+  double eps = 1e-10 * (m00 + m11);
+  if (!(eps > 0.0) || !isfinite(eps)) {
+    memset(t, 0, 6 * sizeof(double));
+    return 1;
+  }
+  m00 += eps;
+  m11 += eps;
+  const double det = m00 * m11 - m01 * m01;
+  const double i00 = m11 / det, i01 = -m01 / det, i11 = m00 / det;
+  for (int i = 0; i < 3; i++) {
+    t[i] = i00 * e1[i] + i01 * e2[i];
+    t[3 + i] = i01 * e1[i] + i11 * e2[i];
+  }
+  return 1;
+}
+
+void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
+  for (int f = 0; f < topo->nface; f++) {
+    const double *v0 = pos + 3 * topo->face_vert[3 * f];
+    const double *v1 = pos + 3 * topo->face_vert[3 * f + 1];
+    const double *v2 = pos + 3 * topo->face_vert[3 * f + 2];
+    double *o = fr->origin + 3 * f, *e = fr->edge + 6 * f, *n = fr->normal + 3 * f;
+    for (int i = 0; i < 3; i++) {
+      o[i] = v0[i];
+      e[i] = v1[i] - v0[i];
+      e[3 + i] = v2[i] - v0[i];
+    }
+    n[0] = e[1] * e[5] - e[2] * e[4];
+    n[1] = e[2] * e[3] - e[0] * e[5];
+    n[2] = e[0] * e[4] - e[1] * e[3];
+    double len = sqrt(dot3(n, n));
+    fr->area[f] = 0.5 * len;
+    if (len > 0.0 && isfinite(len)) {
+      n[0] /= len, n[1] /= len, n[2] /= len;
+    } else {
+      n[0] = n[1] = n[2] = 0.0;
+    }
+    fr->degenerate[f] = (unsigned char)canonical_map(e, e + 3, fr->to_canon + 6 * f);
+  }
+}
+
+void ss_anchor_position(const ss_frames *fr, int face, const double uv[2], double out[3]) {
+  const double *o = fr->origin + 3 * face, *e = fr->edge + 6 * face;
+  for (int i = 0; i < 3; i++) out[i] = o[i] + uv[0] * e[i] + uv[1] * e[3 + i];
+}
+
+/* ---- the walk ------------------------------------------------------------ */
+
+const char *ss_walk_stop_name(int stop) {
+  switch (stop) {
+    case SS_STOP_INSIDE: return "inside";
+    case SS_STOP_BOUNDARY: return "boundary";
+    case SS_STOP_CREASE: return "crease";
+    case SS_STOP_STEP_LIMIT: return "step_limit";
+    default: return "unknown";
+  }
+}
+
+struct ss_walker {
+  int nface;
+  unsigned int stamp;    /* id of the current walk */
+  unsigned int *visited; /* (nface) stamp of the last walk that entered the face */
+};
+
+int ss_walker_create(ss_walker **out, int nface) {
+  if (!out || nface <= 0) return SS_E_ARG;
+  *out = NULL;
+  ss_walker *w = calloc(1, sizeof *w);
+  if (!w) return SS_E_NOMEM;
+  w->nface = nface;
+  w->visited = calloc((size_t)nface, sizeof(unsigned int));
+  if (!w->visited) {
+    free(w);
+    return SS_E_NOMEM;
+  }
+  *out = w;
+  return SS_OK;
+}
+
+void ss_walker_destroy(ss_walker *w) {
+  if (!w) return;
+  free(w->visited);
+  free(w);
+}
+
+/* Clamps (u, v) into the canonical triangle; non-finite becomes the barycenter. */
+static void clamp_uv(double uv[2]) {
+  double u = uv[0], v = uv[1];
+  if (!(isfinite(u) && isfinite(v))) {
+    uv[0] = uv[1] = 1.0 / 3.0;
+    return;
+  }
+  if (u < 0.0) u = 0.0;
+  if (v < 0.0) v = 0.0;
+  double s = u + v;
+  if (s > 1.0) {
+    u /= s;
+    v /= s;
+  }
+  uv[0] = u;
+  uv[1] = v;
+}
+
+/* Canonical point at parameter s (0 at corner k, 1 at corner k+1) of edge k. */
+static void edge_point(int k, double s, double uv[2]) {
+  switch (k) {
+    case 0: uv[0] = s, uv[1] = 0.0; break;        /* (0,0) -> (1,0) */
+    case 1: uv[0] = 1.0 - s, uv[1] = s; break;    /* (1,0) -> (0,1) */
+    default: uv[0] = 0.0, uv[1] = 1.0 - s; break; /* (0,1) -> (0,0) */
+  }
+}
+
+/* Parameter of canonical point uv along edge k (inverse of edge_point). */
+static double edge_param(int k, const double uv[2]) {
+  double s = k == 0 ? uv[0] : k == 1 ? uv[1] : 1.0 - uv[1];
+  return s < 0.0 ? 0.0 : s > 1.0 ? 1.0 : s;
+}
+
+/* Squared distance from world point x to edge k of face f, and the edge
+ * parameter of the closest point. */
+static double edge_dist2(const ss_frames *fr, int f, int k, const double x[3], double *s_out) {
+  double a[3], b[3], ca[2], cb[2];
+  edge_point(k, 0.0, ca);
+  edge_point(k, 1.0, cb);
+  ss_anchor_position(fr, f, ca, a);
+  ss_anchor_position(fr, f, cb, b);
+  double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  double ax[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+  double l2 = dot3(ab, ab), s = l2 > 0.0 ? dot3(ax, ab) / l2 : 0.0;
+  s = s < 0.0 ? 0.0 : s > 1.0 ? 1.0 : s;
+  double d2 = 0.0;
+  for (int i = 0; i < 3; i++) {
+    double d = a[i] + s * ab[i] - x[i];
+    d2 += d * d;
+  }
+  *s_out = s;
+  return d2;
+}
+
+/* Crosses edge k of face *f at parameter s into the neighbour: updates *f
+ * and p (canonical point in the new face) and returns SS_STOP_INSIDE, or
+ * returns why it cannot (boundary, crease, step bound), leaving *f and p. */
+static int cross_edge(ss_walker *walker, const ss_topo *topo, int *f, int k, double s, double p[2],
+                      int max_steps, ss_walk_result *res) {
+  const int g = topo->face_adj[3 * *f + k];
+  if (g < 0) return SS_STOP_BOUNDARY;
+  if (walker->visited[g] == walker->stamp) return SS_STOP_CREASE;
+  if (res->steps >= max_steps) return SS_STOP_STEP_LIMIT;
+  /* the same point of the shared edge, in g, matched by welded end points */
+  const int kg = topo->face_adj_edge[3 * *f + k];
+  const int start_f = topo->vert_weld[topo->face_vert[3 * *f + k]];
+  const int start_g = topo->vert_weld[topo->face_vert[3 * g + kg]];
+  edge_point(kg, start_f == start_g ? s : 1.0 - s, p);
+  *f = g;
+  walker->visited[g] = walker->stamp;
+  res->steps++;
+  return SS_STOP_INSIDE;
+}
+
+/* In a degenerate face (zero area) the entry point lies on another of its
+ * edges too: all three are on one line, or at one point. Ray tracing cannot
+ * see across such a face, so the walk passes through it onto the unvisited
+ * neighbour across the edge nearest to the point (within round-off of the
+ * face's size), as if the face were not there. Returns that edge or -1. */
+static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const ss_frames *fr,
+                             int f, const double p[2], double *s_out) {
+  const double *e = fr->edge + 6 * f;
+  const double size2 = dot3(e, e) + dot3(e + 3, e + 3);
+  double x[3];
+  ss_anchor_position(fr, f, p, x);
+  int best_k = -1;
+  double best_d2 = 1e-18 * size2;
+  for (int k = 0; k < 3; k++) {
+    const int g = topo->face_adj[3 * f + k];
+    if (g < 0 || walker->visited[g] == walker->stamp) continue;
+    double s;
+    double d2 = edge_dist2(fr, f, k, x, &s);
+    if (d2 <= best_d2) {
+      if (best_k >= 0 && d2 == best_d2) continue; /* ties: the lower edge */
+      best_d2 = d2;
+      best_k = k;
+      *s_out = s;
+    }
+  }
+  return best_k;
+}
+
+void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
+             const double uv[2], const double target[3], int max_steps, ss_walk_result *res) {
+  double p[2] = {uv[0], uv[1]};
+  clamp_uv(p);
+  res->face = face;
+  res->uv[0] = p[0];
+  res->uv[1] = p[1];
+  res->stop = SS_STOP_INSIDE;
+  res->steps = 0;
+  if (!(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) return;
+
+  if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
+    memset(walker->visited, 0, sizeof(unsigned int) * (size_t)walker->nface);
+    walker->stamp = 1;
+  }
+  int f = face;
+  walker->visited[f] = walker->stamp;
+  for (;;) {
+    /* direction towards a* in f's canonical space */
+    double here[3], d[3];
+    ss_anchor_position(fr, f, p, here);
+    for (int i = 0; i < 3; i++) d[i] = target[i] - here[i];
+    const double *t = fr->to_canon + 6 * f;
+    const double du = dot3(t, d), dv = dot3(t + 3, d);
+    if (!(isfinite(du) && isfinite(dv))) break; /* stay where we are */
+
+    /* the smallest ray parameter at which the ray leaves the triangle */
+    double t_exit = 1.0;
+    int k_exit = -1;
+    if (dv < 0.0) { /* edge 0: v = 0 */
+      double te = -p[1] / dv;
+      if (te < t_exit) t_exit = te, k_exit = 0;
+    }
+    if (du + dv > 0.0) { /* edge 1: u + v = 1 */
+      double te = (1.0 - p[0] - p[1]) / (du + dv);
+      if (te < t_exit) t_exit = te, k_exit = 1;
+    }
+    if (du < 0.0) { /* edge 2: u = 0 */
+      double te = -p[0] / du;
+      if (te < t_exit) t_exit = te, k_exit = 2;
+    }
+    if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
+      p[0] += du;
+      p[1] += dv;
+      clamp_uv(p);
+      break;
+    }
+    if (t_exit < 0.0) t_exit = 0.0;
+    double h[2] = {p[0] + t_exit * du, p[1] + t_exit * dv};
+    double s = edge_param(k_exit, h);
+    edge_point(k_exit, s, p); /* exactly on the edge */
+    int stop = cross_edge(walker, topo, &f, k_exit, s, p, max_steps, res);
+    while (stop == SS_STOP_INSIDE && fr->degenerate[f]) {
+      const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
+      if (k_pass < 0) break;
+      stop = cross_edge(walker, topo, &f, k_pass, s, p, max_steps, res);
+    }
+    if (stop != SS_STOP_INSIDE) {
+      res->stop = stop;
+      break;
+    }
+  }
+  res->face = f;
+  res->uv[0] = p[0];
+  res->uv[1] = p[1];
+}

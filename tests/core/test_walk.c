@@ -1,0 +1,346 @@
+/* The anchor walk (paper, section 2): every stop reason, crossings between
+ * faces of very different shapes and orientations, seams, slivers and
+ * zero-area faces, clamping, and the step bound. */
+#include <string.h>
+
+#include "skin_sim/ss_anchor.h"
+#include "ss_test.h"
+#include "ss_test_mesh.h"
+
+typedef struct {
+  ss_topo *topo;
+  ss_frames *frames;
+  ss_walker *walker;
+  const double *pos;
+} walk_env;
+
+static walk_env env_make(const test_mesh *m) {
+  walk_env e = {0};
+  char err[256] = "";
+  int status = ss_topo_create(&e.topo, m->nvert, m->pos, m->nface, m->faces, -1.0, err, sizeof err);
+  CHECK_MSG(status == SS_OK, "%s", err);
+  CHECK(ss_frames_create(&e.frames, m->nface) == SS_OK);
+  CHECK(ss_walker_create(&e.walker, m->nface) == SS_OK);
+  ss_frames_update(e.frames, e.topo, m->pos);
+  e.pos = m->pos;
+  return e;
+}
+
+static void env_free(walk_env *e) {
+  ss_walker_destroy(e->walker);
+  ss_frames_destroy(e->frames);
+  ss_topo_destroy(e->topo);
+}
+
+static int uv_inside(const double uv[2]) {
+  return isfinite(uv[0]) && isfinite(uv[1]) && uv[0] >= 0.0 && uv[1] >= 0.0 &&
+         uv[0] + uv[1] <= 1.0 + 1e-15;
+}
+
+/* Finds the (non-degenerate) face of a planar z = 0 mesh containing (x, y)
+ * and its uv. */
+static int locate(const walk_env *e, double x, double y, double uv[2]) {
+  for (int f = 0; f < e->topo->nface; f++) {
+    if (e->frames->degenerate[f]) continue;
+    const double *o = e->frames->origin + 3 * f, *t = e->frames->to_canon + 6 * f;
+    double d[3] = {x - o[0], y - o[1], -o[2]};
+    double u = t[0] * d[0] + t[1] * d[1] + t[2] * d[2], v = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
+    if (u >= -1e-12 && v >= -1e-12 && u + v <= 1.0 + 1e-12) {
+      uv[0] = u, uv[1] = v;
+      return f;
+    }
+  }
+  return -1;
+}
+
+/* On a flat mesh, a walk to a target above an interior point ends exactly
+ * below it (the orthogonal projection), whatever faces it crosses. */
+static void test_flat_jittered(void) {
+  test_mesh m = test_grid(16, 16, 0.3, 7); /* thin and fat triangles mixed */
+  walk_env e = env_make(&m);
+  double min_area = INFINITY, max_area = 0.0;
+  for (int f = 0; f < m.nface; f++) {
+    const double *n = e.frames->normal + 3 * f;
+    CHECK(n[2] > 0.0); /* a valid planar mesh: no face folded over */
+    min_area = fmin(min_area, e.frames->area[f]);
+    max_area = fmax(max_area, e.frames->area[f]);
+  }
+  CHECK(max_area > 5.0 * min_area);
+  unsigned long long s = 99;
+  int crossings = 0;
+  for (int trial = 0; trial < 2000; trial++) {
+    double x0 = 0.5 + 15.0 * ss_test_rand(&s), y0 = 0.5 + 15.0 * ss_test_rand(&s);
+    double x1 = 0.5 + 15.0 * ss_test_rand(&s), y1 = 0.5 + 15.0 * ss_test_rand(&s);
+    double uv[2];
+    int f = locate(&e, x0, y0, uv);
+    CHECK(f >= 0);
+    if (f < 0) continue;
+    double target[3] = {x1, y1, 2.0 * ss_test_rand(&s) - 1.0};
+    ss_walk_result r;
+    ss_walk(e.walker, e.topo, e.frames, f, uv, target, 10000, &r);
+    CHECK_EQ_INT(r.stop, SS_STOP_INSIDE);
+    CHECK(uv_inside(r.uv));
+    double a1[3];
+    ss_anchor_position(e.frames, r.face, r.uv, a1);
+    CHECK_NEAR(a1[0], x1, 1e-9);
+    CHECK_NEAR(a1[1], y1, 1e-9);
+    CHECK_NEAR(a1[2], 0.0, 1e-12);
+    crossings += r.steps;
+  }
+  CHECK(crossings > 2000 * 5); /* the walks really crossed many faces */
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* Flipping the orientation of half the faces (a mesh of inconsistent
+ * winding) must not change where walks end: points cross edges by welded ids. */
+static void test_mixed_orientation(void) {
+  test_mesh m = test_grid(8, 8, 0.3, 3);
+  for (int f = 0; f < m.nface; f += 2) {
+    int t = m.faces[3 * f + 1];
+    m.faces[3 * f + 1] = m.faces[3 * f + 2];
+    m.faces[3 * f + 2] = t;
+  }
+  walk_env e = env_make(&m);
+  unsigned long long s = 5;
+  for (int trial = 0; trial < 500; trial++) {
+    double x0 = 0.5 + 7.0 * ss_test_rand(&s), y0 = 0.5 + 7.0 * ss_test_rand(&s);
+    double x1 = 0.5 + 7.0 * ss_test_rand(&s), y1 = 0.5 + 7.0 * ss_test_rand(&s);
+    double uv[2], a1[3], target[3] = {x1, y1, 0.3};
+    int f = locate(&e, x0, y0, uv);
+    ss_walk_result r;
+    ss_walk(e.walker, e.topo, e.frames, f, uv, target, 10000, &r);
+    ss_anchor_position(e.frames, r.face, r.uv, a1);
+    CHECK_EQ_INT(r.stop, SS_STOP_INSIDE);
+    CHECK_NEAR(a1[0], x1, 1e-9);
+    CHECK_NEAR(a1[1], y1, 1e-9);
+  }
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* A target beyond the border: the walk stops on the boundary edge where the
+ * ray leaves the mesh. */
+static void test_boundary(void) {
+  test_mesh m = test_grid(4, 4, 0.0, 1);
+  walk_env e = env_make(&m);
+  double uv[2];
+  int f = locate(&e, 1.25, 2.0, uv);
+  double target[3] = {9.25, 2.0 + 0.5 * 8.0 / 2.0, 0.7}; /* ray from (1.25,2) with slope 0.25 */
+  ss_walk_result r;
+  ss_walk(e.walker, e.topo, e.frames, f, uv, target, 512, &r);
+  CHECK_EQ_INT(r.stop, SS_STOP_BOUNDARY);
+  double a1[3];
+  ss_anchor_position(e.frames, r.face, r.uv, a1);
+  CHECK_NEAR(a1[0], 4.0, 1e-12); /* on the border x = 4 */
+  /* the hit point: the projected ray (1.25,2) + t (8, 2) at x = 4 */
+  CHECK_NEAR(a1[1], 2.0 + (4.0 - 1.25) / 8.0 * 2.0, 1e-9);
+  CHECK(uv_inside(r.uv));
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* A sharp fold of two faces (wings rising from a shared edge, 2 x 18 degrees
+ * apart from vertical) and a target below the fold line (seen from the
+ * other side: beyond a sharp ridge). Its projection onto either wing lies
+ * beyond the shared edge, so the walk crosses over, is pulled straight back
+ * and stops on the shared edge (the paper's crease). */
+static void test_crease(void) {
+  /* edge (0,0,0)-(0,1,0) shared; wings rising to x = -1 and x = +1 at height 3 */
+  double pos[] = {0, 0, 0, 0, 1, 0, -1, 0.5, 3, 1, 0.5, 3};
+  int faces[] = {0, 1, 2, 1, 0, 3};
+  test_mesh m = {4, 2, pos, faces};
+  walk_env e = env_make(&m);
+  double uv[2] = {0.2, 0.6}; /* on the left wing */
+  double target[3] = {0.3, 0.5, -1.0};
+  ss_walk_result r;
+  ss_walk(e.walker, e.topo, e.frames, 0, uv, target, 512, &r);
+  CHECK_EQ_INT(r.stop, SS_STOP_CREASE);
+  CHECK_EQ_INT(r.steps, 1);
+  double a1[3];
+  ss_anchor_position(e.frames, r.face, r.uv, a1);
+  CHECK_NEAR(a1[0], 0.0, 1e-12); /* on the shared edge x = z = 0 */
+  CHECK_NEAR(a1[2], 0.0, 1e-12);
+  CHECK(a1[1] >= 0.0 && a1[1] <= 1.0);
+  env_free(&e);
+}
+
+/* The step bound: a long strip, at most max_steps crossings. */
+static void test_step_limit(void) {
+  test_mesh m = test_grid(40, 1, 0.0, 1);
+  walk_env e = env_make(&m);
+  double uv[2];
+  int f = locate(&e, 0.3, 0.5, uv);
+  double target[3] = {39.5, 0.5, 0.0};
+  ss_walk_result r;
+  ss_walk(e.walker, e.topo, e.frames, f, uv, target, 3, &r);
+  CHECK_EQ_INT(r.stop, SS_STOP_STEP_LIMIT);
+  CHECK_EQ_INT(r.steps, 3);
+  CHECK(uv_inside(r.uv));
+  ss_walk(e.walker, e.topo, e.frames, f, uv, target, 1000, &r);
+  CHECK_EQ_INT(r.stop, SS_STOP_INSIDE);
+  CHECK(r.steps > 40);
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* Seams: around the seamed cube (every side its own vertices), a target far
+ * away on the opposite side is reached through the welded seams. */
+static void test_seamed_cube_walk(void) {
+  test_mesh m = test_seamed_cube();
+  walk_env e = env_make(&m);
+  /* start at the centre of the bottom (z = 0) side: face 0 or 1 */
+  double uv[2];
+  int f = -1;
+  for (int g = 0; g < 2 && f < 0; g++) {
+    const double *o = e.frames->origin + 3 * g, *t = e.frames->to_canon + 6 * g;
+    double d[3] = {0.5 - o[0], 0.25 - o[1], -o[2]};
+    uv[0] = t[0] * d[0] + t[1] * d[1] + t[2] * d[2];
+    uv[1] = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
+    if (uv[0] >= 0 && uv[1] >= 0 && uv[0] + uv[1] <= 1) f = g;
+  }
+  CHECK(f >= 0);
+  /* pulled towards a point beside the y = 0 side: walks over the seam onto it */
+  double target[3] = {0.5, -3.0, 0.5};
+  ss_walk_result r;
+  ss_walk(e.walker, e.topo, e.frames, f, uv, target, 512, &r);
+  double a1[3];
+  ss_anchor_position(e.frames, r.face, r.uv, a1);
+  CHECK(r.steps >= 1);
+  CHECK(r.face == 4 || r.face == 5); /* the y = 0 side */
+  CHECK_NEAR(a1[1], 0.0, 1e-12);
+  CHECK_NEAR(a1[0], 0.5, 1e-9);
+  CHECK_NEAR(a1[2], 0.5, 1e-9);
+  CHECK_EQ_INT(r.stop, SS_STOP_INSIDE);
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* Slivers and zero-area faces: grid vertices (i+1, i) moved onto the cell
+ * diagonal (i+0.5, i+0.5) make the faces beside that diagonal collinear
+ * (zero area) on even i, and needles 1e-9 wide on odd i, all without any
+ * face folding over. Walks across them never give NaN, always end inside a
+ * face, and on this flat mesh still land exactly on the projected target. */
+static void test_slivers_and_zero_area(void) {
+  test_mesh m = test_grid(10, 10, 0.0, 1);
+  for (int i = 1; i < 9; i++) {
+    double *p = m.pos + 3 * (i * 11 + i + 1);
+    p[0] = i + 0.5 + (i % 2 ? 1e-9 : 0.0);
+    p[1] = i + 0.5;
+  }
+  walk_env e = env_make(&m);
+  CHECK(e.topo->ndegenerate_face > 0);
+  int needles = 0;
+  for (int f = 0; f < m.nface; f++) {
+    CHECK(e.frames->normal[3 * f + 2] >= 0.0); /* nothing folded over */
+    if (e.frames->area[f] > 0 && e.frames->area[f] < 1e-8) needles++;
+  }
+  CHECK(needles > 0);
+  unsigned long long s = 11;
+  int bad = 0, off = 0, across = 0;
+  for (int trial = 0; trial < 2000; trial++) {
+    double x0 = 0.3 + 9.4 * ss_test_rand(&s), y0 = 0.3 + 9.4 * ss_test_rand(&s);
+    double x1 = 0.3 + 9.4 * ss_test_rand(&s), y1 = 0.3 + 9.4 * ss_test_rand(&s);
+    double uv[2], a1[3], target[3] = {x1, y1, 0.5};
+    int f = locate(&e, x0, y0, uv);
+    if (f < 0) continue;
+    ss_walk_result r;
+    ss_walk(e.walker, e.topo, e.frames, f, uv, target, 10000, &r);
+    ss_anchor_position(e.frames, r.face, r.uv, a1);
+    if (!uv_inside(r.uv) || !isfinite(a1[0] + a1[1] + a1[2])) bad++;
+    if (fabs(a1[0] - x1) > 1e-6 || fabs(a1[1] - y1) > 1e-6) off++;
+    if ((x0 - y0) * (x1 - y1) < 0.0) across++;
+  }
+  CHECK(across > 500); /* many walks had to cross the degenerate column */
+  CHECK_EQ_INT(bad, 0);
+  CHECK_MSG(off == 0, "%d of 2000 walks ended away from their projected target", off);
+  /* a walk that starts inside a zero-area face */
+  for (int f = 0; f < e.topo->nface; f++) {
+    if (!e.topo->face_degenerate[f]) continue;
+    double uv[2] = {0.3, 0.3}, target[3] = {8.0, 2.0, 1.0};
+    ss_walk_result r;
+    ss_walk(e.walker, e.topo, e.frames, f, uv, target, 1000, &r);
+    CHECK(uv_inside(r.uv));
+  }
+  /* a face collapsed to a point: finite and stays put */
+  double pos1[] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  int faces1[] = {0, 1, 2};
+  test_mesh p = {3, 1, pos1, faces1};
+  walk_env e1 = env_make(&p);
+  double uv[2] = {0.2, 0.2}, target[3] = {1, 2, 3};
+  ss_walk_result r;
+  ss_walk(e1.walker, e1.topo, e1.frames, 0, uv, target, 10, &r);
+  CHECK(uv_inside(r.uv));
+  for (int i = 0; i < 6; i++) CHECK(isfinite(e1.frames->to_canon[i]));
+  env_free(&e1);
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* Clamping against round-off and bad input: a start slightly outside is
+ * pulled in; a NaN start becomes the barycenter; a NaN target leaves the
+ * anchor where it is. */
+static void test_clamp_and_nan(void) {
+  test_mesh m = test_grid(2, 2, 0.0, 1);
+  walk_env e = env_make(&m);
+  double uv[2] = {-1e-13, 1.0 + 1e-12};
+  double target[3];
+  ss_anchor_position(e.frames, 0, (double[2]){0.0, 1.0}, target);
+  ss_walk_result r;
+  ss_walk(e.walker, e.topo, e.frames, 0, uv, target, 512, &r);
+  CHECK(uv_inside(r.uv));
+  double nan_uv[2] = {NAN, 0.1};
+  ss_walk(e.walker, e.topo, e.frames, 0, nan_uv, target, 512, &r);
+  CHECK(uv_inside(r.uv));
+  double good_uv[2] = {0.2, 0.3}, nan_target[3] = {NAN, 0, 0};
+  ss_walk(e.walker, e.topo, e.frames, 3, good_uv, nan_target, 512, &r);
+  CHECK_EQ_INT(r.face, 3);
+  CHECK_EQ_INT(r.steps, 0);
+  CHECK(r.uv[0] == 0.2 && r.uv[1] == 0.3);
+  double inf_target[3] = {0, INFINITY, 0};
+  ss_walk(e.walker, e.topo, e.frames, 3, good_uv, inf_target, 512, &r);
+  CHECK(r.face == 3 && r.steps == 0);
+  CHECK(strcmp(ss_walk_stop_name(SS_STOP_CREASE), "crease") == 0);
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* On a curved closed surface (a cube corner region), when a walk ends
+ * inside a face its point is the orthogonal projection of a* onto that face. */
+static void test_projection_property(void) {
+  test_mesh m = test_seamed_cube();
+  walk_env e = env_make(&m);
+  unsigned long long s = 17;
+  for (int trial = 0; trial < 500; trial++) {
+    int f = (int)(12 * ss_test_rand(&s)) % 12;
+    double uv[2] = {0.5 * ss_test_rand(&s), 0.5 * ss_test_rand(&s)};
+    double a0[3], target[3], a1[3];
+    ss_anchor_position(e.frames, f, uv, a0);
+    for (int c = 0; c < 3; c++) target[c] = a0[c] + 0.8 * (2.0 * ss_test_rand(&s) - 1.0);
+    ss_walk_result r;
+    ss_walk(e.walker, e.topo, e.frames, f, uv, target, 512, &r);
+    CHECK(uv_inside(r.uv));
+    ss_anchor_position(e.frames, r.face, r.uv, a1);
+    if (r.stop != SS_STOP_INSIDE) continue;
+    /* a* - a1 is along the face normal */
+    const double *n = e.frames->normal + 3 * r.face;
+    double d[3] = {target[0] - a1[0], target[1] - a1[1], target[2] - a1[2]};
+    double dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    for (int c = 0; c < 3; c++) CHECK_NEAR(d[c] - dn * n[c], 0.0, 1e-12);
+  }
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+int main(void) {
+  test_flat_jittered();
+  test_mixed_orientation();
+  test_boundary();
+  test_crease();
+  test_step_limit();
+  test_seamed_cube_walk();
+  test_slivers_and_zero_area();
+  test_clamp_and_nan();
+  test_projection_property();
+  return ss_test_finish("test_walk");
+}
