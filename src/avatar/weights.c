@@ -1,0 +1,305 @@
+/* Automatic skinning weights by heat diffusion (Baran and Popovic 2007,
+ * "Automatic rigging and animation of 3D characters", the "pinocchio" rig).
+ *
+ * On the welded mesh, with the symmetric cotangent stiffness matrix L
+ * (L_ij = -(cot a + cot b) / 2, L_ii = -sum_j L_ij) and the lumped
+ * (barycentric) vertex areas M, the paper's -Lap w + H w = H p, Lap =
+ * -M^-1 L, becomes the symmetric positive definite system
+ *     (L + M H) w_j = M H p_j,
+ * H_ii = c / d_i^2 with d_i the distance from vertex i to the nearest
+ * segment and p_j(i) = 1 where that segment belongs to owner j. It is
+ * factored once with CHOLMOD and solved for all owners together (one column
+ * each). The paper also drops segments not visible from a vertex; that test
+ * is not done here (a segment is "nearest" by distance alone).
+ * Afterwards: clamp to >= 0, a few passes of neighbour averaging, weights
+ * below min_weight dropped, normalised to a partition of unity; a vertex
+ * whose second-nearest owner is more than rigid_ratio times farther than the
+ * nearest is bound rigidly (weight 1) to the nearest. */
+#include <cholmod.h>
+
+#include "skin_sim/ss_mesh.h"
+#include "skin_sim/ssa_avatar.h"
+#include "ssa_util.h"
+
+ssa_autoweight_opts ssa_autoweight_default_opts(void) {
+  ssa_autoweight_opts o;
+  o.heat_c = 1.0;
+  o.rigid_ratio = 2.5;
+  o.min_weight = 0.01;
+  o.smooth_iters = 2;
+  return o;
+}
+
+static double seg_dist2(const double *p, const double *s) {
+  double d[3] = {s[3] - s[0], s[4] - s[1], s[5] - s[2]};
+  double w[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
+  double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  double t = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0.0;
+  if (t < 0) t = 0;
+  if (t > 1) t = 1;
+  double e[3] = {w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]};
+  return e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+}
+
+int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, double weld_tol,
+                     int nseg, const double *seg, const int *seg_owner, int nowner,
+                     const ssa_autoweight_opts *opts, int **w_start_out, int **w_bone_out,
+                     double **w_weight_out, int *dominant, char *err, int err_sz) {
+  if (!w_start_out || !w_bone_out || !w_weight_out)
+    return ssa_fail(err, err_sz, SS_E_ARG, "no output arrays given");
+  *w_start_out = NULL;
+  *w_bone_out = NULL;
+  *w_weight_out = NULL;
+  if (nseg <= 0 || !seg || !seg_owner || nowner <= 0)
+    return ssa_fail(err, err_sz, SS_E_ARG, "no skeleton segments given");
+  for (int s = 0; s < nseg; s++) {
+    if (seg_owner[s] < 0 || seg_owner[s] >= nowner)
+      return ssa_fail(err, err_sz, SS_E_ARG, "segment %d has owner %d outside [0, %d)", s,
+                      seg_owner[s], nowner);
+    for (int c = 0; c < 6; c++)
+      if (!isfinite(seg[6 * s + c]))
+        return ssa_fail(err, err_sz, SS_E_NONFINITE, "segment %d is not finite", s);
+  }
+  ssa_autoweight_opts o = opts ? *opts : ssa_autoweight_default_opts();
+  ss_topo *topo = NULL;
+  int st = ss_topo_create(&topo, nvert, pos, nface, faces, weld_tol, err, err_sz);
+  if (st != SS_OK) return st;
+  const int nw = topo->nweld;
+  double *area = calloc((size_t)nw, sizeof(double));
+  double *dist = malloc(sizeof(double) * (size_t)nw);
+  int *near1 = malloc(sizeof(int) * (size_t)nw);
+  unsigned char *rigid = calloc((size_t)nw, 1);
+  double *w = NULL;
+  double *nbr_sum = NULL, *nbr_cnt = NULL;
+  cholmod_common cc;
+  int cc_started = 0;
+  cholmod_triplet *T = NULL;
+  cholmod_sparse *A = NULL;
+  cholmod_factor *F = NULL;
+  cholmod_dense *B = NULL, *X = NULL;
+  int *ws = NULL, *wb = NULL;
+  double *wv = NULL;
+  if (!area || !dist || !near1 || !rigid) {
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  /* nearest and second-nearest owners of each welded vertex */
+  for (int i = 0; i < nw; i++) {
+    const double *p = pos + 3 * topo->weld_rep[i];
+    double d1 = INFINITY, d2 = INFINITY;
+    int o1 = -1;
+    for (int s = 0; s < nseg; s++) {
+      double d = seg_dist2(p, seg + 6 * s);
+      if (d < d1) {
+        if (seg_owner[s] != o1) d2 = d1;
+        d1 = d;
+        o1 = seg_owner[s];
+      } else if (d < d2 && seg_owner[s] != o1) {
+        d2 = d;
+      }
+    }
+    near1[i] = o1;
+    dist[i] = sqrt(d1);
+    rigid[i] = sqrt(d2) > o.rigid_ratio * sqrt(d1);
+  }
+  /* cotangent stiffness (upper triangle triplets) and lumped areas */
+  cholmod_start(&cc);
+  cc_started = 1;
+  cc.print = 0;
+  cc.error_handler = NULL;
+  T = cholmod_allocate_triplet((size_t)nw, (size_t)nw, (size_t)(6 * nface + nw), 1, CHOLMOD_REAL,
+                               &cc);
+  if (!T) {
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  int *Ti = T->i, *Tj = T->j;
+  double *Tx = T->x;
+  double *diag = calloc((size_t)nw, sizeof(double));
+  if (!diag) {
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  size_t nt = 0;
+  for (int f = 0; f < nface; f++) {
+    if (topo->face_degenerate[f]) continue;
+    int v[3];
+    const double *x[3];
+    for (int c = 0; c < 3; c++) {
+      v[c] = topo->vert_weld[faces[3 * f + c]];
+      x[c] = pos + 3 * faces[3 * f + c];
+    }
+    double e1[3], e2[3], n[3];
+    for (int c = 0; c < 3; c++) {
+      e1[c] = x[1][c] - x[0][c];
+      e2[c] = x[2][c] - x[0][c];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double a2 = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(a2 > 0)) continue;
+    for (int c = 0; c < 3; c++) area[v[c]] += a2 / 6.0;
+    for (int c = 0; c < 3; c++) {
+      /* angle at corner c is opposite the edge (c+1, c+2) */
+      const double *p0 = x[c], *p1 = x[(c + 1) % 3], *p2 = x[(c + 2) % 3];
+      double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+      double s[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+      double cot = (u[0] * s[0] + u[1] * s[1] + u[2] * s[2]) / a2;
+      double wgt = 0.5 * cot;
+      int i = v[(c + 1) % 3], j = v[(c + 2) % 3];
+      if (i == j) continue;
+      Ti[nt] = i < j ? i : j;
+      Tj[nt] = i < j ? j : i;
+      Tx[nt] = -wgt;
+      nt++;
+      diag[i] += wgt;
+      diag[j] += wgt;
+    }
+  }
+  for (int i = 0; i < nw; i++) {
+    double d = dist[i];
+    double floor_d = 1e-3 * (topo->mean_edge_length > 0 ? topo->mean_edge_length : 1.0);
+    if (d < floor_d) d = floor_d;
+    double h = o.heat_c / (d * d);
+    Ti[nt] = Tj[nt] = i;
+    Tx[nt] = diag[i] + area[i] * h;
+    nt++;
+    dist[i] = area[i] * h; /* reuse: M H on the diagonal */
+  }
+  free(diag);
+  T->nnz = nt;
+  A = cholmod_triplet_to_sparse(T, nt, &cc);
+  B = cholmod_zeros((size_t)nw, (size_t)nowner, CHOLMOD_REAL, &cc);
+  if (!A || !B) {
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  double *Bx = B->x;
+  for (int i = 0; i < nw; i++) Bx[(size_t)near1[i] * (size_t)nw + (size_t)i] = dist[i];
+  F = cholmod_analyze(A, &cc);
+  if (!F || !cholmod_factorize(A, F, &cc) || cc.status != CHOLMOD_OK) {
+    st = ssa_fail(err, err_sz, SS_E_SOLVER,
+                  "the heat diffusion matrix could not be factored (CHOLMOD status %d)", cc.status);
+    goto done;
+  }
+  X = cholmod_solve(CHOLMOD_A, F, B, &cc);
+  if (!X) {
+    st = ssa_fail(err, err_sz, SS_E_SOLVER, "the heat diffusion solve failed (CHOLMOD status %d)",
+                  cc.status);
+    goto done;
+  }
+  /* post-processing on welded vertices: w (nowner x nw, owner-major) */
+  w = malloc(sizeof(double) * (size_t)nw * (size_t)nowner);
+  nbr_sum = malloc(sizeof(double) * (size_t)nw);
+  nbr_cnt = malloc(sizeof(double) * (size_t)nw);
+  if (!w || !nbr_sum || !nbr_cnt) {
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  const double *Xx = X->x;
+  for (size_t k = 0; k < (size_t)nw * (size_t)nowner; k++) {
+    double v = Xx[k];
+    w[k] = isfinite(v) && v > 0 ? v : 0.0;
+  }
+  for (int it = 0; it < o.smooth_iters; it++) {
+    for (int j = 0; j < nowner; j++) {
+      double *wj = w + (size_t)j * (size_t)nw;
+      memset(nbr_sum, 0, sizeof(double) * (size_t)nw);
+      memset(nbr_cnt, 0, sizeof(double) * (size_t)nw);
+      for (int f = 0; f < nface; f++)
+        for (int c = 0; c < 3; c++) {
+          int a = topo->vert_weld[faces[3 * f + c]], b = topo->vert_weld[faces[3 * f + (c + 1) % 3]];
+          if (a == b) continue;
+          nbr_sum[a] += wj[b];
+          nbr_cnt[a] += 1;
+          nbr_sum[b] += wj[a];
+          nbr_cnt[b] += 1;
+        }
+      for (int i = 0; i < nw; i++)
+        if (nbr_cnt[i] > 0) wj[i] = 0.5 * wj[i] + 0.5 * nbr_sum[i] / nbr_cnt[i];
+    }
+  }
+  /* count, drop small, normalise, rigid */
+  ws = calloc((size_t)nvert + 1, sizeof(int));
+  int *cnt_w = calloc((size_t)nw + 1, sizeof(int));
+  if (!ws || !cnt_w) {
+    free(cnt_w);
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  for (int i = 0; i < nw; i++) {
+    double sum = 0;
+    for (int j = 0; j < nowner; j++) sum += w[(size_t)j * nw + i];
+    int keep = 0;
+    for (int j = 0; j < nowner; j++) {
+      double *x = &w[(size_t)j * nw + i];
+      *x = sum > 0 ? *x / sum : 0.0;
+      if (rigid[i] || *x < o.min_weight) *x = 0.0;
+    }
+    if (rigid[i] || sum <= 0) w[(size_t)near1[i] * nw + i] = 1.0;
+    sum = 0;
+    for (int j = 0; j < nowner; j++) sum += w[(size_t)j * nw + i];
+    if (!(sum > 0)) {
+      w[(size_t)near1[i] * nw + i] = 1.0;
+      sum = 1.0;
+    }
+    for (int j = 0; j < nowner; j++) {
+      w[(size_t)j * nw + i] /= sum;
+      keep += w[(size_t)j * nw + i] > 0;
+    }
+    cnt_w[i] = keep;
+  }
+  for (int v = 0; v < nvert; v++) ws[v + 1] = ws[v] + cnt_w[topo->vert_weld[v]];
+  free(cnt_w);
+  wb = malloc(sizeof(int) * (size_t)(ws[nvert] > 0 ? ws[nvert] : 1));
+  wv = malloc(sizeof(double) * (size_t)(ws[nvert] > 0 ? ws[nvert] : 1));
+  if (!wb || !wv) {
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    goto done;
+  }
+  for (int v = 0; v < nvert; v++) {
+    int i = topo->vert_weld[v], k = ws[v], best = -1;
+    double bw = -1;
+    for (int j = 0; j < nowner; j++) {
+      double x = w[(size_t)j * nw + i];
+      if (x > 0) {
+        wb[k] = j;
+        wv[k] = x;
+        k++;
+        if (x > bw) {
+          bw = x;
+          best = j;
+        }
+      }
+    }
+    if (dominant) dominant[v] = best;
+  }
+  *w_start_out = ws;
+  *w_bone_out = wb;
+  *w_weight_out = wv;
+  ws = NULL;
+  wb = NULL;
+  wv = NULL;
+done:
+  free(ws);
+  free(wb);
+  free(wv);
+  free(w);
+  free(nbr_sum);
+  free(nbr_cnt);
+  free(area);
+  free(dist);
+  free(near1);
+  free(rigid);
+  if (cc_started) {
+    cholmod_free_triplet(&T, &cc);
+    cholmod_free_sparse(&A, &cc);
+    cholmod_free_factor(&F, &cc);
+    cholmod_free_dense(&B, &cc);
+    cholmod_free_dense(&X, &cc);
+    cholmod_finish(&cc);
+  }
+  ss_topo_destroy(topo);
+  return st;
+}

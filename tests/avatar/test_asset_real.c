@@ -1,0 +1,119 @@
+/* Real rigged, animated characters that nobody here made (Debian's
+ * assimp-testmodels and the glTF samples in ../shared/data): each loads,
+ * has bones and animation, and its animation sampled over time stays finite
+ * and really moves the body. Skips (77) when neither source is present. */
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "skin_sim/ssa_avatar.h"
+#include "ss_test.h"
+
+static int exists(const char *p) {
+  struct stat st;
+  return stat(p, &st) == 0;
+}
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct {
+  const char *path;
+  int min_bones;
+  int human; /* a rigged humanoid character (counts towards the two required) */
+} asset_case;
+
+/* bounding-box diagonal */
+static double bbox_diag(int n, const double *p) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (int i = 0; i < n; i++)
+    for (int c = 0; c < 3; c++) {
+      if (p[3 * i + c] < lo[c]) lo[c] = p[3 * i + c];
+      if (p[3 * i + c] > hi[c]) hi[c] = p[3 * i + c];
+    }
+  return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+              (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+static int run_case(const asset_case *c) {
+  char err[512] = "";
+  ssa_avatar *av = NULL;
+  double t0 = now_s();
+  int st = ssa_avatar_load_asset(&av, c->path, NULL, err, sizeof err);
+  double t_load = now_s() - t0;
+  CHECK_MSG(st == SS_OK, "%s: %s", c->path, err);
+  if (st != SS_OK) return 0;
+  const ssa_asset *a = av->asset;
+  CHECK(a->nbone_file >= c->min_bones);
+  CHECK(a->nanim >= 1);
+  CHECK(av->nface > 0 && av->nvert > 0);
+  double diag = bbox_diag(av->nvert, av->rest_pos);
+  CHECK(diag > 0 && isfinite(diag));
+  double *pos = malloc(sizeof(double) * 3 * (size_t)av->nvert);
+  double *first = malloc(sizeof(double) * 3 * (size_t)av->nvert);
+  double max_move = 0.0, pose_time = 0.0;
+  int nonfinite = 0, nsample = 0;
+  for (int an = 0; an < a->nanim; an++) {
+    double dur = a->anim_duration[an];
+    for (int k = 0; k <= 40; k++) {
+      double t = dur * k / 40.0;
+      double p0 = now_s();
+      CHECK(ssa_avatar_pose_anim(av, an, t, pos) == SS_OK);
+      pose_time += now_s() - p0;
+      nsample++;
+      if (k == 0) memcpy(first, pos, sizeof(double) * 3 * (size_t)av->nvert);
+      double dg = bbox_diag(av->nvert, pos);
+      CHECK_MSG(dg > 0.5 * diag && dg < 2.0 * diag, "%s: anim %d t %g: size %g, rest size %g",
+                c->path, an, t, dg, diag);
+      for (int i = 0; i < 3 * av->nvert; i++) {
+        if (!isfinite(pos[i])) nonfinite++;
+        double d = fabs(pos[i] - first[i]);
+        if (d > max_move) max_move = d;
+      }
+    }
+  }
+  CHECK_EQ_INT(nonfinite, 0);
+  CHECK_MSG(max_move > 0.02 * diag, "%s: the animation moves vertices by only %g (size %g)",
+            c->path, max_move, diag);
+  printf("%-60s v %5d f %5d bones %3d anims %d size %.3g m moved %.3g load %.1f ms pose %.3f ms\n",
+         strrchr(c->path, '/') + 1, av->nvert, av->nface, a->nbone_file, a->nanim, diag, max_move,
+         1e3 * t_load, 1e3 * pose_time / (nsample > 0 ? nsample : 1));
+  free(pos);
+  free(first);
+  ssa_avatar_destroy(av);
+  return 1;
+}
+
+int main(void) {
+  char buf[6][1024];
+  const char *models = "/usr/share/assimp/models";
+  snprintf(buf[0], sizeof buf[0], "%s/X/BCN_Epileptic.X", models);
+  snprintf(buf[1], sizeof buf[1], "%s/X/Testwuson.X", models);
+  snprintf(buf[2], sizeof buf[2], "%s/FBX/animation_with_skeleton.fbx", models);
+  snprintf(buf[3], sizeof buf[3], "%s/data/gltf-khronos-skinned/Fox/glTF-Binary/Fox.glb", SS_SHARED_DIR);
+  snprintf(buf[4], sizeof buf[4], "%s/data/gltf-khronos-skinned/RiggedSimple/glTF-Binary/RiggedSimple.glb", SS_SHARED_DIR);
+  snprintf(buf[5], sizeof buf[5], "%s/data/gltf-khronos-skinned/SimpleSkin/glTF-Embedded/SimpleSkin.gltf", SS_SHARED_DIR);
+  asset_case cases[6] = {{buf[0], 20, 1}, {buf[1], 20, 1}, {buf[2], 5, 1},
+                         {buf[3], 20, 1}, {buf[4], 2, 0},  {buf[5], 2, 0}};
+  int ran = 0, characters = 0;
+  for (int i = 0; i < 6; i++) {
+    if (!exists(cases[i].path)) {
+      printf("skipping %s: not present\n", cases[i].path);
+      continue;
+    }
+    if (run_case(&cases[i])) {
+      ran++;
+      characters += cases[i].human;
+    }
+  }
+  if (ran == 0) {
+    printf("test_asset_real: skipped: neither %s nor %s/data is present\n", models, SS_SHARED_DIR);
+    return SS_TEST_SKIP;
+  }
+  printf("%d assets, %d rigged characters animated\n", ran, characters);
+  CHECK(characters >= 2);
+  return ss_test_finish("test_asset_real");
+}
