@@ -309,7 +309,8 @@ const char *ssa_mannequin_urdf(void);
 /* Generates the mannequin's body: a smooth union of capsules and ellipsoids
  * polygonised (marching tetrahedra, then relaxed onto the surface), closed,
  * welded, counter-clockwise seen from outside, with about target_tris
- * triangles (<= 0: 5000). *pos (nvert x 3) and *faces (nface x 3) are
+ * triangles (<= 0: 5000; SS_E_ARG outside [3000, 5000000]: below that the
+ * wrists and hands come apart). *pos (nvert x 3) and *faces (nface x 3) are
  * allocated here (free with free()). */
 int ssa_mannequin_mesh(int target_tris, double **pos, int *nvert, int **faces, int *nface,
                        char *err, int err_sz);

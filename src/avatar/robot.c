@@ -17,8 +17,6 @@
 
 /* ---------------------------------------------------------------- files */
 
-/* Reads a whole text file (NUL-terminated). Returns NULL and a message on failure. */
-char *ssa_read_text_file(const char *path, const char *what, char *err, int err_sz);
 char *ssa_read_text_file(const char *path, const char *what, char *err, int err_sz) {
   FILE *f = fopen(path, "rb");
   if (!f) {

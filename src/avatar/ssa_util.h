@@ -13,6 +13,10 @@
 
 #define SSA_PI 3.14159265358979323846
 
+/* Reads a whole text file (NUL-terminated; free()). NULL and a message naming
+ * `what` and the path on failure (robot.c). */
+char *ssa_read_text_file(const char *path, const char *what, char *err, int err_sz);
+
 static inline int ssa_fail(char *err, int err_sz, int status, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 static inline int ssa_fail(char *err, int err_sz, int status, const char *fmt, ...) {
