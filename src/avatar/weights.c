@@ -7,7 +7,8 @@
  * -M^-1 L, becomes the symmetric positive definite system
  *     (L + M H) w_j = M H p_j,
  * H_ii = c / d_i^2 with d_i the distance from vertex i to the nearest
- * segment and p_j(i) = 1 where that segment belongs to owner j. It is
+ * segment and p_j(i) = 1 where that segment belongs to owner j (1/2 each
+ * for a vertex exactly as near to two owners). It is
  * factored once with CHOLMOD and solved for all owners together (one column
  * each). The paper also drops segments not visible from a vertex; that test
  * is not done here (a segment is "nearest" by distance alone).
@@ -68,6 +69,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   double *area = calloc((size_t)nw, sizeof(double));
   double *dist = malloc(sizeof(double) * (size_t)nw);
   int *near1 = malloc(sizeof(int) * (size_t)nw);
+  int *near2 = malloc(sizeof(int) * (size_t)nw); /* a second owner at the same distance, or -1 */
   unsigned char *rigid = calloc((size_t)nw, 1);
   double *w = NULL;
   double *nbr_sum = NULL, *nbr_cnt = NULL;
@@ -79,7 +81,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   cholmod_dense *B = NULL, *X = NULL;
   int *ws = NULL, *wb = NULL;
   double *wv = NULL;
-  if (!area || !dist || !near1 || !rigid) {
+  if (!area || !dist || !near1 || !near2 || !rigid) {
     st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
@@ -87,18 +89,24 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   for (int i = 0; i < nw; i++) {
     const double *p = pos + 3 * topo->weld_rep[i];
     double d1 = INFINITY, d2 = INFINITY;
-    int o1 = -1;
+    int o1 = -1, o2 = -1;
     for (int s = 0; s < nseg; s++) {
       double d = seg_dist2(p, seg + 6 * s);
       if (d < d1) {
-        if (seg_owner[s] != o1) d2 = d1;
+        if (seg_owner[s] != o1) {
+          d2 = d1;
+          o2 = o1;
+        }
         d1 = d;
         o1 = seg_owner[s];
       } else if (d < d2 && seg_owner[s] != o1) {
         d2 = d;
+        o2 = seg_owner[s];
       }
     }
     near1[i] = o1;
+    /* a tie (the vertex is as near to two owners) shares the heat source */
+    near2[i] = (o2 >= 0 && d2 - d1 <= 1e-9 * d1) ? o2 : -1;
     dist[i] = sqrt(d1);
     rigid[i] = sqrt(d2) > o.rigid_ratio * sqrt(d1);
   }
@@ -176,7 +184,14 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
     goto done;
   }
   double *Bx = B->x;
-  for (int i = 0; i < nw; i++) Bx[(size_t)near1[i] * (size_t)nw + (size_t)i] = dist[i];
+  for (int i = 0; i < nw; i++) {
+    if (near2[i] >= 0) {
+      Bx[(size_t)near1[i] * (size_t)nw + (size_t)i] = 0.5 * dist[i];
+      Bx[(size_t)near2[i] * (size_t)nw + (size_t)i] = 0.5 * dist[i];
+    } else {
+      Bx[(size_t)near1[i] * (size_t)nw + (size_t)i] = dist[i];
+    }
+  }
   F = cholmod_analyze(A, &cc);
   if (!F || !cholmod_factorize(A, F, &cc) || cc.status != CHOLMOD_OK) {
     st = ssa_fail(err, err_sz, SS_E_SOLVER,
@@ -291,6 +306,7 @@ done:
   free(area);
   free(dist);
   free(near1);
+  free(near2);
   free(rigid);
   if (cc_started) {
     cholmod_free_triplet(&T, &cc);
