@@ -553,10 +553,29 @@ int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts
   aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   if (o.ignore_up_axis) aiSetImportPropertyInteger(props, AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, 1);
+  /* NaN would be hidden by JoinIdenticalVertices (it merges a NaN vertex into
+     another one): check positions first, then join. */
   const struct aiScene *sc = aiImportFileExWithProperties(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType, NULL,
-      props);
+      path, aiProcess_Triangulate | aiProcess_SortByPType, NULL, props);
   aiReleasePropertyStore(props);
+  if (sc) {
+    for (unsigned m = 0; m < sc->mNumMeshes; m++) {
+      const struct aiMesh *me = sc->mMeshes[m];
+      for (unsigned i = 0; i < me->mNumVertices; i++)
+        if (!isfinite(me->mVertices[i].x) || !isfinite(me->mVertices[i].y) ||
+            !isfinite(me->mVertices[i].z)) {
+          int st = ssa_fail(err, err_sz, SS_E_NONFINITE,
+                            "mesh file '%s': vertex %u of mesh %u ('%s') is not finite", path, i,
+                            m, me->mName.data);
+          aiReleaseImport(sc);
+          return st;
+        }
+    }
+    if (!aiApplyPostProcessing(sc, aiProcess_JoinIdenticalVertices)) {
+      /* assimp released the scene: its error string says why */
+      sc = NULL;
+    }
+  }
   if (!sc) {
     const char *why = aiGetErrorString();
     char msg[512];
