@@ -23,7 +23,9 @@ static double now_s(void) {
 typedef struct {
   const char *path;
   int min_bones;
-  int human; /* a rigged humanoid character (counts towards the two required) */
+  int human;   /* a rigged humanoid character (counts towards the two required) */
+  int upright; /* stands along the file's up axis */
+  double unit; /* expected metres per file unit, or 0 */
 } asset_case;
 
 /* bounding-box diagonal */
@@ -52,6 +54,21 @@ static int run_case(const asset_case *c) {
   CHECK(av->nface > 0 && av->nvert > 0);
   double diag = bbox_diag(av->nvert, av->rest_pos);
   CHECK(diag > 0 && isfinite(diag));
+  if (c->upright) {
+    /* Y-up files turned Z-up (REP 103): a standing character is tallest along z */
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int i = 0; i < av->nvert; i++)
+      for (int k = 0; k < 3; k++) {
+        lo[k] = fmin(lo[k], av->rest_pos[3 * i + k]);
+        hi[k] = fmax(hi[k], av->rest_pos[3 * i + k]);
+      }
+    CHECK_MSG(hi[2] - lo[2] > hi[0] - lo[0] && hi[2] - lo[2] > hi[1] - lo[1],
+              "%s: extents %g %g %g, not tallest along z", c->path, hi[0] - lo[0], hi[1] - lo[1],
+              hi[2] - lo[2]);
+  }
+  if (c->unit > 0) CHECK_NEAR(a->root_fix[0] * a->root_fix[0] + a->root_fix[4] * a->root_fix[4] +
+                                  a->root_fix[8] * a->root_fix[8],
+                              c->unit * c->unit, 1e-12);
   double *pos = malloc(sizeof(double) * 3 * (size_t)av->nvert);
   double *first = malloc(sizeof(double) * 3 * (size_t)av->nvert);
   double max_move = 0.0, pose_time = 0.0;
@@ -96,8 +113,10 @@ int main(void) {
   snprintf(buf[3], sizeof buf[3], "%s/data/gltf-khronos-skinned/Fox/glTF-Binary/Fox.glb", SS_SHARED_DIR);
   snprintf(buf[4], sizeof buf[4], "%s/data/gltf-khronos-skinned/RiggedSimple/glTF-Binary/RiggedSimple.glb", SS_SHARED_DIR);
   snprintf(buf[5], sizeof buf[5], "%s/data/gltf-khronos-skinned/SimpleSkin/glTF-Embedded/SimpleSkin.gltf", SS_SHARED_DIR);
-  asset_case cases[6] = {{buf[0], 20, 1}, {buf[1], 20, 1}, {buf[2], 5, 1},
-                         {buf[3], 20, 1}, {buf[4], 2, 0},  {buf[5], 2, 0}};
+  /* the FBX says centimetres (UnitScaleFactor 1): 0.01 m per unit. Wuson is longer (ears,
+     tail) than tall, so only BCN is checked for standing along z. */
+  asset_case cases[6] = {{buf[0], 20, 1, 1, 1.0}, {buf[1], 20, 1, 0, 1.0}, {buf[2], 5, 1, 0, 0.01},
+                         {buf[3], 20, 1, 0, 1.0},  {buf[4], 2, 0, 0, 1.0},  {buf[5], 2, 0, 0, 1.0}};
   int ran = 0, characters = 0;
   for (int i = 0; i < 6; i++) {
     if (!exists(cases[i].path)) {
