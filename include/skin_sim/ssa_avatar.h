@@ -74,9 +74,12 @@ typedef struct ssa_robot {
 
 /* Reads a URDF file. package_path resolves package:// mesh URIs: a list of
  * entries separated by ':' or ';', each either NAME=DIR (package NAME is
- * folder DIR) or a search root (package NAME is a folder named NAME found
- * under it, at most 4 levels deep); ROS_PACKAGE_PATH roots are searched
- * after them. package_path may be NULL. file:// URIs and plain relative
+ * folder DIR; these win) or a search root (package NAME is a folder named
+ * NAME, or a folder whose package.xml has <name>NAME</name>, found under it
+ * at most 4 levels deep, depth first in name order); ROS_PACKAGE_PATH roots
+ * are searched after them. package_path may be NULL. urdfdom's error
+ * messages are captured through console_bridge's process-wide output handler
+ * (restored afterwards): do not load URDFs from two threads at once. file:// URIs and plain relative
  * names (relative to the URDF's folder) resolve directly. A mesh that cannot
  * be resolved is not an error here (visual_path is NULL) but is one when the
  * visuals become a body. Errors: SS_E_IO (unreadable or invalid URDF),

@@ -64,10 +64,41 @@ static const char *base_name(const char *p) {
   return s ? s + 1 : p;
 }
 
-/* Depth-first search under root for a folder named name (depth levels at most). */
-static int find_dir(const char *root, const char *name, int depth, char *out, int out_sz) {
+/* 1 if folder dir holds a package.xml whose <name> is pkg (as rospack finds packages). */
+static int package_xml_names(const char *dir, const char *pkg) {
   char path[4096];
-  snprintf(path, sizeof path, "%s/%s", root, name);
+  snprintf(path, sizeof path, "%s/package.xml", dir);
+  if (!is_file(path)) return 0;
+  char *xml = ssa_read_text_file(path, "package.xml", NULL, 0);
+  if (!xml) return 0;
+  int hit = 0;
+  const char *open = strstr(xml, "<name>");
+  if (open) {
+    open += 6;
+    while (*open == ' ' || *open == '\t' || *open == '\n' || *open == '\r') open++;
+    size_t n = strlen(pkg);
+    const char *after = open + n;
+    while (*after == ' ' || *after == '\t' || *after == '\n' || *after == '\r') after++;
+    hit = strncmp(open, pkg, n) == 0 && strncmp(after, "</name>", 7) == 0;
+  }
+  free(xml);
+  return hit;
+}
+
+static int cmp_str(const void *a, const void *b) {
+  return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* Depth-first search under root (itself included) for package pkg: a folder
+ * named pkg, or a folder whose package.xml names pkg; at most depth levels
+ * down, entries in name order so the result does not depend on readdir. */
+static int find_dir(const char *root, const char *pkg, int depth, char *out, int out_sz) {
+  char path[4096];
+  if (package_xml_names(root, pkg)) {
+    snprintf(out, (size_t)out_sz, "%s", root);
+    return 1;
+  }
+  snprintf(path, sizeof path, "%s/%s", root, pkg);
   if (is_dir(path)) {
     snprintf(out, (size_t)out_sz, "%s", path);
     return 1;
@@ -75,28 +106,31 @@ static int find_dir(const char *root, const char *name, int depth, char *out, in
   if (depth <= 0) return 0;
   DIR *d = opendir(root);
   if (!d) return 0;
-  /* Collect and sort entries so that the result does not depend on readdir order. */
-  char *names[256];
-  int nn = 0;
+  char **names = NULL;
+  int nn = 0, cap = 0, ok = 1;
   struct dirent *e;
-  while ((e = readdir(d)) != NULL && nn < 256) {
+  while (ok && (e = readdir(d)) != NULL) {
     if (e->d_name[0] == '.') continue;
-    names[nn] = ssa_strdup(e->d_name);
-    if (names[nn]) nn++;
+    if (nn == cap) {
+      int nc = cap ? 2 * cap : 32;
+      char **nb = realloc(names, sizeof(char *) * (size_t)nc);
+      if (!nb) {
+        ok = 0;
+        break;
+      }
+      names = nb;
+      cap = nc;
+    }
+    if (!(names[nn] = ssa_strdup(e->d_name))) ok = 0; else nn++;
   }
   closedir(d);
-  for (int i = 1; i < nn; i++)
-    for (int j = i; j > 0 && strcmp(names[j - 1], names[j]) > 0; j--) {
-      char *t = names[j];
-      names[j] = names[j - 1];
-      names[j - 1] = t;
-    }
+  if (nn > 1) qsort(names, (size_t)nn, sizeof(char *), cmp_str);
   int found = 0;
-  for (int i = 0; i < nn && !found; i++) {
+  for (int i = 0; ok && i < nn && !found; i++) {
     snprintf(path, sizeof path, "%s/%s", root, names[i]);
-    if (is_dir(path)) found = find_dir(path, name, depth - 1, out, out_sz);
+    if (is_dir(path)) found = find_dir(path, pkg, depth - 1, out, out_sz);
   }
-  for (int i = 0; i < nn; i++) free(names[i]);
+  ssa_free_strs(names, nn);
   return found;
 }
 
