@@ -1,0 +1,322 @@
+/* The built-in scenes: sizes, mesh validity, motion, and that each scene is
+ * hard in the way it claims (self-intersection, thin fold, fast twist,
+ * slivers and zero-area faces, open boundary). */
+#include <stdint.h>
+#include <string.h>
+
+#include "skin_sim/ss_scene.h"
+#include "ss_test.h"
+
+static int cmp_ll(const void *a, const void *b) {
+  long long x = *(const long long *)a, y = *(const long long *)b;
+  return (x > y) - (x < y);
+}
+
+static int has_key(const long long *keys, int n, long long k) {
+  return bsearch(&k, keys, (size_t)n, sizeof k, cmp_ll) != NULL;
+}
+
+/* Directed half-edges a*nv+b, sorted. */
+static long long *half_edges(const ss_scene *s) {
+  int nf = ss_scene_nface(s), nv = ss_scene_nvert(s);
+  const int *f = ss_scene_faces(s);
+  long long *keys = malloc(sizeof(long long) * 3 * (size_t)nf);
+  for (int i = 0; i < nf; i++)
+    for (int k = 0; k < 3; k++)
+      keys[3 * i + k] = (long long)f[3 * i + k] * nv + f[3 * i + (k + 1) % 3];
+  qsort(keys, 3 * (size_t)nf, sizeof *keys, cmp_ll);
+  return keys;
+}
+
+static void sub(const double *a, const double *b, double *o) {
+  for (int c = 0; c < 3; c++) o[c] = a[c] - b[c];
+}
+static void cross(const double *a, const double *b, double *o) {
+  o[0] = a[1] * b[2] - a[2] * b[1];
+  o[1] = a[2] * b[0] - a[0] * b[2];
+  o[2] = a[0] * b[1] - a[1] * b[0];
+}
+static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dist(const double *a, const double *b) {
+  double d[3];
+  sub(a, b, d);
+  return sqrt(dot(d, d));
+}
+
+static double mean_edge(const ss_scene *s, const double *pos) {
+  const int *f = ss_scene_faces(s);
+  double sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < ss_scene_nface(s); i++)
+    for (int k = 0; k < 3; k++) {
+      int a = f[3 * i + k], b = f[3 * i + (k + 1) % 3];
+      sum += dist(pos + 3 * a, pos + 3 * b); /* interior edges twice: same mean */
+      n++;
+    }
+  return sum / n;
+}
+
+/* Ray (origin o, direction d) against triangle (Moller-Trumbore); t > eps. */
+static int ray_hits(const double *o, const double *d, const double *a, const double *b,
+                    const double *c) {
+  double e1[3], e2[3], pv[3], tv[3], qv[3];
+  sub(b, a, e1);
+  sub(c, a, e2);
+  cross(d, e2, pv);
+  double det = dot(e1, pv);
+  if (fabs(det) < 1e-14) return 0;
+  sub(o, a, tv);
+  double u = dot(tv, pv) / det;
+  if (u < 0.0 || u > 1.0) return 0;
+  cross(tv, e1, qv);
+  double v = dot(d, qv) / det;
+  if (v < 0.0 || u + v > 1.0) return 0;
+  return dot(e2, qv) / det > 1e-9;
+}
+
+/* Vertices whose ray along their outward vertex normal crosses the mesh an odd
+ * number of times (faces touching the vertex excluded): vertices inside
+ * another part of the body. */
+static int vertices_inside(const ss_scene *s, const double *pos) {
+  int nv = ss_scene_nvert(s), nf = ss_scene_nface(s);
+  const int *f = ss_scene_faces(s);
+  double *vn = calloc(3 * (size_t)nv, sizeof(double));
+  for (int i = 0; i < nf; i++) {
+    double e1[3], e2[3], n[3];
+    sub(pos + 3 * f[3 * i + 1], pos + 3 * f[3 * i], e1);
+    sub(pos + 3 * f[3 * i + 2], pos + 3 * f[3 * i], e2);
+    cross(e1, e2, n);
+    for (int k = 0; k < 3; k++)
+      for (int c = 0; c < 3; c++) vn[3 * f[3 * i + k] + c] += n[c];
+  }
+  int inside = 0;
+  for (int v = 0; v < nv; v++) {
+    /* tilt the ray a little so it does not run exactly along mesh edges */
+    double *d = vn + 3 * v, len = sqrt(dot(d, d));
+    const double tilt[3] = {0.0123, 0.0311, -0.0217};
+    for (int c = 0; c < 3; c++) d[c] = d[c] / len + tilt[c];
+    int hits = 0;
+    for (int i = 0; i < nf; i++) {
+      const int *t = f + 3 * i;
+      if (t[0] == v || t[1] == v || t[2] == v) continue;
+      hits += ray_hits(pos + 3 * v, vn + 3 * v, pos + 3 * t[0], pos + 3 * t[1], pos + 3 * t[2]);
+    }
+    inside += hits & 1;
+  }
+  free(vn);
+  return inside;
+}
+
+static int all_finite(const double *p, int n) {
+  for (int i = 0; i < n; i++)
+    if (!isfinite(p[i])) return 0;
+  return 1;
+}
+
+static void check_scene(int index) {
+  const char *name = ss_scene_name(index);
+  char err[256] = "";
+  ss_scene *s = NULL;
+  int status = ss_scene_create(&s, name, 0, err, sizeof err);
+  CHECK_MSG(status == SS_OK && s, "%s: %s", name, err);
+  if (status) return;
+  CHECK(strcmp(ss_scene_get_name(s), name) == 0);
+  CHECK(ss_scene_about(index) && strlen(ss_scene_about(index)) > 10);
+  const int nv = ss_scene_nvert(s), nf = ss_scene_nface(s), frames = ss_scene_default_frames(s);
+  const int *f = ss_scene_faces(s);
+  const double *rest = ss_scene_rest(s);
+  const int closed = index <= 3; /* armpit, elbow, fold, twist */
+  printf("%-9s default: %5d triangles %5d vertices %3d frames\n", name, nf, nv, frames);
+  CHECK_MSG(nf >= 1500 && nf <= 5000, "%s: default %d triangles", name, nf);
+  CHECK(frames >= 30 && frames <= 120);
+  CHECK_NEAR(ss_scene_fps(s), 30.0, 0.0);
+  int bad = 0;
+  for (int i = 0; i < 3 * nf; i++) bad += f[i] < 0 || f[i] >= nv;
+  CHECK_EQ_INT(bad, 0);
+  CHECK(all_finite(rest, 3 * nv));
+
+  /* rest == frame 0, bit for bit; poses finite and deterministic */
+  double *pos = malloc(sizeof(double) * 3 * (size_t)nv);
+  double *pos2 = malloc(sizeof(double) * 3 * (size_t)nv);
+  ss_scene_pose(s, 0.0, pos);
+  CHECK(memcmp(pos, rest, sizeof(double) * 3 * (size_t)nv) == 0);
+  int finite = 1, moved = 0;
+  for (int k = 0; k <= frames + 10; k++) {
+    ss_scene_pose(s, k, pos);
+    finite &= all_finite(pos, 3 * nv);
+    if (k > 0) moved |= memcmp(pos, rest, sizeof(double) * 3 * (size_t)nv) != 0;
+    ss_scene_pose(s, k + 0.37, pos);
+    finite &= all_finite(pos, 3 * nv);
+  }
+  const double odd_frames[] = {-3.0, 1e-9, 1e4, 1e300, NAN, INFINITY};
+  for (int k = 0; k < 6; k++) {
+    ss_scene_pose(s, odd_frames[k], pos);
+    finite &= all_finite(pos, 3 * nv);
+  }
+  CHECK_MSG(finite, "%s: a pose is not finite", name);
+  CHECK_MSG(moved, "%s: the body never moves", name);
+  ss_scene_pose(s, 17.25, pos);
+  ss_scene_pose(s, 17.25, pos2);
+  CHECK(memcmp(pos, pos2, sizeof(double) * 3 * (size_t)nv) == 0);
+  /* smooth in time: a small step in frame moves the body a little */
+  ss_scene_pose(s, 17.26, pos2);
+  double jump = 0.0;
+  for (int v = 0; v < nv; v++) jump = fmax(jump, dist(pos + 3 * v, pos2 + 3 * v));
+  const double edge = mean_edge(s, rest);
+  CHECK_MSG(jump < 0.2 * edge, "%s: pose jumps %g in 0.01 frame", name, jump);
+
+  /* topology: closed meshes are watertight and consistently oriented */
+  long long *keys = half_edges(s);
+  int dup = 0, open = 0;
+  for (int i = 0; i < 3 * nf; i++) {
+    if (i > 0 && keys[i] == keys[i - 1]) dup++;
+    long long a = keys[i] / nv, b = keys[i] % nv;
+    if (!has_key(keys, 3 * nf, b * nv + a)) open++;
+  }
+  CHECK_MSG(dup == 0, "%s: %d repeated directed edges (non-manifold or flipped faces)", name, dup);
+  if (closed) {
+    CHECK_MSG(open == 0, "%s: %d edges without a twin", name, open);
+    double vol = 0.0;
+    for (int i = 0; i < nf; i++) {
+      double c[3];
+      cross(rest + 3 * f[3 * i + 1], rest + 3 * f[3 * i + 2], c);
+      vol += dot(rest + 3 * f[3 * i], c) / 6.0;
+    }
+    CHECK_MSG(vol > 0.0, "%s: signed volume %g", name, vol);
+    /* no duplicate vertices */
+    long long *vk = malloc(sizeof(long long) * (size_t)nv);
+    for (int v = 0; v < nv; v++) {
+      long long q[3];
+      for (int c = 0; c < 3; c++) q[c] = llround(rest[3 * v + c] * 1e5) + 400000; /* +-4 m */
+      vk[v] = (q[0] * 800001LL + q[1]) * 800001LL + q[2];
+    }
+    qsort(vk, (size_t)nv, sizeof *vk, cmp_ll);
+    int same = 0;
+    for (int v = 1; v < nv; v++) same += vk[v] == vk[v - 1];
+    CHECK_MSG(same == 0, "%s: %d duplicate vertices", name, same);
+    free(vk);
+  } else {
+    CHECK_MSG(open > 0, "%s: an open sheet should have boundary edges", name);
+  }
+  free(keys);
+
+  /* what each scene is for */
+  if (strcmp(name, "armpit") == 0) {
+    CHECK_EQ_INT(vertices_inside(s, rest), 0);
+    ss_scene_pose(s, frames, pos);
+    int in = vertices_inside(s, pos);
+    printf("  armpit: %d vertices inside the body at frame %d\n", in, frames);
+    CHECK_MSG(in >= 10, "armpit: only %d vertices inside at the peak", in);
+  } else if (strcmp(name, "elbow") == 0) {
+    int tip = 0;
+    for (int v = 0; v < nv; v++)
+      if (rest[3 * v] > rest[3 * tip]) tip = v;
+    ss_scene_pose(s, frames, pos);
+    double bend = atan2(pos[3 * tip + 2], pos[3 * tip]) * 180.0 / 3.14159265358979;
+    CHECK_MSG(bend > 120.0, "elbow: bent %g degrees", bend);
+  } else if (strcmp(name, "fold") == 0) {
+    double zmin = INFINITY, zmax = -INFINITY;
+    for (int v = 0; v < nv; v++) {
+      zmin = fmin(zmin, rest[3 * v + 2]);
+      zmax = fmax(zmax, rest[3 * v + 2]);
+    }
+    double thick = zmax - zmin, speed = 0.0;
+    CHECK_MSG(thick < 0.6 * edge, "fold: thickness %g, mean edge %g", thick, edge);
+    for (int k = 1; k <= frames; k++) {
+      ss_scene_pose(s, k - 1, pos);
+      ss_scene_pose(s, k, pos2);
+      for (int v = 0; v < nv; v++) speed = fmax(speed, dist(pos + 3 * v, pos2 + 3 * v));
+    }
+    printf("  fold: thickness %.4f, mean edge %.4f, peak speed %.4f per frame\n", thick, edge,
+           speed);
+    CHECK_MSG(speed > 3.0 * thick, "fold: peak speed %g, thickness %g", speed, thick);
+  } else if (strcmp(name, "twist") == 0) {
+    ss_scene_pose(s, frames - 1, pos);
+    ss_scene_pose(s, frames, pos2);
+    double *d = malloc(sizeof(double) * (size_t)nv);
+    for (int v = 0; v < nv; v++) d[v] = dist(pos + 3 * v, pos2 + 3 * v);
+    int fast = 0;
+    for (int v = 0; v < nv; v++) fast += d[v] > 2.0 * edge;
+    printf("  twist: %d of %d vertices move over 2 edges per frame\n", fast, nv);
+    CHECK_MSG(fast > nv / 2, "twist: %d of %d vertices fast", fast, nv);
+    free(d);
+  } else if (strcmp(name, "slivers") == 0) {
+    for (int pass = 0; pass < 2; pass++) {
+      const double *p = rest;
+      if (pass) {
+        ss_scene_pose(s, 30.0, pos);
+        p = pos;
+      }
+      double worst = 0.0;
+      int zero = 0;
+      for (int i = 0; i < nf; i++) {
+        const int *t = f + 3 * i;
+        double e1[3], e2[3], n[3];
+        sub(p + 3 * t[1], p + 3 * t[0], e1);
+        sub(p + 3 * t[2], p + 3 * t[0], e2);
+        cross(e1, e2, n);
+        double area2 = sqrt(dot(n, n));
+        double lmax = fmax(dist(p + 3 * t[0], p + 3 * t[1]),
+                           fmax(dist(p + 3 * t[1], p + 3 * t[2]), dist(p + 3 * t[2], p + 3 * t[0])));
+        if (area2 == 0.0 && t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) zero++;
+        if (area2 > 0.0) worst = fmax(worst, lmax * lmax / area2);
+      }
+      if (!pass) printf("  slivers: worst aspect %.0f, %d zero-area faces\n", worst, zero);
+      CHECK_MSG(worst > 100.0, "slivers: worst aspect ratio %g", worst);
+      CHECK_MSG(zero > 0, "slivers: no zero-area face (pass %d)", pass);
+    }
+  }
+  free(pos);
+  free(pos2);
+  ss_scene_destroy(s);
+
+  /* sizes */
+  const int sizes[] = {3000, 20000};
+  for (int k = 0; k < 2; k++) {
+    ss_scene *t = NULL;
+    status = ss_scene_create(&t, name, sizes[k], err, sizeof err);
+    CHECK_MSG(status == SS_OK, "%s %d: %s", name, sizes[k], err);
+    if (status) continue;
+    int n = ss_scene_nface(t);
+    CHECK_MSG(fabs((double)n - sizes[k]) <= 0.25 * sizes[k], "%s: asked %d triangles, got %d", name,
+              sizes[k], n);
+    ss_scene_destroy(t);
+  }
+}
+
+int main(void) {
+  CHECK_EQ_INT(ss_scene_count(), 6);
+  const char *names[] = {"armpit", "elbow", "fold", "twist", "slivers", "boundary"};
+  for (int i = 0; i < 6; i++) CHECK(ss_scene_name(i) && strcmp(ss_scene_name(i), names[i]) == 0);
+  CHECK(ss_scene_name(-1) == NULL && ss_scene_name(6) == NULL && ss_scene_about(6) == NULL);
+  for (int i = 0; i < ss_scene_count(); i++) check_scene(i);
+
+  /* bad arguments */
+  char err[256];
+  ss_scene *s = (ss_scene *)&err; /* must be reset to NULL */
+  err[0] = 0;
+  CHECK_EQ_INT(ss_scene_create(&s, "raccoon", 0, err, sizeof err), SS_E_ARG);
+  CHECK(s == NULL);
+  CHECK_MSG(strstr(err, "raccoon") && strstr(err, "armpit") && strstr(err, "boundary"), "%s", err);
+  err[0] = 0;
+  CHECK_EQ_INT(ss_scene_create(&s, NULL, 0, err, sizeof err), SS_E_ARG);
+  CHECK(err[0] != 0);
+  const int bad_sizes[] = {-1, 5, 99, 5000001, INT32_MAX};
+  for (int k = 0; k < 5; k++) {
+    err[0] = 0;
+    CHECK_EQ_INT(ss_scene_create(&s, "fold", bad_sizes[k], err, sizeof err), SS_E_ARG);
+    CHECK_MSG(err[0] != 0, "no message for %d triangles", bad_sizes[k]);
+  }
+  CHECK_EQ_INT(ss_scene_create(NULL, "fold", 0, NULL, 0), SS_E_ARG);
+  CHECK_EQ_INT(ss_scene_create(&s, "fold", 3, NULL, 0), SS_E_ARG);
+  /* small but valid sizes still make sound meshes */
+  for (int i = 0; i < ss_scene_count(); i++) {
+    CHECK_EQ_INT(ss_scene_create(&s, ss_scene_name(i), 100, err, sizeof err), SS_OK);
+    if (s) {
+      CHECK(ss_scene_nface(s) > 0 && ss_scene_nface(s) < 400);
+      ss_scene_destroy(s);
+    }
+  }
+  ss_scene_destroy(NULL);
+  return ss_test_finish("test_scene");
+}
