@@ -165,15 +165,18 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
       diag[j] += wgt;
     }
   }
+  const double mel = topo->mean_edge_length > 0 ? topo->mean_edge_length : 1.0;
   for (int i = 0; i < nw; i++) {
     double d = dist[i];
-    double floor_d = 1e-3 * (topo->mean_edge_length > 0 ? topo->mean_edge_length : 1.0);
-    if (d < floor_d) d = floor_d;
+    if (d < 1e-3 * mel) d = 1e-3 * mel;
     double h = o.heat_c / (d * d);
+    /* a vertex in no (non-degenerate) face has no area: give it some, so that it
+       simply takes its nearest owner instead of making the matrix singular */
+    double ai = area[i] > 0 ? area[i] : mel * mel;
     Ti[nt] = Tj[nt] = i;
-    Tx[nt] = diag[i] + area[i] * h;
+    Tx[nt] = diag[i] + ai * h;
     nt++;
-    dist[i] = area[i] * h; /* reuse: M H on the diagonal */
+    dist[i] = ai * h; /* reuse: M H on the diagonal */
   }
   free(diag);
   T->nnz = nt;

@@ -156,13 +156,27 @@ int main(void) {
                SS_E_ARG);
   CHECK(ws == NULL);
   /* the pure function: dominant owners out */
-  int *dom = malloc(sizeof(int) * (size_t)nv);
+  int *dom = malloc(sizeof(int) * (size_t)(nv + 1));
   double segs[12] = {0, 0, 0, 1, 0, 0, 1, 0, 0, 2, 0, 0};
   int owners[2] = {0, 1};
   CHECK_EQ_INT(ssa_auto_weights(nv, pos, nf, faces, -1, 2, segs, owners, 2, NULL, &ws, &wb, &ww,
                                 dom, err, sizeof err),
                SS_OK);
   for (int v = 0; v < nv; v++) CHECK(dom[v] == (pos[3 * v] < 1.0 ? 0 : 1) || fabs(pos[3 * v] - 1) < 1e-9);
+  free(ws);
+  free(wb);
+  free(ww);
+  /* a vertex in no face (files have them) takes its nearest owner, the solve stays regular */
+  static double pos2[3 * (NR * NS + 3)];
+  memcpy(pos2, pos, sizeof(double) * 3 * (size_t)nv);
+  pos2[3 * nv] = 1.8, pos2[3 * nv + 1] = 0.5, pos2[3 * nv + 2] = 0.0;
+  CHECK_EQ_INT(ssa_auto_weights(nv + 1, pos2, nf, faces, -1, 2, segs, owners, 2, NULL, &ws, &wb,
+                                &ww, dom, err, sizeof err),
+               SS_OK);
+  if (ws) {
+    CHECK_EQ_INT(ws[nv + 1] - ws[nv], 1);
+    CHECK_EQ_INT(wb[ws[nv]], 1);
+  }
   free(ws);
   free(wb);
   free(ww);
