@@ -136,7 +136,8 @@ typedef struct ssa_asset {
   double *node_local;    /* (nnode x 16) rest transform in the parent node */
   int npart;             /* the file's meshes (triangles only; points and lines dropped) */
   char **part_name;      /* (npart) */
-  int *part_node;        /* (npart) a node that instantiates the mesh */
+  int *part_node;        /* (npart) the first node (depth-first) that instantiates the mesh;
+                            further instances of a mesh are not repeated in the body */
   int nvert;
   int nface;
   double *bind_pos;      /* (nvert x 3) vertices in their mesh's own space, as in the file */
@@ -144,7 +145,8 @@ typedef struct ssa_asset {
   int *faces;            /* (nface x 3) indices into all vertices; meshes appended in order */
   int *vert_part;        /* (nvert) source mesh of each vertex */
   int *vert_src;         /* (nvert) index of the vertex in its source mesh */
-  int nbone;             /* the file's bones, plus one rigid bone per mesh without bones */
+  int nbone;             /* the file's bones, plus one rigid bone (on the mesh's node) per
+                            mesh with unweighted vertices, e.g. a mesh without bones */
   char **bone_name;      /* (nbone) */
   int *bone_node;        /* (nbone) node driving the bone */
   int *bone_part;        /* (nbone) mesh the bone belongs to */
@@ -159,9 +161,10 @@ typedef struct ssa_asset {
   /* Animation channels (internal layout, sampled by ssa_asset_node_world). */
   int *anim_chan_start;  /* (nanim + 1) */
   int *chan_node;        /* per channel: node, -1 if unmatched */
-  int *chan_key_start;   /* per channel x 3 (position, rotation, scale) + 1 sentinel per channel */
+  int *chan_key_start;   /* (nchan x 4) keys of channel c: positions [s[0], s[1]), rotations
+                            [s[1], s[2]), scales [s[2], s[3]), s = chan_key_start + 4 c */
   double *key_time;      /* seconds */
-  double *key_value;     /* 4 doubles per key: xyz(-) or quaternion xyzw */
+  double *key_value;     /* 4 doubles per key: xyz (4th unused) or quaternion xyzw */
   int *anim_node_chan;   /* (nanim x nnode) channel of each node or -1 */
   double *node_rest_trs; /* (nnode x 10) rest local as translation, quaternion xyzw, scale */
 } ssa_asset;
