@@ -300,6 +300,9 @@ void ssa_avatar_destroy(ssa_avatar *av);
 
 /* Poses a robot avatar: q (njoint; NULL all zero) -> out (nvert x 3). SS_E_ARG for an asset avatar. */
 int ssa_avatar_pose_joints(ssa_avatar *av, const double *q, double *out);
+/* As ssa_avatar_pose_joints with the root link placed at root_pose (16, rigid; NULL: identity),
+ * e.g. a floating base from TF. */
+int ssa_avatar_pose_joints_at(ssa_avatar *av, const double *root_pose, const double *q, double *out);
 /* Poses an asset avatar with animation anim (-1: rest) at t seconds. SS_E_ARG for a robot
  * avatar or an anim out of range. */
 int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out);

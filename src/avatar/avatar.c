@@ -82,13 +82,29 @@ static void set_dominant(ssa_avatar *av) {
   }
 }
 
-int ssa_avatar_pose_joints(ssa_avatar *av, const double *q, double *out) {
+int ssa_avatar_pose_joints_at(ssa_avatar *av, const double *root_pose, const double *q,
+                              double *out) {
   if (!av || !out || av->kind != SSA_AVATAR_ROBOT || !av->robot) return SS_E_ARG;
+  if (root_pose)
+    for (int i = 0; i < 16; i++)
+      if (!isfinite(root_pose[i])) return SS_E_NONFINITE;
   ssa_robot_fk(av->robot, q, av->target_world);
-  for (int b = 0; b < av->nbone; b++)
-    m4_mul(av->target_world + 16 * av->bone_target[b], av->bone_offset + 16 * b, av->bone_mat + 16 * b);
+  for (int b = 0; b < av->nbone; b++) {
+    const double *tw = av->target_world + 16 * av->bone_target[b];
+    if (root_pose) {
+      double m[16];
+      m4_mul(root_pose, tw, m);
+      m4_mul(m, av->bone_offset + 16 * b, av->bone_mat + 16 * b);
+    } else {
+      m4_mul(tw, av->bone_offset + 16 * b, av->bone_mat + 16 * b);
+    }
+  }
   ssa_lbs(av->nvert, av->bind_pos, av->w_start, av->w_bone, av->w_weight, av->bone_mat, out);
   return SS_OK;
+}
+
+int ssa_avatar_pose_joints(ssa_avatar *av, const double *q, double *out) {
+  return ssa_avatar_pose_joints_at(av, NULL, q, out);
 }
 
 int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out) {

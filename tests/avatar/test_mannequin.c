@@ -119,6 +119,33 @@ int main(void) {
   }
   double *pos = malloc(sizeof(double) * 3 * (size_t)av->nvert);
   double *q = calloc((size_t)r->njoint, sizeof(double));
+  /* deterministic: a second mannequin is the same to the bit */
+  ssa_avatar *av2 = NULL;
+  CHECK_EQ_INT(ssa_avatar_mannequin(&av2, 0, err, sizeof err), SS_OK);
+  if (av2) {
+    CHECK(av2->nvert == av->nvert && av2->nface == av->nface);
+    CHECK(memcmp(av2->rest_pos, av->rest_pos, sizeof(double) * 3 * (size_t)av->nvert) == 0);
+    CHECK(memcmp(av2->faces, av->faces, sizeof(int) * 3 * (size_t)av->nface) == 0);
+    CHECK(memcmp(av2->w_start, av->w_start, sizeof(int) * ((size_t)av->nvert + 1)) == 0);
+    int nw = av->w_start[av->nvert];
+    CHECK(av2->w_start[av->nvert] == nw &&
+          memcmp(av2->w_weight, av->w_weight, sizeof(double) * (size_t)nw) == 0 &&
+          memcmp(av2->w_bone, av->w_bone, sizeof(int) * (size_t)nw) == 0);
+    ssa_avatar_destroy(av2);
+  }
+  /* a floating base: the whole body moves with the root pose */
+  {
+    double root[16] = {0, -1, 0, 1, 1, 0, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1}; /* quarter turn, shift */
+    CHECK_EQ_INT(ssa_avatar_pose_joints_at(av, root, NULL, pos), SS_OK);
+    double e = 0;
+    for (int v = 0; v < av->nvert; v++) {
+      const double *p = av->rest_pos + 3 * v;
+      e = fmax(e, fabs(pos[3 * v] - (1 - p[1])));
+      e = fmax(e, fabs(pos[3 * v + 1] - (2 + p[0])));
+      e = fmax(e, fabs(pos[3 * v + 2] - (3 + p[2])));
+    }
+    CHECK_MSG(e < 1e-12, "root pose error %g", e);
+  }
   /* zero pose reproduces the rest body */
   CHECK_EQ_INT(ssa_avatar_pose_joints(av, NULL, pos), SS_OK);
   double e = 0;
