@@ -57,7 +57,8 @@ typedef struct ssa_robot {
   int *joint_child_link;    /* (njoint) */
   double *joint_origin;     /* (njoint x 16) joint frame in its parent link frame */
   double *joint_axis;       /* (njoint x 3) unit axis in the joint frame */
-  int *joint_has_limits;    /* (njoint) 1 for revolute and prismatic joints with limits */
+  int *joint_has_limits;    /* (njoint) 1 for revolute and prismatic joints with limits
+                               (lower = upper = 0, urdfdom's default, counts as none) */
   double *joint_lower;      /* (njoint) */
   double *joint_upper;      /* (njoint) */
   int *joint_mimic;         /* (njoint) joint mimicked (value = mult * q[m] + off), or -1 */

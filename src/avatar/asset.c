@@ -270,6 +270,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   a->vert_part = malloc(sizeof(int) * (size_t)nv);
   a->vert_src = malloc(sizeof(int) * (size_t)nv);
   a->bone_name = calloc((size_t)nbone, sizeof(char *));
+  a->nbone = a->bone_name ? nbone : 0; /* capacity until the bones are known: frees on error */
   a->bone_node = calloc((size_t)nbone, sizeof(int));
   a->bone_part = calloc((size_t)nbone, sizeof(int));
   a->bone_offset = calloc((size_t)nbone * 16, sizeof(double));

@@ -420,13 +420,14 @@ int ssa_mannequin_mesh(int target_tris, double **pos, int *nvert, int **faces, i
   double h = sqrt(1.45 * 3.9 / target_tris);
   mt_out m;
   memset(&m, 0, sizeof m);
+  int ok = 1;
   for (int pass = 0; pass < 4; pass++) {
     free(m.pos);
     free(m.faces);
     free(m.hkey);
     free(m.hval);
     memset(&m, 0, sizeof m);
-    if (!polygonise(h, &m)) break;
+    if (!(ok = polygonise(h, &m))) break;
     double ratio = (double)m.nface / target_tris;
     if (fabs(ratio - 1.0) < 0.05) break;
     h *= sqrt(ratio);
@@ -435,7 +436,7 @@ int ssa_mannequin_mesh(int target_tris, double **pos, int *nvert, int **faces, i
   free(m.hval);
   m.hkey = NULL;
   m.hval = NULL;
-  if (m.nface == 0 || !relax(&m, 6)) {
+  if (!ok || m.nface == 0 || !relax(&m, 6)) {
     free(m.pos);
     free(m.faces);
     return ssa_fail(err, err_sz, SS_E_NOMEM, "mannequin: out of memory generating the body");
