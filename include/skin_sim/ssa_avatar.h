@@ -205,6 +205,7 @@ typedef struct ssa_autoweight_opts {
                            is farther than rigid_ratio x the nearest (default 2.5) */
   double min_weight;    /* weights below this are dropped before normalising (0.01) */
   int smooth_iters;     /* Laplacian smoothing passes over the weights (2) */
+  int visibility;       /* 1: a vertex considers only the segments it sees (pinocchio); 0: all (1) */
 } ssa_autoweight_opts;
 
 /* Defaults as documented in the struct. */
@@ -213,7 +214,7 @@ ssa_autoweight_opts ssa_autoweight_default_opts(void);
 /* Automatic weights by heat diffusion (Baran and Popovic 2007): with the
  * cotangent Laplacian L of the mesh (welded at weld_tol, see ss_topo) and H
  * diagonal, H_ii = c / d_i^2 for d_i the distance from vertex i to its nearest
- * segment, (L + H) w_j = H p_j is solved for each segment owner j (p_j = 1
+ * visible segment (the line to it crosses no face; see opts.visibility), (L + H) w_j = H p_j is solved for each segment owner j (p_j = 1
  * where j's segment is nearest) with one CHOLMOD factorisation. Segments:
  * nseg segments seg (nseg x 6: two end points) owned by seg_owner (nseg,
  * values in [0, nowner)). Weights are then clamped to >= 0, smoothed, small

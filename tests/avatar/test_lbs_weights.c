@@ -78,8 +78,78 @@ static void test_lbs_direct(void) {
   CHECK_NEAR(out[8], 0.25 * 1 + 0.75 * 4, 1e-15);
 }
 
+/* A closed tube around the z axis shifted to (cx, 0): nr rings in [z0, z1], NS around. */
+static void add_tube(double *pos, int *faces, int *nv, int *nf, double cx, double r, double z0,
+                     double z1, int nr) {
+  int b = *nv, f = *nf;
+  for (int i = 0; i < nr; i++)
+    for (int j = 0; j < NS; j++) {
+      double a = 2 * 3.14159265358979323846 * j / NS;
+      double *p = pos + 3 * (b + i * NS + j);
+      p[0] = cx + r * cos(a), p[1] = r * sin(a), p[2] = z0 + (z1 - z0) * i / (nr - 1);
+    }
+  int c0 = b + nr * NS, c1 = c0 + 1;
+  pos[3 * c0] = cx, pos[3 * c0 + 1] = 0, pos[3 * c0 + 2] = z0;
+  pos[3 * c1] = cx, pos[3 * c1 + 1] = 0, pos[3 * c1 + 2] = z1;
+  for (int i = 0; i + 1 < nr; i++)
+    for (int j = 0; j < NS; j++) {
+      int a = b + i * NS + j, bb = b + i * NS + (j + 1) % NS, c = b + (i + 1) * NS + j,
+          d = b + (i + 1) * NS + (j + 1) % NS;
+      faces[3 * f] = a, faces[3 * f + 1] = bb, faces[3 * f + 2] = d, f++;
+      faces[3 * f] = a, faces[3 * f + 1] = d, faces[3 * f + 2] = c, f++;
+    }
+  for (int j = 0; j < NS; j++) {
+    faces[3 * f] = c0, faces[3 * f + 1] = b + (j + 1) % NS, faces[3 * f + 2] = b + j, f++;
+    int o = b + (nr - 1) * NS;
+    faces[3 * f] = c1, faces[3 * f + 1] = o + j, faces[3 * f + 2] = o + (j + 1) % NS, f++;
+  }
+  *nv = c1 + 1;
+  *nf = f;
+}
+
+/* An arm hanging beside a torso, 5 cm apart: the torso's side is nearer to the
+   arm's bone than to its own, but cannot see it through the arm. */
+static void test_visibility(void) {
+  static double pos[3 * 2 * (21 * NS + 2)];
+  static int faces[3 * 2 * (2 * 20 * NS + 2 * NS)];
+  int nv = 0, nf = 0;
+  add_tube(pos, faces, &nv, &nf, 0.0, 0.15, 0.0, 1.0, 21);
+  int ntorso = nv;
+  add_tube(pos, faces, &nv, &nf, 0.24, 0.04, 0.1, 0.9, 17);
+  double segs[12] = {0, 0, 0, 0, 0, 1, 0.24, 0, 0.1, 0.24, 0, 0.9};
+  int owners[2] = {0, 1};
+  char err[256] = "";
+  for (int vis = 0; vis < 2; vis++) {
+    ssa_autoweight_opts o = ssa_autoweight_default_opts();
+    o.visibility = vis;
+    int *ws = NULL, *wb = NULL, *dom = malloc(sizeof(int) * (size_t)nv);
+    double *ww = NULL;
+    CHECK_EQ_INT(ssa_auto_weights(nv, pos, nf, faces, -1, 2, segs, owners, 2, &o, &ws, &wb, &ww,
+                                  dom, err, sizeof err),
+                 SS_OK);
+    int torso_to_arm = 0, arm_to_torso = 0;
+    for (int v = 0; v < nv; v++) {
+      if (v < ntorso) torso_to_arm += dom[v] == 1;
+      else arm_to_torso += dom[v] == 0;
+    }
+    if (vis) {
+      CHECK_EQ_INT(torso_to_arm, 0);
+      CHECK_EQ_INT(arm_to_torso, 0);
+    } else {
+      CHECK_MSG(torso_to_arm > 0, "without visibility the torso's side should go to the arm");
+    }
+    printf("visibility %d: %d torso vertices bound to the arm, %d arm vertices to the torso\n",
+           vis, torso_to_arm, arm_to_torso);
+    free(ws);
+    free(wb);
+    free(ww);
+    free(dom);
+  }
+}
+
 int main(void) {
   test_lbs_direct();
+  test_visibility();
   static double pos[3 * (NR * NS + 2)];
   static int faces[3 * (2 * (NR - 1) * NS + 2 * NS)];
   int nv, nf;
