@@ -54,6 +54,14 @@ void put_pose(double *dst, const urdf::Pose &p) {
   dst[6] = p.rotation.w;
 }
 
+/* Puts handler h back as the current one. useOutputHandler also remembers
+ * the handler it replaces as the "previous" one; setting h twice leaves
+ * both slots at h, so no pointer to our stack-allocated capture survives. */
+void restore_handler(console_bridge::OutputHandler *h) {
+  console_bridge::useOutputHandler(h);
+  console_bridge::useOutputHandler(h);
+}
+
 void set_err(char *err, int err_sz, const std::string &msg) {
   if (err && err_sz > 0) std::snprintf(err, static_cast<size_t>(err_sz), "%s", msg.c_str());
 }
@@ -195,7 +203,7 @@ extern "C" int ssa_urdf_parse(const char *xml, ssa_urdf_data **out, char *err, i
   try {
     console_bridge::useOutputHandler(&capture);
     urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(std::string(xml));
-    console_bridge::useOutputHandler(previous);
+    restore_handler(previous);
     if (!model) {
       std::string why = capture.first_error.empty() ? std::string("urdfdom could not parse it")
                                                     : capture.first_error;
@@ -210,15 +218,15 @@ extern "C" int ssa_urdf_parse(const char *xml, ssa_urdf_data **out, char *err, i
       status = fill(*model, d);
     }
   } catch (const std::bad_alloc &) {
-    console_bridge::useOutputHandler(previous);
+    restore_handler(previous);
     set_err(err, err_sz, "out of memory while reading the URDF");
     status = SS_E_NOMEM;
   } catch (const std::exception &e) {
-    console_bridge::useOutputHandler(previous);
+    restore_handler(previous);
     set_err(err, err_sz, std::string("not a valid URDF: ") + e.what());
     status = SS_E_IO;
   } catch (...) {
-    console_bridge::useOutputHandler(previous);
+    restore_handler(previous);
     set_err(err, err_sz, "not a valid URDF: unknown error in urdfdom");
     status = SS_E_IO;
   }
