@@ -98,12 +98,18 @@ static inline int64_t rosc_time_to_ns(rosc_time t) { return (int64_t)t.sec * 100
 static inline rosc_time rosc_time_from_ns(int64_t ns)
 {
   rosc_time t;
-  if (ns < 0) ns = 0;
+  if (ns < 0) ns = 0;                                   /* clamped to what fits */
+  if (ns > (int64_t)4294967295 * 1000000000 + 999999999) ns = (int64_t)4294967295 * 1000000000 + 999999999;
   t.sec = (uint32_t)(ns / 1000000000);
   t.nsec = (uint32_t)(ns % 1000000000);
   return t;
 }
-static inline rosc_time rosc_time_from_s(double s) { return rosc_time_from_ns((int64_t)(s * 1e9 + 0.5)); }
+static inline rosc_time rosc_time_from_s(double s)
+{
+  if (!(s > 0.0)) return rosc_time_from_ns(0);   /* also NaN */
+  if (s >= 4294967296.0) return rosc_time_from_ns(INT64_MAX);
+  return rosc_time_from_ns((int64_t)(s * 1e9 + 0.5));
+}
 
 /* ROS time: simulated (/clock) when the parameter /use_sim_time is true, else wall.
  * With sim time it is zero until the first /clock message arrives. */
@@ -253,10 +259,11 @@ typedef enum rosc_msg_type {
 
 /* ------------------------------------------------------------------ publishers */
 typedef struct rosc_pub rosc_pub;
-/* Advertises `topic` (give it relative) for one message type. queue_size: outgoing
+/* Advertises `topic` (give it relative) for one message type (a rosc_msg_type;
+ * an int so that any value is safe to pass: others give ROSC_E_INVALID). queue_size: outgoing
  * messages kept per subscriber before the oldest is dropped (>= 1). latch: new
  * subscribers get the last message. */
-int rosc_pub_create(rosc_pub **out, rosc_msg_type type, const char *topic,
+int rosc_pub_create(rosc_pub **out, int type, const char *topic,
                     unsigned queue_size, int latch);
 /* Publish: ROSC_E_INVALID if the publisher has another message type, a pointer is
  * NULL with a non-zero count, or a string is not terminated within its buffer. */

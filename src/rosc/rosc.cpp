@@ -229,7 +229,7 @@ struct rosc_rate {
 };
 
 struct rosc_pub {
-  rosc_msg_type type;
+  int type;
   ros::Publisher pub;
   skin_sim::SkinMesh mesh;
   skin_sim::SkinStats stats;
@@ -239,7 +239,7 @@ struct rosc_pub {
 };
 
 struct rosc_sub {
-  rosc_msg_type type;
+  int type;
   ros::Subscriber sub;
   void *user = nullptr;
   rosc_skin_mesh_cb mesh_cb = nullptr;
@@ -403,8 +403,6 @@ int rosc_init(int *argc, char **argv, const char *node_name, unsigned options,
       if (options & ROSC_INIT_NO_ROSOUT) o |= ros::init_options::NoRosout;
       ros::init(*argc, argv, node_name, o);
       g_node.ros_initialized = true;
-      // Registered after roscpp's own atexit handler, so it runs before it.
-      std::atexit(atexit_cleanup);
     }
     if (master_timeout_s >= 0.0) {
       ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(master_timeout_s);
@@ -415,6 +413,10 @@ int rosc_init(int *argc, char **argv, const char *node_name, unsigned options,
     }
     g_node.nh = new ros::NodeHandle();  // starts the node: XML-RPC server, /rosout, clock
     g_node.started = true;
+    // Registered once the node runs, so it runs at exit before roscpp's own atexit
+    // handler and before the destructors of roscpp's singletons (all created by now):
+    // stopping the node later throws boost::lock_error from a destroyed mutex.
+    std::atexit(atexit_cleanup);
     return ROSC_OK;
   });
 }
@@ -774,8 +776,7 @@ int rosc_marker_init_triangle_list(rosc_marker *m)
 }
 
 // ------------------------------------------------------------------ publishers
-int rosc_pub_create(rosc_pub **out, rosc_msg_type type, const char *topic, unsigned queue_size,
-                    int latch)
+int rosc_pub_create(rosc_pub **out, int type, const char *topic, unsigned queue_size, int latch)
 {
   return guard(__func__, [&]() -> int {
     if (out == nullptr || !valid_name(topic) || queue_size == 0) return ROSC_E_INVALID;
@@ -804,7 +805,7 @@ int rosc_pub_create(rosc_pub **out, rosc_msg_type type, const char *topic, unsig
 }
 
 namespace {
-int check_pub(rosc_pub *pub, const void *msg, rosc_msg_type type)
+int check_pub(rosc_pub *pub, const void *msg, int type)
 {
   if (pub == nullptr || msg == nullptr || pub->type != type) return ROSC_E_INVALID;
   return need_node();
