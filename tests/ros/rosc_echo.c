@@ -12,6 +12,9 @@
  *                                (roscpp's in-process path), and compares every byte;
  *                                latching, rejected inputs, time, rate, logging.
  *
+ *   rosc_echo listen N TIMEOUT_S prints the SkinMesh messages arriving on mesh_in (sent
+ *                                by tests/ros/pub_mesh.py: rospy, not rosc).
+ *
  * The script passes the check's private parameters as _p_double:=2.5 _p_int:=7
  * _p_str:=hello _p_bool:=true _p_int_as_double:=3.0 (see test_rosc.sh).
  */
@@ -790,10 +793,47 @@ static int run_check(int argc, char **argv)
   return ss_test_finish("rosc_echo check");
 }
 
+/* ------------------------------------------------------------------ listen */
+/* rosc_echo listen N TIMEOUT_S: prints each SkinMesh arriving on mesh_in (from a
+ * publisher that is not rosc, e.g. rospy) and, at the end, how many the shim dropped.
+ * Exits 0 after N messages, 1 on timeout. */
+static void listen_mesh(const rosc_skin_mesh *m, void *u)
+{
+  int *n = u;
+  printf("mesh frame_id=%s stamp=%u.%09u topology_id=%u positions=%zu triangles=%zu first=%.9g\n",
+         m->header.frame_id, m->header.stamp.sec, m->header.stamp.nsec, m->topology_id,
+         m->n_positions, m->n_triangles, m->n_positions > 0 ? (double)m->positions[0] : 0.0);
+  fflush(stdout);
+  ++*n;
+}
+
+static int run_listen(int argc, char **argv)
+{
+  int st = rosc_init(&argc, argv, "rosc_listen", 0, 10.0);
+  if (st != ROSC_OK || argc < 4) {
+    fprintf(stderr, "listen: rosc_init: %s (usage: rosc_echo listen N TIMEOUT_S)\n", rosc_strerror(st));
+    return 2;
+  }
+  int want = atoi(argv[2]), got = 0;
+  double timeout = atof(argv[3]), t0 = 0, t = 0;
+  rosc_sub *sub = NULL;
+  if (rosc_sub_skin_mesh(&sub, "mesh_in", 10, listen_mesh, &got) != ROSC_OK) return 1;
+  rosc_wall_now_s(&t0);
+  while (got < want && rosc_ok() && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < timeout)
+    rosc_spin_once(0.05);
+  uint64_t dropped = 0;
+  rosc_sub_num_dropped(sub, &dropped);
+  printf("received=%d dropped=%llu\n", got, (unsigned long long)dropped);
+  rosc_sub_destroy(sub);
+  rosc_shutdown();
+  return got >= want ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
+  if (argc >= 2 && strcmp(argv[1], "listen") == 0) return run_listen(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "relay") == 0) return run_relay(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "check") == 0) return run_check(argc, argv);
-  fprintf(stderr, "usage: rosc_echo relay|check [ROS arguments]\n");
+  fprintf(stderr, "usage: rosc_echo relay|check|listen [ROS arguments]\n");
   return 2;
 }

@@ -3,7 +3,8 @@
 # publishes SkinMesh, SkinStats, JointState, Marker and String messages, a second
 # process (`relay`, topics remapped on its command line) sends them back, and every
 # byte is compared; parameters, latching, time, rate and logging are checked too.
-# Then the throttled log lines are counted in the master's rosout.log.
+# Then the throttled log lines are counted in the master's rosout.log, and a rospy
+# publisher (tests/ros/pub_mesh.py) checks that rosc reads messages it did not write.
 # Usage: test_rosc.sh BUILD_DIR [SOURCE_DIR]. Exit 77 only if ROS is not installed.
 set -u
 bld="$1"
@@ -51,6 +52,24 @@ check "debug lines are hidden by default" "! grep -q 'hidden debug' '$rlog'"
 check "a 3000-character line arrives whole" "grep -q 'long:x\{2999\}:end' '$rlog'"
 check "the caller's file, line and function show in the log" "grep -q 'rosc_echo.c:[0-9]*(check_logging)' '$rlog'"
 check "relay logged at INFO" "grep -q 'relay: [0-9]* messages relayed' '$rlog'"
+
+# a publisher that is not rosc (rospy, with the generated Python message): rosc
+# receives its good message exactly and drops (and counts) the one whose frame_id
+# does not fit the C struct
+ros_env_bg listen "$exe" listen 1 15 mesh_in:=py_mesh
+listen_pid=$ROS_ENV_LAST_PID
+ros_env_bg pub_mesh /usr/bin/python3 "$src/tests/ros/pub_mesh.py" /py_mesh
+pub_pid=$ROS_ENV_LAST_PID
+wait "$listen_pid"; lrc=$?
+check "rosc receives rospy's SkinMesh (exit $lrc)" "[ $lrc -eq 0 ]"
+check "contents from rospy arrive exactly" \
+  "grep -qx 'mesh frame_id=body stamp=1234.000005678 topology_id=9 positions=9 triangles=3 first=0.100000001' '$ROS_ENV_DIR/listen.log'"
+check "a frame_id too long for the C struct is dropped and counted" \
+  "grep -qx 'received=1 dropped=1' '$ROS_ENV_DIR/listen.log'"
+for _ in $(seq 100); do grep -q "dropped a message on /py_mesh" "$rlog" && break; sleep 0.05; done
+check "the drop is logged (once, clearly)" \
+  "[ \$(grep -c 'dropped a message on /py_mesh: frame_id too long (1 dropped so far)' '$rlog') -eq 1 ]"
+ros_env_stop "$pub_pid"
 
 echo "test_rosc: $(($(ros_env_now_ms) - t0)) ms after the master was up"
 exit $fail
