@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # tests/ros/ros_env.sh: a private ROS master for one test script. Source it, then:
 #
 #   . "$src/tests/ros/ros_env.sh"
@@ -13,7 +14,7 @@
 # and ROS_LOG_DIR under a fresh temporary folder ($ROS_ENV_DIR), starts
 # `rosmaster --core -p PORT` and /usr/lib/rosout/rosout in the background and waits
 # (bounded) until /rosout is registered with the master. If the port was taken in
-# between, it tries another.
+# between, it tries another (three attempts).
 #
 # Cleanup: every tracked process gets TERM (background rosmaster/rosout ignore INT in a
 # non-interactive shell), then KILL after $ROS_ENV_STOP_TIMEOUT seconds (default 5).
@@ -22,6 +23,10 @@
 # temporary folder is removed when the script succeeds and kept (its path printed,
 # the logs' tails shown) when it fails; ROS_ENV_KEEP=1 always keeps it.
 #
+# After ros_env_setup: ROS_MASTER_URI, ROS_ENV_PORT, ROS_HOME, ROS_LOG_DIR (rosout.log,
+# the master's log), ROS_ENV_DIR (NAME.log of each ros_env_bg process). Functions:
+# ros_env_bg, ros_env_stop PID..., ros_env_wait_node NODE [S],
+# ros_env_wait_subscribers TOPIC N [S], ros_env_free_port, ros_env_now_ms.
 # Everything here works under `set -euo pipefail` as well as without it.
 
 export PATH=/usr/bin:/bin:$PATH
@@ -45,18 +50,23 @@ print(s.getsockname()[1])
 s.close()'
 }
 
-# ros_env_wait_node NODE [TIMEOUT_S]: waits until NODE (e.g. /rosout) is registered
-# with the master and its XML-RPC server answers. Returns 1 on timeout.
+# ros_env_wait_node NODE [TIMEOUT_S [PID [LOG]]]: waits until NODE (e.g. /rosout) is
+# registered with the master and its XML-RPC server answers (NODE /master: until the
+# master answers). Returns 1 on timeout, or as soon as PID (if given) has exited;
+# 2 as soon as LOG (if given) says its port is "already in use".
 ros_env_wait_node() {
-  local node="$1" timeout="${2:-10}"
-  /usr/bin/python3 - "$ROS_MASTER_URI" "$node" "$timeout" <<'EOF'
-import sys, time, xmlrpc.client, socket
-uri, node, timeout = sys.argv[1], sys.argv[2], float(sys.argv[3])
+  local node="$1" timeout="${2:-10}" pid="${3:-0}" log="${4:-}"
+  /usr/bin/python3 - "$ROS_MASTER_URI" "$node" "$timeout" "$pid" "$log" <<'EOF'
+import os, sys, time, xmlrpc.client, socket
+uri, node, timeout, pid, log = sys.argv[1], sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
 socket.setdefaulttimeout(1.0)
 deadline = time.monotonic() + timeout
 while True:
     try:
-        code, _, node_uri = xmlrpc.client.ServerProxy(uri).lookupNode("/ros_env", node)
+        if node == "/master":
+            code, _, node_uri = 1, "", uri
+        else:
+            code, _, node_uri = xmlrpc.client.ServerProxy(uri).lookupNode("/ros_env", node)
         if code == 1:
             code, _, _ = xmlrpc.client.ServerProxy(node_uri).getPid("/ros_env")
             if code == 1:
@@ -65,11 +75,23 @@ while True:
         pass
     if time.monotonic() > deadline:
         sys.exit(1)
-    time.sleep(0.05)
+    if pid > 0:
+        try:
+            os.kill(pid, 0)
+        except OSError:
+            sys.exit(1)  # the process it waits for is gone
+    if log:
+        try:
+            with open(log, errors="replace") as f:
+                if "already in use" in f.read():
+                    sys.exit(2)  # rosmaster lost the port race (and would hang)
+        except OSError:
+            pass
+    time.sleep(0.02)
 EOF
 }
 
-# ros_env_wait_topic TOPIC N [TIMEOUT_S]: waits until TOPIC has at least N
+# ros_env_wait_subscribers TOPIC N [TIMEOUT_S]: waits until TOPIC has at least N
 # subscribers registered with the master.
 ros_env_wait_subscribers() {
   local topic="$1" n="$2" timeout="${3:-10}"
@@ -204,33 +226,48 @@ ros_env_setup() {
     trap '' INT
     trap 'exit 0' TERM
     while kill -0 "$owner" 2> /dev/null; do sleep 0.5; done
+    # shellcheck disable=SC2013  # one pid per line
     for p in $(cat "$ROS_ENV_DIR/pids" 2> /dev/null); do kill -TERM "$p" 2> /dev/null; done
     sleep "$ROS_ENV_STOP_TIMEOUT"
+    # shellcheck disable=SC2013
     for p in $(cat "$ROS_ENV_DIR/pids" 2> /dev/null); do kill -KILL "$p" 2> /dev/null; done
     rm -rf "$ROS_ENV_DIR"
   ) > /dev/null 2>&1 < /dev/null &
   ROS_ENV_WATCHDOG=$!
 
-  local attempt port t0 master_pid
+  local attempt port t0 master_pid wrc
   t0=$(ros_env_now_ms)
   for attempt in 1 2 3; do
     port=$(ros_env_free_port) || { ros_env_log "no free port"; return 1; }
     export ROS_MASTER_URI="http://127.0.0.1:$port"
     ros_env_bg master rosmaster --core -p "$port"
     master_pid=$ROS_ENV_LAST_PID
+    # the master first (rosout started earlier only retries and complains)
+    # (rosmaster does not exit when its port is taken: the log says so)
+    wrc=0
+    ros_env_wait_node /master 15 "$master_pid" "$ROS_ENV_DIR/master.log" || wrc=$?
+    case $wrc in
+      0) ;;
+      2) ros_env_log "port $port was taken before rosmaster bound it: another port"
+         ros_env_stop "$master_pid"
+         continue ;;
+      *) if kill -0 "$master_pid" 2> /dev/null; then
+           ros_env_log "master on port $port running but not answering in 15 s"
+           return 1
+         fi
+         ros_env_log "master on port $port did not start (attempt $attempt):"
+         tail -n 5 "$ROS_ENV_DIR/master.log" >&2
+         ros_env_stop "$master_pid"
+         continue ;;
+    esac
     ros_env_bg rosout /usr/lib/rosout/rosout
     if ros_env_wait_node /rosout 15; then
-      ROS_ENV_PORT=$port
+      export ROS_ENV_PORT=$port
       ros_env_log "master $ROS_MASTER_URI and /rosout up in $(($(ros_env_now_ms) - t0)) ms"
       return 0
     fi
-    if kill -0 "$master_pid" 2> /dev/null; then
-      ros_env_log "master on port $port running but /rosout did not register in 15 s"
-      return 1
-    fi
-    ros_env_log "master on port $port did not start (attempt $attempt):"
-    tail -n 5 "$ROS_ENV_DIR/master.log" >&2
-    ros_env_stop "$ROS_ENV_LAST_PID"
+    ros_env_log "/rosout did not register in 15 s"
+    return 1
   done
   return 1
 }
