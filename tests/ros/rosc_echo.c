@@ -12,6 +12,8 @@
  *                                (roscpp's in-process path), and compares every byte;
  *                                latching, rejected inputs, time, rate, logging.
  *
+ *   rosc_echo ping N HZ VERTICES  round trips of big SkinMesh messages through the relay
+ *                                at a fixed rate: all must come back, in order, intact.
  *   rosc_echo listen N TIMEOUT_S prints the SkinMesh messages arriving on mesh_in (sent
  *                                by tests/ros/pub_mesh.py: rospy, not rosc).
  *
@@ -829,11 +831,111 @@ static int run_listen(int argc, char **argv)
   return got >= want ? 0 : 1;
 }
 
+/* ------------------------------------------------------------------ ping */
+/* rosc_echo ping N HZ VERTICES: publishes N SkinMesh messages of VERTICES vertices
+ * (and twice as many triangles, as a closed mesh has) at HZ on mesh_a, stamped with the wall clock, and receives
+ * them back on mesh_b (through the relay). Prints the round-trip latency; exits 0 if
+ * every message came back intact and in order. */
+typedef struct ping_state {
+  int received, in_order, intact;
+  size_t n_pos;
+  float probe;
+  double lat[1024];
+} ping_state;
+
+static void ping_back(const rosc_skin_mesh *m, void *u)
+{
+  ping_state *p = u;
+  double now = 0;
+  rosc_wall_now_s(&now);
+  if (p->received < 1024) p->lat[p->received] = now - rosc_time_to_s(m->header.stamp);
+  p->in_order &= m->topology_id == (uint32_t)p->received;
+  p->intact &= m->n_positions == p->n_pos && m->n_positions > 0 &&
+               m->positions[m->n_positions - 1] == p->probe + (float)m->topology_id;
+  p->received++;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static int run_ping(int argc, char **argv)
+{
+  int st = rosc_init(&argc, argv, "rosc_ping", 0, 10.0);
+  if (st != ROSC_OK || argc < 5) {
+    fprintf(stderr, "ping: rosc_init: %s (usage: rosc_echo ping N HZ VERTICES)\n", rosc_strerror(st));
+    return 2;
+  }
+  int n = atoi(argv[2]);
+  double hz = atof(argv[3]);
+  size_t nv = (size_t)atol(argv[4]);
+  if (n < 1 || n > 1024 || !(hz > 0.0) || nv < 3) return 2;
+  static ping_state ps;
+  ps.in_order = ps.intact = 1;
+  ps.n_pos = 3 * nv;
+  ps.probe = 0.25f;
+  float *pos = malloc(3 * nv * sizeof(float));
+  uint32_t *tri = malloc(6 * nv * sizeof(uint32_t));   /* 2 triangles per vertex */
+  if (pos == NULL || tri == NULL) abort();
+  for (size_t k = 0; k < 3 * nv; ++k) pos[k] = (float)k * 1e-3f;
+  for (size_t k = 0; k < 6 * nv; ++k) tri[k] = (uint32_t)((k * 7919u) % nv);
+  rosc_pub *pub = NULL;
+  rosc_sub *sub = NULL;
+  if (rosc_pub_create(&pub, ROSC_MSG_SKIN_MESH, "mesh_a", 2, 0) != ROSC_OK ||
+      rosc_sub_skin_mesh(&sub, "mesh_b", 2, ping_back, &ps) != ROSC_OK)
+    return 1;
+  double t0 = 0, t = 0;
+  unsigned np = 0, ns = 0;
+  rosc_wall_now_s(&t0);
+  while ((np < 1 || ns < 1) && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < 15.0) {
+    rosc_pub_num_subscribers(pub, &ns);
+    rosc_sub_num_publishers(sub, &np);
+    rosc_spin_once(0.02);
+  }
+  rosc_skin_mesh m;
+  memset(&m, 0, sizeof m);
+  snprintf(m.header.frame_id, sizeof m.header.frame_id, "body");
+  m.positions = pos;
+  m.n_positions = 3 * nv;
+  m.triangles = tri;
+  m.n_triangles = 6 * nv;
+  double next = 0;
+  rosc_wall_now_s(&next);
+  for (int i = 0; i < n && rosc_ok(); ++i) {
+    pos[3 * nv - 1] = ps.probe + (float)i;
+    m.topology_id = (uint32_t)i;
+    rosc_wall_now(&m.header.stamp);
+    if (rosc_publish_skin_mesh(pub, &m) != ROSC_OK) break;
+    next += 1.0 / hz;
+    /* spin (not sleep) until the next period, so replies are timed when they arrive */
+    while (rosc_wall_now_s(&t) == ROSC_OK && t < next) rosc_spin_once(next - t);
+  }
+  rosc_wall_now_s(&t0);
+  while (ps.received < n && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < 5.0) rosc_spin_once(0.02);
+  int k = ps.received < 1024 ? ps.received : 1024;
+  qsort(ps.lat, (size_t)k, sizeof(double), cmp_double);
+  printf("ping: %d/%d SkinMesh of %zu vertices + %zu triangles (%.2f MB) at %.0f Hz came back, "
+         "in order %d, intact %d; round trip ms: median %.2f, p95 %.2f, max %.2f\n",
+         ps.received, n, nv, 2 * nv, (double)(3 * nv * 4 + 6 * nv * 4) / 1e6, hz, ps.in_order,
+         ps.intact,
+         k ? 1e3 * ps.lat[k / 2] : 0.0, k ? 1e3 * ps.lat[(k * 95) / 100 < k ? (k * 95) / 100 : k - 1] : 0.0,
+         k ? 1e3 * ps.lat[k - 1] : 0.0);
+  rosc_sub_destroy(sub);
+  rosc_pub_destroy(pub);
+  rosc_shutdown();
+  free(pos);
+  free(tri);
+  return ps.received == n && ps.in_order && ps.intact ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
+  if (argc >= 2 && strcmp(argv[1], "ping") == 0) return run_ping(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "listen") == 0) return run_listen(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "relay") == 0) return run_relay(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "check") == 0) return run_check(argc, argv);
-  fprintf(stderr, "usage: rosc_echo relay|check|listen [ROS arguments]\n");
+  fprintf(stderr, "usage: rosc_echo relay|check|ping|listen [ROS arguments]\n");
   return 2;
 }
