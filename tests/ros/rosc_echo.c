@@ -3,7 +3,7 @@
  *   rosc_echo relay [ROS args]   subscribes mesh_in, stats_in, joints_in, marker_in,
  *                                string_in and republishes each message unchanged on
  *                                mesh_out, ... (the script remaps them); exits 0 when
- *                                the string "quit" arrives.
+ *                                the string "quit" arrives or on SIGINT.
  *   rosc_echo check [ROS args]   the test: parameters (private from the command line,
  *                                global set here, defaults, wrong types), then publishes
  *                                SkinMesh / SkinStats / JointState / Marker / String
@@ -105,7 +105,7 @@ static int run_relay(int argc, char **argv)
   rosc_pub_destroy(r.string);
   /* no rosc_shutdown(): the shim's atexit handler must stop the node cleanly (a
    * sanitizer build checks that for leaks and use after free) */
-  return r.quit ? 0 : 1;
+  return 0;   /* "quit" arrived, or SIGINT (roscpp's handler) stopped the node */
 }
 
 /* ------------------------------------------------------------------ deep copies */

@@ -78,5 +78,21 @@ check "the drop is logged (once, clearly)" \
   "[ \$(grep -c 'dropped a message on /py_mesh: frame_id too long (1 dropped so far)' '$rlog') -eq 1 ]"
 ros_env_stop "$pub_pid"
 
+# roslaunch stops nodes with SIGINT: a rosc node (renamed with __name:=) exits 0 soon
+ros_env_bg relay_int "$exe" relay __name:=relay_int
+int_pid=$ROS_ENV_LAST_PID
+if ros_env_wait_node /relay_int 15 "$int_pid"; then
+  kill -INT "$int_pid"
+  for _ in $(seq 100); do kill -0 "$int_pid" 2> /dev/null || break; sleep 0.05; done
+  if kill -0 "$int_pid" 2> /dev/null; then
+    check "a rosc node stops within 5 s of SIGINT" false
+  else
+    wait "$int_pid"; irc=$?
+    check "a rosc node stops on SIGINT, exit 0 (exit $irc)" "[ $irc -eq 0 ]"
+  fi
+else
+  check "relay renamed with __name:=relay_int registers" false
+fi
+
 echo "test_rosc: $(($(ros_env_now_ms) - t0)) ms after the master was up"
 exit $fail
