@@ -509,11 +509,9 @@ int rosc_now(rosc_time *out)
 int rosc_now_s(double *out)
 {
   rosc_time t;
+  if (out == nullptr) return ROSC_E_INVALID;
   int st = rosc_now(&t);
-  if (st == ROSC_OK) {
-    if (out == nullptr) return ROSC_E_INVALID;
-    *out = rosc_time_to_s(t);
-  }
+  if (st == ROSC_OK) *out = rosc_time_to_s(t);
   return st;
 }
 
