@@ -59,10 +59,25 @@ static void check_mesh(int target, int *nface_out) {
     if (pos[3 * v + 1] > ymax) ymax = pos[3 * v + 1];
   }
   CHECK_MSG(vol > 0.04 && vol < 0.08, "volume %g", vol);
+  /* triangle quality 4 sqrt(3) area / sum of squared edges (1 equilateral) */
+  double qmin = 1;
+  for (int f = 0; f < nf; f++) {
+    const double *a = pos + 3 * faces[3 * f], *b = pos + 3 * faces[3 * f + 1],
+                 *c = pos + 3 * faces[3 * f + 2];
+    double e1[3], e2[3], e3[3];
+    for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], e3[k] = c[k] - b[k];
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+    double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double l2 = 0;
+    for (int k = 0; k < 3; k++) l2 += e1[k] * e1[k] + e2[k] * e2[k] + e3[k] * e3[k];
+    qmin = fmin(qmin, 4 * sqrt(3.0) * area / l2);
+  }
+  CHECK_MSG(qmin > 0.2, "worst triangle quality %g", qmin);
   CHECK_MSG(zmax - zmin > 1.6 && zmax - zmin < 1.9, "height %g", zmax - zmin);
   CHECK_MSG(ymax > 0.75 && ymax < 0.9, "half arm span %g", ymax);
   printf("mannequin %5d requested: %5d triangles, %5d vertices, volume %.4f m^3, height %.3f m, "
-         "%.0f ms\n", req, nf, nv, vol, zmax - zmin, 1e3 * dt);
+         "worst triangle quality %.2f, %.0f ms\n", req, nf, nv, vol, zmax - zmin, qmin, 1e3 * dt);
   if (nface_out) *nface_out = nf;
   free(pos);
   free(faces);
