@@ -309,6 +309,12 @@ int ssa_avatar_pose_joints_at(ssa_avatar *av, const double *root_pose, const dou
  * avatar or an anim out of range. */
 int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out);
 
+/* Marks the vertices whose dominant target (vert_link) is one of the named
+ * links (robot avatars) or nodes (asset avatars): mask (nvert) gets 1 or 0.
+ * Returns how many were marked, or SS_E_ARG naming the first unknown name. */
+int ssa_avatar_region_mask(const ssa_avatar *av, int n, const char *const *names,
+                           unsigned char *mask, char *err, int err_sz);
+
 /* ================================================================ the built-in mannequin */
 
 /* The mannequin's URDF (static text, the same as urdf/mannequin.urdf in the

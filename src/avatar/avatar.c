@@ -470,3 +470,30 @@ int ssa_avatar_load_urdf(ssa_avatar **out, const char *urdf_path, const char *me
   if (st != SS_OK) return st;
   return ssa_avatar_from_robot(out, r, mesh_path, opts, err, err_sz);
 }
+
+int ssa_avatar_region_mask(const ssa_avatar *av, int n, const char *const *names,
+                           unsigned char *mask, char *err, int err_sz) {
+  if (!av || !mask || n < 0 || (n > 0 && !names))
+    return ssa_fail(err, err_sz, SS_E_ARG, "region: missing arguments");
+  memset(mask, 0, (size_t)av->nvert);
+  unsigned char *pick = calloc((size_t)(av->ntarget > 0 ? av->ntarget : 1), 1);
+  if (!pick) return ssa_fail(err, err_sz, SS_E_NOMEM, "region: out of memory");
+  for (int i = 0; i < n; i++) {
+    int t = av->kind == SSA_AVATAR_ROBOT ? ssa_robot_link_index(av->robot, names[i])
+                                         : ssa_asset_node_index(av->asset, names[i]);
+    if (t < 0) {
+      free(pick);
+      return ssa_fail(err, err_sz, SS_E_ARG, "region: '%s' is no %s of this avatar",
+                      names[i] ? names[i] : "(null)",
+                      av->kind == SSA_AVATAR_ROBOT ? "link" : "node");
+    }
+    pick[t] = 1;
+  }
+  int count = 0;
+  for (int v = 0; v < av->nvert; v++) {
+    mask[v] = pick[av->vert_link[v]];
+    count += mask[v];
+  }
+  free(pick);
+  return count;
+}

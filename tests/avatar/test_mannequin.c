@@ -132,6 +132,21 @@ int main(void) {
     if (p[1] > 0.65) CHECK_EQ_INT(av->vert_link[v], lfa);
     if (p[2] > 0.72) CHECK_EQ_INT(av->vert_link[v], head);
   }
+  /* a region by link names: exactly the vertices those links dominate */
+  unsigned char *mask = malloc((size_t)av->nvert);
+  const char *region[2] = {"l_forearm", "head"};
+  int nmarked = ssa_avatar_region_mask(av, 2, region, mask, err, sizeof err);
+  int expect = 0;
+  for (int v = 0; v < av->nvert; v++) {
+    int in = av->vert_link[v] == lfa || av->vert_link[v] == head;
+    expect += in;
+    CHECK(mask[v] == in);
+  }
+  CHECK(nmarked == expect && nmarked > 100);
+  const char *bad_region[1] = {"tail"};
+  CHECK_EQ_INT(ssa_avatar_region_mask(av, 1, bad_region, mask, err, sizeof err), SS_E_ARG);
+  CHECK(strstr(err, "tail") != NULL);
+  free(mask);
   double *pos = malloc(sizeof(double) * 3 * (size_t)av->nvert);
   double *q = calloc((size_t)r->njoint, sizeof(double));
   /* deterministic: a second mannequin is the same to the bit */
