@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "skin_sim/ss_mesh.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
 
@@ -64,6 +65,19 @@ static int run_case(const asset_case *c) {
   const ssa_asset *a = av->asset;
   CHECK(a->nbone_file >= c->min_bones);
   CHECK(a->nanim >= 1);
+  /* parts appended into one body, each vertex knowing its source */
+  for (int v = 0; v < av->nvert; v++) CHECK(av->vert_part[v] >= 0 && av->vert_part[v] < a->npart);
+  if (strstr(c->path, "BCN_Epileptic")) CHECK_EQ_INT(a->npart, 3); /* torso, head, legs */
+  ss_topo *topo = NULL;
+  CHECK_EQ_INT(ss_topo_create(&topo, av->nvert, av->rest_pos, av->nface, av->faces, -1.0, err,
+                              sizeof err), SS_OK);
+  if (topo && strstr(c->path, "Fox.glb")) {
+    /* the fox's UV seams weld into one closed surface */
+    CHECK_EQ_INT(topo->nboundary_edge, 0);
+    CHECK_EQ_INT(topo->nnonmanifold_edge, 0);
+    CHECK(topo->nweld < av->nvert);
+  }
+  ss_topo_destroy(topo);
   CHECK(av->nface > 0 && av->nvert > 0);
   double diag = bbox_diag(av->nvert, av->rest_pos);
   CHECK(diag > 0 && isfinite(diag));
