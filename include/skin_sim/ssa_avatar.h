@@ -211,17 +211,19 @@ typedef struct ssa_autoweight_opts {
 /* Defaults as documented in the struct. */
 ssa_autoweight_opts ssa_autoweight_default_opts(void);
 
-/* Automatic weights by heat diffusion (Baran and Popovic 2007): with the
- * cotangent Laplacian L of the mesh (welded at weld_tol, see ss_topo) and H
- * diagonal, H_ii = c / d_i^2 for d_i the distance from vertex i to its nearest
- * visible segment (the line to it crosses no face; see opts.visibility), (L + H) w_j = H p_j is solved for each segment owner j (p_j = 1
- * where j's segment is nearest) with one CHOLMOD factorisation. Segments:
- * nseg segments seg (nseg x 6: two end points) owned by seg_owner (nseg,
- * values in [0, nowner)). Weights are then clamped to >= 0, smoothed, small
- * ones dropped and normalised to sum 1; vertices near only one owner get
- * that owner with weight 1. Output in CSR form, allocated here (free with
- * free()): *w_start (nvert + 1), *w_bone, *w_weight. *dominant (nvert, may
- * be NULL) receives each vertex's largest-weight owner. */
+/* Automatic weights by heat diffusion (Baran and Popovic 2007). On the mesh
+ * welded at weld_tol (see ss_topo), with the cotangent stiffness L, lumped
+ * vertex areas M and H_ii = c / d_i^2 (d_i the distance from vertex i to its
+ * nearest visible segment: the line to it crosses no face, see
+ * opts.visibility), (L + M H) w_j = M H p_j is solved for each owner j
+ * (p_j(i) = 1 where j owns that nearest segment, 1/2 each on a tie) with one
+ * CHOLMOD factorisation. Segments: seg (nseg x 6, two end points) owned by
+ * seg_owner (nseg, in [0, nowner)). Weights are then clamped to >= 0,
+ * smoothed, those below min_weight dropped and normalised to sum 1; a vertex
+ * whose second-nearest visible owner is more than rigid_ratio times farther
+ * than its nearest gets weight 1 on the nearest. Output in CSR form,
+ * allocated here (free with free()): *w_start (nvert + 1), *w_bone,
+ * *w_weight; *dominant (nvert, may be NULL) gets each vertex's largest owner. */
 int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, double weld_tol,
                      int nseg, const double *seg, const int *seg_owner, int nowner,
                      const ssa_autoweight_opts *opts, int **w_start, int **w_bone,
