@@ -122,7 +122,8 @@ typedef struct ssa_asset_opts {
   double scale;       /* metres per file unit; <= 0: from the file (FBX UnitScaleFactor), else 1 */
   int z_up;           /* 1: turn the file's up axis (Y unless the file says otherwise) into +Z
                          (Y-up to Z-up is +90 degrees about X: (x,y,z) -> (x,-z,y)); 0: keep */
-  int ignore_up_axis; /* 1: take the coordinates as written (URDF visual meshes, as rviz does) */
+  int ignore_up_axis; /* 1: take the coordinates as written, ignoring a Collada up_axis (used
+                         for URDF visual meshes, whose frame the URDF already gives) */
 } ssa_asset_opts;
 
 /* Defaults: scale from the file, z_up 1, ignore_up_axis 0. */
