@@ -159,8 +159,10 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
 
 /* Shared by both solvers: backtracking line search along dir from xd (energy
  * e0, gradient g0). On success xd, gd, e are updated to the accepted point
- * (gd is the gradient there) and 1 is returned; 0 if no step decreased E;
- * -1 if everything tried was non-finite. */
+ * (gd is the gradient there) and 1 is returned (2 if E did not decrease:
+ * accepted by the approximate Wolfe conditions, E flat to round-off); 0 if no step decreased E; -1 if
+ * everything tried was non-finite. */
+#define SS_ROUNDOFF_STEPS 8
 int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir);
 
 #endif

@@ -14,8 +14,11 @@
  * Line search: backtracking from the full step, Armijo's sufficient decrease
  * E(x + a d) <= E(x) + 1e-4 a g.d, halving a up to 40 times (Nocedal and
  * Wright, "Numerical Optimization", 3.1). Close to the minimum the decrease
- * g.d is below the round-off of E; a step is then also accepted when E did not
- * rise beyond round-off and the gradient norm fell. */
+ * g.d is below the round-off of E; a step is then also accepted by Hager and
+ * Zhang's approximate Wolfe conditions (which use the slope, not E). A solver
+ * whose energy does not decrease at all over SS_ROUNDOFF_STEPS accepted steps
+ * in a row has reached the floor of its precision and stops (reported as
+ * stalled unless the residual is within tolerance). */
 #include <math.h>
 #include <string.h>
 
@@ -33,7 +36,6 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
   int n3 = 3 * sim->ndof;
   double slope = dot(gd, dir, n3);
   if (!(slope < 0.0)) return 0;
-  double g2 = dot(gd, gd, n3);
   double alpha = 1.0;
   int any_finite = 0;
   for (int tries = 0; tries < 40; tries++, alpha *= 0.5) {
@@ -42,16 +44,22 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
     double t0 = ss_now_ms();
     double et = ss_sim_energy(sim, sim->xfull_t, sim->gt);
     sim->st->assemble_ms += ss_now_ms() - t0;
-    double gt2 = dot(sim->gt, sim->gt, n3);
-    if (!isfinite(et) || !isfinite(gt2)) continue;
+    if (!isfinite(et) || !isfinite(dot(sim->gt, sim->gt, n3))) continue;
     any_finite = 1;
-    int armijo = et <= *e + 1e-4 * alpha * slope;
-    int roundoff = et <= *e + 1e-13 * fabs(*e) && gt2 < g2;
+    /* Armijo, when the decrease it asks for is representable at all. */
+    double bound = *e + 1e-4 * alpha * slope;
+    int armijo = bound < *e && et <= bound;
+    /* Near the minimum the change of E drowns in round-off: Hager and
+     * Zhang's approximate Wolfe conditions (CG_DESCENT, 2005), E not above
+     * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
+    double st_slope = dot(sim->gt, dir, n3);
+    int roundoff = et <= *e + 1e-12 * fabs(*e) && st_slope >= 0.9 * slope && st_slope <= -0.8 * slope;
     if (armijo || roundoff) {
       memcpy(xd, sim->xt, (size_t)n3 * sizeof *xd);
       memcpy(gd, sim->gt, (size_t)n3 * sizeof *gd);
+      int decreased = et < *e;
       *e = et;
-      return 1;
+      return decreased ? 1 : 2;
     }
   }
   return any_finite ? 0 : -1;
@@ -100,6 +108,7 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
   ss_sim_stats *st = sim->st;
   double *g = sim->gd, *dir = sim->dir;
   *converged = *stalled = *nonfinite = 0;
+  int roundoff_steps = 0;
   if (sim->h_const_h != sim->h) {
     ss_sim_constant_hessian(sim, sim->h_const);
     sim->h_const_h = sim->h;
@@ -148,12 +157,19 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
     memcpy(dir, sim->nx->x, (size_t)n3 * sizeof *dir);
     st->solve_ms += ss_now_ms() - t2;
     int ls = ss_sim_line_search(sim, xd, g, &e, dir);
+    roundoff_steps = ls == 2 ? roundoff_steps + 1 : 0;
+    if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
     if (ls < 0) {
       *nonfinite = 2; /* xd is still the last finite iterate */
       break;
     }
     if (ls == 0) {
-      *stalled = 1;
+      st->residual = ss_sim_residual(sim, g); /* g is at xd */
+      st->energy = e;
+      if (st->residual <= sim->set.tol)
+        *converged = 1;
+      else
+        *stalled = 1;
       break;
     }
     ss_sim_scatter(sim, xd, sim->xfull_t);
