@@ -84,6 +84,7 @@ struct ss_sim {
   double *target;             /* (ndof x 3) inertia target (prediction, damping, gravity) */
   /* solver scratch: dof vectors (ndof x 3) and full position arrays */
   double *xd, *gd, *dir, *xt, *gt;
+  double *guess;              /* (ndof x 3) anchors of free vertices in the previous pose */
   double *xfull_t;            /* (nvert x 3) trial positions (fixed vertices in place) */
   /* CHOLMOD */
   cholmod_common cc;

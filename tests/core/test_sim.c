@@ -95,6 +95,7 @@ static void test_stretched_returns(void) {
     set.solver = SS_SOLVER_NEWTON;
     set.anchor_stiffness = 0.0;
     set.damping = 5.0;
+    set.tol = 1e-8;
     ss_sim *sim = make_sim(&g, &set);
     double *x = malloc(3 * (size_t)g.nvert * sizeof(double));
     for (int v = 0; v < g.nvert; v++) {
