@@ -7,9 +7,13 @@
  * (the spring force drags each anchor over the body by walk, project or nring).
  *
  * Model and data: topology, rest shape and settings are fixed at create, where
- * all memory is allocated; ss_sim_step allocates nothing (except CHOLMOD's
- * internal workspace, sized at the first factorisation). Deterministic: the
- * same inputs give the same bits.
+ * all memory is allocated. With the quasi-Newton solver ss_sim_step allocates
+ * nothing at a constant dt (a new dt refactors a matrix, and CHOLMOD allocates
+ * temporaries inside cholmod_factorize, as it does in every Newton iteration).
+ * Deterministic: the same inputs give the same bits. The quasi-Newton path
+ * uses no BLAS; Newton's supernodal factorisation goes through the BLAS,
+ * whose results are reproducible for a given BLAS and thread count (e.g.
+ * OPENBLAS_NUM_THREADS) but may differ across them.
  *
  * Units are SI by convention (metres, seconds, kilograms), but any consistent
  * set works: only ratios matter. Do not reach into the struct behind ss_sim. */
@@ -103,7 +107,8 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
 /* What one ss_sim_step did (sums over its substeps unless said otherwise). */
 typedef struct ss_sim_stats {
   double total_ms;     /* the whole step */
-  double walk_ms;      /* anchor updates (mover) */
+  double walk_ms;      /* anchor updates (mover), including the body's per-face frames
+                          and anchor positions of each substep pose */
   double assemble_ms;  /* energies, gradients and (Newton) Hessian assembly */
   double factor_ms;    /* CHOLMOD numeric factorisations */
   double solve_ms;     /* CHOLMOD triangular solves and the L-BFGS two-loop */
@@ -128,7 +133,7 @@ typedef struct ss_sim_stats {
  * 3). stats may be NULL. Returns SS_OK (even if a substep stalled or failed:
  * see stats), or SS_E_ARG / SS_E_NONFINITE for bad input (message in err; the
  * state is untouched), or SS_E_SOLVER if CHOLMOD failed (the last good state
- * kept). Never leaves NaN or Inf in the state. Allocates nothing. */
+ * kept). Never leaves NaN or Inf in the state. */
 int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *stats,
                 char *err, int err_sz);
 

@@ -52,6 +52,11 @@ static int apply_inverse(ss_sim *sim, const double *q, double *z) {
   double *b = sim->qb->x;
   for (int k = 0; k < n; k++)
     for (int c = 0; c < 3; c++) b[k + (size_t)c * n] = q[3 * k + c];
+  /* cholmod_solve2's simplicial path asks for a workspace Y of 4 x n
+   * (4 columns at a time) and leaves it shaped 3 x n after three columns;
+   * restore the shape, or the next call frees and reallocates it. */
+  cholmod_dense *y = sim->qy;
+  if (y && y->nzmax >= 4 * (size_t)n) y->nrow = 4, y->d = 4, y->ncol = (size_t)n;
   if (!cholmod_solve2(CHOLMOD_A, sim->LA, sim->qb, NULL, &sim->qx, NULL, &sim->qy, &sim->qe, &sim->cc))
     return SS_E_SOLVER;
   const double *xs = sim->qx->x;
