@@ -246,6 +246,79 @@ static void test_face_mask(void) {
   fx_free(&g);
 }
 
+/* Gravity on a patch held by anchor springs only (no membrane): every vertex
+ * sags by rho g / k (stiffness and mass are both per area, shared half and
+ * half between vertex and barycenter springs). Solved quasi-statically. */
+static void test_gravity_sag(void) {
+  fx_mesh g = fx_grid(7, 7, 1.0, 1.0, 0.0);
+  for (int bary = 0; bary < 2; bary++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.young = 0.0;
+    set.density = 2.0;
+    set.anchor_stiffness = 500.0;
+    set.barycenter_anchors = bary;
+    set.gravity[2] = -9.81;
+    set.slide = 0.0;
+    set.dt = 1e3;
+    set.tol = 1e-12;
+    ss_sim *sim = make_sim(&g, &set);
+    if (!sim) continue;
+    for (int f = 0; f < 3; f++) ss_sim_step(sim, g.pos, 0.0, NULL, NULL, 0);
+    const double *p = ss_sim_skin_positions(sim);
+    double expect = -2.0 * 9.81 / 500.0, worst = 0.0;
+    for (int v = 0; v < g.nvert; v++) {
+      worst = fmax(worst, fabs(p[3 * v + 2] - expect));
+      worst = fmax(worst, fabs(p[3 * v] - g.pos[3 * v]) + fabs(p[3 * v + 1] - g.pos[3 * v + 1]));
+    }
+    CHECK_MSG(worst < 1e-9, "barycenters %d: sag off by %g (expected %g)", bary, worst, expect);
+    ss_sim_destroy(sim);
+  }
+  fx_free(&g);
+}
+
+/* slide = 0 glues the anchors; slide > 0 lets them follow the skin, and the
+ * statistics count every move. */
+static void test_slide(void) {
+  fx_mesh g = fx_grid(9, 9, 1.0, 1.0, 0.1);
+  double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
+  for (int k = 0; k < 2; k++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.slide = k ? 1.0 : 0.0;
+    ss_sim *sim = make_sim(&g, &set);
+    if (!sim) continue;
+    int na = ss_sim_nanchors(sim);
+    CHECK_EQ_INT(na, g.nvert + g.nface);
+    int *face0 = malloc((size_t)na * sizeof(int));
+    double *uv0 = malloc(2 * (size_t)na * sizeof(double));
+    memcpy(face0, ss_sim_anchor_faces(sim), (size_t)na * sizeof(int));
+    memcpy(uv0, ss_sim_anchor_uv(sim), 2 * (size_t)na * sizeof(double));
+    ss_sim_stats st;
+    for (int f = 1; f <= 10; f++) {
+      fx_pose(&g, f / 30.0, pose);
+      ss_sim_step(sim, pose, 0.0, &st, NULL, 0);
+    }
+    int changed = memcmp(face0, ss_sim_anchor_faces(sim), (size_t)na * sizeof(int)) != 0 ||
+                  memcmp(uv0, ss_sim_anchor_uv(sim), 2 * (size_t)na * sizeof(double)) != 0;
+    if (k == 0) {
+      CHECK_MSG(!changed, "slide 0: anchors moved");
+      CHECK_EQ_INT(st.anchors_moved, 0);
+    } else {
+      CHECK_MSG(changed, "slide 1: anchors did not move");
+      CHECK_EQ_INT(st.anchors_moved, na);
+    }
+    /* Anchor world positions lie on the body in its current pose. */
+    double *ap = malloc(3 * (size_t)na * sizeof(double));
+    ss_sim_anchor_positions(sim, ap);
+    CHECK(all_finite(ap, 3 * na));
+    free(ap);
+    free(face0);
+    free(uv0);
+    ss_sim_destroy(sim);
+  }
+  free(pose);
+  fx_free(&g);
+}
+
 /* Bad input: an error code and a message, and the state kept. */
 static void test_bad_input(void) {
   fx_mesh g = fx_grid(6, 6, 1.0, 1.0, 0.0);
@@ -357,6 +430,8 @@ int main(void) {
   test_membrane_moduli();
   test_solvers_agree();
   test_face_mask();
+  test_gravity_sag();
+  test_slide();
   test_bad_input();
   test_violent_motion();
   test_determinism();
