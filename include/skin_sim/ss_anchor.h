@@ -63,6 +63,8 @@ typedef struct ss_walk_result {
   double uv[2];  /* final canonical coordinates, inside the face */
   int stop;      /* ss_walk_stop */
   int steps;     /* edges crossed */
+  double length; /* length of the path walked on the surface (world units): an upper
+                    bound of the geodesic distance moved; 0 for project and nring */
 } ss_walk_result;
 
 /* Scratch memory for walks (per-face visit stamps): one per thread. */

@@ -7,7 +7,8 @@
  * along the body normal there (skin lagging behind the body), and moved there
  * with the chosen method. An update is a snag when its result lies further
  * along the surface from its start than snag_factor |a* - a0| + one mean edge
- * length; a failure is a non-finite position or an anchor outside its face. */
+ * length (surface distance: the shortest known path on the surface, see
+ * track.c); a failure is a non-finite position or an anchor outside its face. */
 #ifndef SKIN_SIM_SS_TRACK_H
 #define SKIN_SIM_SS_TRACK_H
 

@@ -82,6 +82,7 @@ void ss_mover_move(ss_mover *m, int face, const double uv[2], const double targe
   }
   res->stop = SS_STOP_INSIDE;
   res->steps = 0;
+  res->length = 0.0;
   if (m->settings.method == SS_METHOD_PROJECT)
     ss_bvh_closest(m->bvh, m->pos, target, &res->face, res->uv);
   else

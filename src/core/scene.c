@@ -5,7 +5,12 @@
  * character: parts rotate rigidly about joints, and across a joint's blend
  * region the rotation angle ramps smoothly (a smoothstep of the rest
  * coordinate), which keeps limbs round where matrix blending would pinch them.
- * Units are metres, 30 frames per second; frame 0 is the rest pose, bit for bit.
+ * Capsules are latitude-longitude meshes with every other ring turned half a
+ * segment (near-equilateral triangles; thin fans at the poles); the boundary
+ * sheet is a near-equilateral lattice; fold and slivers are grids of right
+ * triangles. Units are metres, 30 frames per second; frame 0
+ * is the rest pose, bit for bit; poses are defined for any frame >= 0 (armpit
+ * and elbow hold their end pose, twist keeps spinning, the rest oscillate).
  * The anchor tracking experiment (track.c) seeds anchors at every vertex and
  * face barycenter, lets them ride with the body, pulls each back towards where
  * it was a frame ago lifted 0.1 edge lengths off the surface (lagging skin) and
@@ -14,15 +19,18 @@
  *  armpit   A torso (capsule, radius 0.28 m) and an arm (capsule, radius
  *           0.075 m) hinged at the shoulder. The arm swings down from a
  *           T-pose by 97 degrees, past vertical, and presses into the torso:
- *           at the end the arm's inner side lies up to ~0.05 m (about one edge
+ *           at the end the arm's inner side lies up to ~0.056 m (1.3 edges
  *           at the default size) inside the torso. The two parts are SEPARATE
  *           closed components of one mesh (arm not welded to the torso; its
  *           root cap sits 1 cm from the torso). Lagging points on the arm lie
  *           nearer the torso than their own sheet: projection jumps across
  *           (a snag); the walk stays on the arm.
- *  elbow    A capsule tube bent at its middle by 135 degrees about a joint
- *           with a blend one radius wide: the inner side of the crease folds
- *           sharply (locally inverts), the outer side stretches.
+ *  elbow    A capsule tube (radius 0.09 m) bent at its middle by 135 degrees
+ *           about a hinge 0.8 radii towards the outer side, blended over
+ *           +-1.5 radii: the inner side of the crease folds sharply (it
+ *           inverts and passes through itself), the outer side stretches
+ *           by at most ~25%. (A hinge on the axis stretches the outer side
+ *           ~2x, and edge-path surface distances then overstate walks there.)
  *  fold     A closed thin flap (plate 0.8 x 0.5 m, thickness 0.4 grid
  *           spacings: its two sides are closer than one edge) hinged at its
  *           root, flapping +-0.5 rad every second: the tip moves several edge
@@ -32,8 +40,8 @@
  *  twist    A capsule (radius 0.15 m) spinning about its axis at 4.3 grid
  *           segments per frame after a short ramp: every anchor must cross
  *           many faces per frame (cost and step limits of the walk).
- *  slivers  An open wavy sheet of badly conditioned triangles: columns and
- *           rows 1/300 of a grid spacing wide (aspect ratio ~300) and
+ *  slivers  An open wavy sheet of badly conditioned triangles: every fourth
+ *           column is 1/300 of the row spacing wide (aspect ratio ~300) and
  *           T-junctions closed by exactly zero-area faces (three collinear
  *           corners; they stay collinear in every pose since the motion maps
  *           points by their x and z alone). Two joints bend it to and fro.
@@ -73,7 +81,8 @@ static const double ARM_TORSO_R = 0.28, ARM_TORSO_HC = 0.45; /* torso radius, ha
 static const double ARM_R = 0.075, ARM_HC = 0.275;           /* arm radius, half cylinder */
 static const double ARM_GAP = 0.01, ARM_SHOULDER_Z = 0.32;
 static const double ARM_SWING = (97.0 / 180.0) * SS_PI, ARM_SWING_FRAMES = 45.0;
-static const double ELBOW_R = 0.09, ELBOW_HC = 0.5, ELBOW_BLEND = 1.0; /* blend half-width in radii */
+static const double ELBOW_R = 0.09, ELBOW_HC = 0.5;
+static const double ELBOW_BLEND = 1.5, ELBOW_AXIS_Z = -0.8; /* blend half-width, axis offset: radii */
 static const double ELBOW_BEND = (135.0 / 180.0) * SS_PI, ELBOW_FRAMES = 50.0;
 static const double FOLD_L = 0.8, FOLD_W = 0.5, FOLD_THICK = 0.4; /* thickness in grid spacings */
 static const double FOLD_X0 = 0.08, FOLD_X1 = 0.28;              /* hinge blend region */
@@ -88,7 +97,6 @@ struct ss_scene {
   int nvert, nface;
   double *rest;
   int *faces;
-  double h;       /* grid spacing the mesh was built with */
   int arm_first;  /* armpit: first vertex of the arm */
   double omega;   /* twist: peak angular speed, radians per frame */
 };
@@ -100,14 +108,15 @@ typedef struct plan {
   int a, b, c, d;   /* per scene: segments/rings, cells, ... */
 } plan;
 
-/* Slivers: grid coordinates with thin columns/rows; counts only if arrays are NULL. */
+/* Slivers: n + 1 grid coordinates over len, plus a thin cell after every
+ * period-th (none if period is 0); writes xs unless NULL; returns the cells. */
 static int sliver_coords(int n, double h, double len, int period, double *xs) {
   int k = 0;
   for (int i = 0; i <= n; i++) {
     double x = -0.5 * len + len * i / n;
     if (xs) xs[k] = x;
     k++;
-    if (i % period == period / 2 && i < n) {
+    if (period > 0 && i % period == period / 2 && i < n) {
       if (xs) xs[k] = x + SLIV_THIN * h;
       k++;
     }
@@ -143,8 +152,10 @@ static plan make_plan(int kind, int n) {
     case BOUNDARY: {
       double len = kind == FOLD ? FOLD_L : kind == SLIVERS ? SLIV_L : BND_L;
       double wid = kind == FOLD ? FOLD_W : kind == SLIVERS ? SLIV_W : BND_W;
-      p.h = wid / n;
-      p.a = (int)lround(len / p.h);
+      p.h = wid / n; /* row spacing; boundary's lattice spaces columns 2/sqrt(3) wider */
+      p.a = (int)lround(len / (kind == BOUNDARY ? 1.1547005383792515 * p.h
+                               : kind == SLIVERS  ? 1.25 * p.h
+                                                  : p.h));
       if (p.a < 2) p.a = 2;
       p.b = n;
       break;
@@ -159,26 +170,15 @@ static long long plan_faces(int kind, const plan *p) {
     case ELBOW:
     case TWIST: return 2LL * p->a * p->b;
     case FOLD: return 4LL * p->a * p->b + 4LL * (p->a + p->b);
-    case BOUNDARY: return 2LL * p->a * p->b;
-    case SLIVERS: {
+    case BOUNDARY: return (2LL * p->a + 1) * p->b;
+    case SLIVERS: { /* thin columns only: T-cells counted on column indices */
       int nx = sliver_coords(p->a, p->h, SLIV_L, 4, NULL);
-      int ny = sliver_coords(p->b, p->h, SLIV_W, 5, NULL);
-      /* T-cells need the coordinates; a count on uniform ones is exact since
-       * the thin columns/rows are the only narrow ones */
       long long nt = 0;
-      int ci = 0;
-      for (int i = 0; i < p->a; i++) {
-        int cols = (i % 4 == 2) ? 2 : 1; /* normal column after a thin one */
-        ci += cols;
-        int c = ci - 1;
-        int rj = 0;
-        for (int j = 0; j < p->b; j++) {
-          rj += (j % 5 == 2) ? 2 : 1;
-          int r = rj - 1;
-          if (c >= 1 && (3 * c + 5 * r) % 13 == 0) nt++;
-        }
+      for (int i = 0, c = -1; i < p->a; i++) {
+        c += (i % 4 == 2) ? 2 : 1; /* this normal column, after any thin one */
+        for (int j = 0; j < p->b; j++) nt += c >= 1 && (3 * c + 5 * j) % 13 == 0;
       }
-      return 2LL * nx * ny + 2 * nt;
+      return 2LL * nx * p->b + 2 * nt;
     }
   }
   return 0;
@@ -214,7 +214,6 @@ static int choose_n(int kind, int tris) {
 
 static int build(ss_scene *s, ss_mb *mb, int n) {
   plan p = make_plan(s->kind, n);
-  s->h = p.h;
   switch (s->kind) {
     case ARMPIT: {
       const double torso[3] = {0.0, 0.0, 0.0};
@@ -238,29 +237,25 @@ static int build(ss_scene *s, ss_mb *mb, int n) {
       ss_mb_plate(mb, 0.0, FOLD_L, FOLD_W, FOLD_THICK * p.h, p.a, p.b);
       break;
     case BOUNDARY:
+      ss_mb_lattice(mb, -0.5 * BND_L, BND_L, -0.5 * BND_W, BND_W, p.a, p.b);
+      break;
     case SLIVERS: {
-      int sl = s->kind == SLIVERS;
-      int nx = sl ? sliver_coords(p.a, p.h, SLIV_L, 4, NULL) : p.a;
-      int ny = sl ? sliver_coords(p.b, p.h, SLIV_W, 5, NULL) : p.b;
+      int nx = sliver_coords(p.a, p.h, SLIV_L, 4, NULL);
+      int ny = sliver_coords(p.b, p.h, SLIV_W, 0, NULL);
       double *xs = malloc(sizeof(double) * (size_t)(nx + 1));
       double *ys = malloc(sizeof(double) * (size_t)(ny + 1));
-      unsigned char *tflag = sl ? calloc((size_t)nx * (size_t)ny, 1) : NULL;
-      if (!xs || !ys || (sl && !tflag)) {
+      unsigned char *tflag = calloc((size_t)nx * (size_t)ny, 1);
+      if (!xs || !ys || !tflag) {
         free(xs);
         free(ys);
         free(tflag);
         return SS_E_NOMEM;
       }
-      if (sl) {
-        sliver_coords(p.a, p.h, SLIV_L, 4, xs);
-        sliver_coords(p.b, p.h, SLIV_W, 5, ys);
-        for (int j = 0; j < ny; j++)
-          for (int c = 0; c < nx; c++)
-            tflag[(size_t)j * nx + c] = (unsigned char)sliver_tcell(c, j, xs, ys, p.h);
-      } else {
-        for (int i = 0; i <= nx; i++) xs[i] = -0.5 * BND_L + BND_L * i / nx;
-        for (int j = 0; j <= ny; j++) ys[j] = -0.5 * BND_W + BND_W * j / ny;
-      }
+      sliver_coords(p.a, p.h, SLIV_L, 4, xs);
+      sliver_coords(p.b, p.h, SLIV_W, 0, ys);
+      for (int j = 0; j < ny; j++)
+        for (int c = 0; c < nx; c++)
+          tflag[(size_t)j * nx + c] = (unsigned char)sliver_tcell(c, j, xs, ys, p.h);
       ss_mb_sheet(mb, xs, nx, ys, ny, tflag);
       free(xs);
       free(ys);
@@ -339,10 +334,10 @@ static double wave(double t, double period, double phase) {
   return sin(2.0 * SS_PI * t / period + phase) * ss_smooth(t / 8.0);
 }
 
-/* Rotates p about the y-parallel line through (x, 0, 0) by a times the blend
+/* Rotates p about the y-parallel line through (x, 0, z) by a times the blend
  * weight of rest coordinate rx across [x - w, x + w]. */
-static void joint_y(double p[3], double rx, double x, double w, double a) {
-  const double c[3] = {x, 0.0, 0.0};
+static void joint_y(double p[3], double rx, double x, double z, double w, double a) {
+  const double c[3] = {x, 0.0, z};
   ss_rotate(p, 1, c, a * ss_smooth((rx - (x - w)) / (2.0 * w)));
 }
 
@@ -364,13 +359,13 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
     case ELBOW: {
       double a = -ELBOW_BEND * ss_smooth(t / ELBOW_FRAMES);
       for (int v = 0; v < nv; v++)
-        joint_y(pos + 3 * v, rest[3 * v], 0.0, ELBOW_BLEND * ELBOW_R, a);
+        joint_y(pos + 3 * v, rest[3 * v], 0.0, ELBOW_AXIS_Z * ELBOW_R, ELBOW_BLEND * ELBOW_R, a);
       break;
     }
     case FOLD: {
       double a = FOLD_AMP * wave(t, FOLD_PERIOD, 0.0);
       double mid = 0.5 * (FOLD_X0 + FOLD_X1), half = 0.5 * (FOLD_X1 - FOLD_X0);
-      for (int v = 0; v < nv; v++) joint_y(pos + 3 * v, rest[3 * v], mid, half, a);
+      for (int v = 0; v < nv; v++) joint_y(pos + 3 * v, rest[3 * v], mid, 0.0, half, a);
       break;
     }
     case TWIST: {
@@ -384,8 +379,8 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
     case SLIVERS: {
       double a1 = 0.45 * wave(t, SLIV_PERIOD, 0.0), a2 = 0.6 * wave(t, SLIV_PERIOD, 1.0);
       for (int v = 0; v < nv; v++) { /* distal joint first, in rest space */
-        joint_y(pos + 3 * v, rest[3 * v], 0.2, 0.08, a2);
-        joint_y(pos + 3 * v, rest[3 * v], -0.15, 0.08, a1);
+        joint_y(pos + 3 * v, rest[3 * v], 0.2, 0.0, 0.08, a2);
+        joint_y(pos + 3 * v, rest[3 * v], -0.15, 0.0, 0.08, a1);
       }
       break;
     }
@@ -395,7 +390,7 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
       double dx = 0.15 * wave(t, 45.0, 0.0), dy = 0.05 * wave(t, 30.0, 0.0);
       for (int v = 0; v < nv; v++) {
         double *p = pos + 3 * v;
-        joint_y(p, rest[3 * v], 0.2, 0.1, bend);
+        joint_y(p, rest[3 * v], 0.2, 0.0, 0.1, bend);
         ss_rotate(p, 2, o, turn);
         p[0] += dx;
         p[1] += dy;

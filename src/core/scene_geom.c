@@ -54,7 +54,7 @@ void ss_mb_tri(ss_mb *mb, int a, int b, int c) {
 
 int ss_capsule_rings(double r, double hc, double h) {
   double lm = SS_PI * r + 2.0 * hc; /* meridian length, pole to pole */
-  int n = (int)lround(lm / h) - 1;
+  int n = (int)lround(lm / (0.8660254037844386 * h)) - 1; /* equilateral rows */
   return n < 1 ? 1 : n;
 }
 
@@ -99,8 +99,8 @@ void ss_mb_capsule(ss_mb *mb, const double center[3], int axis, double r, double
   for (int i = 1; i <= nring; i++) {
     double a, rho;
     meridian(r, hc, lm * i / (nring + 1), &a, &rho);
-    for (int j = 0; j < nseg; j++) {
-      double al = 2.0 * SS_PI * j / nseg;
+    for (int j = 0; j < nseg; j++) { /* odd rings turned half a segment */
+      double al = 2.0 * SS_PI * (j + 0.5 * (i & 1)) / nseg;
       capsule_vert(mb, center, axis, rho * cos(al), rho * sin(al), a);
     }
   }
@@ -109,10 +109,16 @@ void ss_mb_capsule(ss_mb *mb, const double center[3], int axis, double r, double
     int j1 = (j + 1) % nseg;
     ss_mb_tri(mb, south, first + j1, first + j);
     for (int i = 0; i + 1 < nring; i++) {
+      /* rows i and i + 1 (rings i + 1 and i + 2, counted from 1 above) */
       int a = first + i * nseg + j, b = first + i * nseg + j1;
       int c = b + nseg, d = a + nseg;
-      ss_mb_tri(mb, a, b, c);
-      ss_mb_tri(mb, a, c, d);
+      if (!(i & 1)) { /* lower turned: upper j1 lies between lower j and j1 */
+        ss_mb_tri(mb, a, b, c);
+        ss_mb_tri(mb, a, c, d);
+      } else { /* upper turned: upper j lies between lower j and j1 */
+        ss_mb_tri(mb, a, b, d);
+        ss_mb_tri(mb, b, c, d);
+      }
     }
     int top = first + (nring - 1) * nseg;
     ss_mb_tri(mb, top + j, top + j1, north);
@@ -194,6 +200,44 @@ void ss_mb_sheet(ss_mb *mb, const double *xs, int nx, const double *ys, int ny,
         ss_mb_tri(mb, a, cc, d);
       }
     }
+}
+
+/* ------------------------------------------------------------- lattice */
+
+void ss_mb_lattice(ss_mb *mb, double x0, double lx, double y0, double ly, int nx, int ny) {
+  int prev = -1, nprev = 0;
+  for (int j = 0; j <= ny; j++) {
+    int first = mb->nv, odd = j & 1;
+    double y = y0 + ly * j / ny;
+    ss_mb_vert(mb, x0, y, 0.0);
+    for (int i = 0; i < nx; i++) /* odd rows: midpoints, then the far corner */
+      ss_mb_vert(mb, odd ? x0 + lx * (i + 0.5) / nx : x0 + lx * (i + 1) / nx, y, 0.0);
+    if (odd) ss_mb_vert(mb, x0 + lx, y, 0.0);
+    int n = mb->nv - first;
+    if (prev >= 0 && !mb->failed) {
+      /* zip the strip between the rows, advancing along the lower row (l) or
+       * the upper row (u), whichever's next vertex lies further left */
+      int l = 0, u = 0;
+      while (l + 1 < nprev || u + 1 < n) {
+        int up;
+        if (l + 1 >= nprev)
+          up = 1;
+        else if (u + 1 >= n)
+          up = 0;
+        else
+          up = mb->pos[3 * (first + u + 1)] < mb->pos[3 * (prev + l + 1)];
+        if (up) {
+          ss_mb_tri(mb, prev + l, first + u + 1, first + u);
+          u++;
+        } else {
+          ss_mb_tri(mb, prev + l, prev + l + 1, first + u);
+          l++;
+        }
+      }
+    }
+    prev = first;
+    nprev = n;
+  }
 }
 
 /* ------------------------------------------------------------- motion */

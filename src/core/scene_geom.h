@@ -20,7 +20,8 @@ int ss_mb_vert(ss_mb *mb, double x, double y, double z); /* returns the new inde
 void ss_mb_tri(ss_mb *mb, int a, int b, int c);
 
 /* Capsule of radius r around a cylinder of half-length hc, as a latitude-
- * longitude mesh: two poles, nring rings of nseg vertices, 2 nseg nring faces.
+ * longitude mesh: two poles, nring rings of nseg vertices (every other ring
+ * turned half a segment, so triangles are near equilateral), 2 nseg nring faces.
  * Its axis runs along world axis `axis` (0 x, 2 z) through center. */
 void ss_mb_capsule(ss_mb *mb, const double center[3], int axis, double r, double hc, int nseg,
                    int nring);
@@ -39,6 +40,11 @@ void ss_mb_plate(ss_mb *mb, double x0, double lx, double ly, double t, int nx, i
  * collinear corners) closing it against the left neighbour. */
 void ss_mb_sheet(ss_mb *mb, const double *xs, int nx, const double *ys, int ny,
                  const unsigned char *tflag);
+
+/* An open sheet in the plane z = 0 (normal +z) over [x0, x0 + lx] x [y0, y0 + ly]
+ * as a near-equilateral lattice: ny + 1 rows, odd rows shifted half of the
+ * lx / nx spacing (with corner vertices at both ends). ny (2 nx + 1) faces. */
+void ss_mb_lattice(ss_mb *mb, double x0, double lx, double y0, double ly, int nx, int ny);
 
 /* Smoothstep of u clamped to [0, 1]: 0 below, 1 above, C1. */
 double ss_smooth(double u);

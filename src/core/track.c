@@ -59,6 +59,26 @@ static void seed_anchors(const ss_topo *topo, int *face, double *uv) {
   }
 }
 
+/* Length of a known path on the surface from anchor (face, uv) to a1 (on
+ * face a1_face), or INFINITY: the walk's own path when the method walked
+ * (walk_length >= 0), else a probe walk from the anchor straight towards a1
+ * when it arrives there. Either is a path on the surface, hence an upper
+ * bound of the geodesic distance that is much tighter than the edge-graph
+ * estimate where that zig-zags; every method's result gets the same
+ * benefit, so snag counts stay comparable. */
+static double surface_path(ss_walker *probe, const ss_topo *topo, const ss_frames *fr, int face,
+                           const double uv[2], int a1_face, const double a1[3],
+                           double walk_length, double edge) {
+  if (walk_length >= 0.0) return walk_length;
+  ss_walk_result r;
+  ss_walk(probe, topo, fr, face, uv, a1, 1 << 20, &r);
+  if (r.face != a1_face) return INFINITY;
+  double x[3], d2 = 0.0;
+  ss_anchor_position(fr, r.face, r.uv, x);
+  for (int c = 0; c < 3; c++) d2 += (x[c] - a1[c]) * (x[c] - a1[c]);
+  return d2 <= 1e-18 * edge * edge ? r.length : INFINITY;
+}
+
 static int anchor_ok(const ss_topo *topo, int face, const double uv[2], const double x[3]) {
   const double tol = 1e-9;
   if (face < 0 || face >= topo->nface) return 0;
@@ -83,11 +103,13 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
   ss_topo *topo = NULL;
   ss_mover *mover = NULL;
   ss_geodesic *geo = NULL;
+  ss_walker *probe = NULL;
   int status = ss_topo_create(&topo, nvert, ss_scene_rest(scene), nface, ss_scene_faces(scene),
                               -1.0, err, err_sz);
   if (status) return status;
   status = ss_mover_create(&mover, topo, &settings->mover, err, err_sz);
   if (!status) status = ss_geodesic_create(&geo, topo);
+  if (!status) status = ss_walker_create(&probe, nface);
   const int nanchor = nvert + nface;
   double *pos = malloc(sizeof(double) * 3 * (size_t)nvert);
   int *anchor_face = malloc(sizeof(int) * (size_t)nanchor);
@@ -96,9 +118,10 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
   int *new_face = malloc(sizeof(int) * (size_t)nanchor);
   double *new_uv = malloc(sizeof(double) * 2 * (size_t)nanchor);
   unsigned char *new_stop = malloc((size_t)nanchor);
+  double *new_path = malloc(sizeof(double) * (size_t)nanchor);
   double *frame_ms = malloc(sizeof(double) * (size_t)(frames > 0 ? frames : 1));
   if (!status && !(pos && anchor_face && anchor_uv && target && new_face && new_uv && new_stop &&
-                   frame_ms))
+                   new_path && frame_ms))
     status = ss_fail(err, err_sz, SS_E_NOMEM, "track: out of memory for %d anchors", nanchor);
   if (status) goto done;
 
@@ -135,6 +158,7 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
       new_uv[2 * i] = res.uv[0];
       new_uv[2 * i + 1] = res.uv[1];
       new_stop[i] = (unsigned char)res.stop;
+      new_path[i] = res.length;
       if (settings->mover.method == SS_METHOD_WALK) {
         total_steps += res.steps;
         walks++;
@@ -162,8 +186,13 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
         double pull = 0.0;
         for (int c = 0; c < 3; c++) pull += (target[3 * i + c] - a0[c]) * (target[3 * i + c] - a0[c]);
         double limit = settings->snag_factor * sqrt(pull) + edge;
-        double dist = ss_surface_distance(geo, topo, pos, anchor_face[i], anchor_uv + 2 * i,
-                                          new_face[i], new_uv + 2 * i, limit);
+        double path = surface_path(probe, topo, fr, anchor_face[i], anchor_uv + 2 * i, new_face[i],
+                                   a1, settings->mover.method == SS_METHOD_WALK ? new_path[i] : -1.0,
+                                   edge);
+        double dist = path <= limit ? path
+                                    : ss_surface_distance(geo, topo, pos, anchor_face[i],
+                                                          anchor_uv + 2 * i, new_face[i],
+                                                          new_uv + 2 * i, limit);
         if (!(dist <= limit)) stats->snags++;
       }
       anchor_face[i] = new_face[i];
@@ -188,8 +217,10 @@ done:
   free(new_face);
   free(new_uv);
   free(new_stop);
+  free(new_path);
   free(frame_ms);
   ss_geodesic_destroy(geo);
+  ss_walker_destroy(probe);
   ss_mover_destroy(mover);
   ss_topo_destroy(topo);
   return status;

@@ -285,6 +285,14 @@ static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const
   return best_k;
 }
 
+/* Distance from world point from to canonical point p of face f. */
+static double segment_length(const ss_frames *fr, int f, const double p[2], const double from[3]) {
+  double x[3];
+  ss_anchor_position(fr, f, p, x);
+  double dx = x[0] - from[0], dy = x[1] - from[1], dz = x[2] - from[2];
+  return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
              const double uv[2], const double target[3], int max_steps, ss_walk_result *res) {
   double p[2] = {uv[0], uv[1]};
@@ -294,6 +302,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   res->uv[1] = p[1];
   res->stop = SS_STOP_INSIDE;
   res->steps = 0;
+  res->length = 0.0;
   if (!(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) return;
 
   if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
@@ -330,12 +339,14 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       p[0] += du;
       p[1] += dv;
       clamp_uv(p);
+      res->length += segment_length(fr, f, p, here);
       break;
     }
     if (t_exit < 0.0) t_exit = 0.0;
     double h[2] = {p[0] + t_exit * du, p[1] + t_exit * dv};
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
+    res->length += segment_length(fr, f, p, here);
     int stop = cross_edge(walker, topo, &f, k_exit, s, p, max_steps, res);
     while (stop == SS_STOP_INSIDE && fr->degenerate[f]) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);

@@ -187,8 +187,8 @@ static void check_scene(int index) {
     long long *vk = malloc(sizeof(long long) * (size_t)nv);
     for (int v = 0; v < nv; v++) {
       long long q[3];
-      for (int c = 0; c < 3; c++) q[c] = llround(rest[3 * v + c] * 1e6);
-      vk[v] = ((q[0] + 2000000) * 4000001LL + (q[1] + 2000000)) * 4000001LL + (q[2] + 2000000);
+      for (int c = 0; c < 3; c++) q[c] = llround(rest[3 * v + c] * 1e5) + 400000; /* +-4 m */
+      vk[v] = (q[0] * 800001LL + q[1]) * 800001LL + q[2];
     }
     qsort(vk, (size_t)nv, sizeof *vk, cmp_ll);
     int same = 0;

@@ -85,6 +85,8 @@ static void test_flat_jittered(void) {
     CHECK_NEAR(a1[0], x1, 1e-9);
     CHECK_NEAR(a1[1], y1, 1e-9);
     CHECK_NEAR(a1[2], 0.0, 1e-12);
+    /* on a plane the walked path is the straight segment */
+    CHECK_NEAR(r.length, hypot(x1 - x0, y1 - y0), 1e-9);
     crossings += r.steps;
   }
   CHECK(crossings > 2000 * 5); /* the walks really crossed many faces */
