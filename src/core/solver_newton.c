@@ -16,9 +16,9 @@
  * Wright, "Numerical Optimization", 3.1). Close to the minimum the decrease
  * g.d is below the round-off of E; a step is then also accepted by Hager and
  * Zhang's approximate Wolfe conditions (which use the slope, not E). A solver
- * whose energy does not decrease at all over SS_ROUNDOFF_STEPS accepted steps
- * in a row has reached the floor of its precision and stops (reported as
- * stalled unless the residual is within tolerance). */
+ * whose energy does not decrease and whose residual does not improve over
+ * SS_ROUNDOFF_STEPS accepted steps in a row has reached the floor of its
+ * precision and stops (reported as stalled unless within tolerance). */
 #include <math.h>
 #include <string.h>
 
@@ -46,9 +46,9 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
     sim->st->assemble_ms += ss_now_ms() - t0;
     if (!isfinite(et) || !isfinite(dot(sim->gt, sim->gt, n3))) continue;
     any_finite = 1;
-    /* Armijo, when the decrease it asks for is representable at all. */
-    double bound = *e + 1e-4 * alpha * slope;
-    int armijo = bound < *e && et <= bound;
+    /* Armijo, on the difference (exact for nearby values): it asks for a
+     * strict decrease even when 1e-4 a g.d is below the last bit of E. */
+    int armijo = et - *e <= 1e-4 * alpha * slope;
     /* Near the minimum the change of E drowns in round-off: Hager and
      * Zhang's approximate Wolfe conditions (CG_DESCENT, 2005), E not above
      * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
@@ -109,6 +109,7 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
   double *g = sim->gd, *dir = sim->dir;
   *converged = *stalled = *nonfinite = 0;
   int roundoff_steps = 0;
+  double best_res = INFINITY;
   if (sim->h_const_h != sim->h) {
     ss_sim_constant_hessian(sim, sim->h_const);
     sim->h_const_h = sim->h;
@@ -157,8 +158,24 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
     memcpy(dir, sim->nx->x, (size_t)n3 * sizeof *dir);
     st->solve_ms += ss_now_ms() - t2;
     int ls = ss_sim_line_search(sim, xd, g, &e, dir);
-    roundoff_steps = ls == 2 ? roundoff_steps + 1 : 0;
-    if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+    if (ls == 0) {
+      /* The projected Newton step found no decrease (it happens where
+       * clamped eigenvalues leave it nearly orthogonal to -g, deep in
+       * compression): one Jacobi-scaled gradient step instead, a descent
+       * direction by construction. */
+      for (int k = 0; k < sim->ndof; k++) {
+        double inv = 1.0 / (sim->mi[k] + sim->diag_const[k]);
+        for (int c = 0; c < 3; c++) dir[3 * k + c] = -inv * g[3 * k + c];
+      }
+      ls = ss_sim_line_search(sim, xd, g, &e, dir);
+    }
+    if (ls == 2) {
+      /* E flat to round-off: progress is judged by the residual. */
+      double r = ss_sim_residual(sim, g);
+      roundoff_steps = r < best_res ? 0 : roundoff_steps + 1;
+      if (r < best_res) best_res = r;
+      if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+    }
     if (ls < 0) {
       *nonfinite = 2; /* xd is still the last finite iterate */
       break;

@@ -107,6 +107,7 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
   double *g = sim->gd, *dir = sim->dir;
   *converged = *stalled = *nonfinite = 0;
   int roundoff_steps = 0;
+  double best_res = INFINITY;
   if (sim->a_h != sim->h) {
     double t = ss_now_ms();
     int status = factor_scalar(sim);
@@ -173,8 +174,13 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
       for (int i = 0; i < n3; i++) dir[i] = -dir[i];
       ls = ss_sim_line_search(sim, xd, g, &e, dir);
     }
-    roundoff_steps = ls == 2 ? roundoff_steps + 1 : 0;
-    if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+    if (ls == 2) {
+      /* E flat to round-off: progress is judged by the residual. */
+      double r = ss_sim_residual(sim, g);
+      roundoff_steps = r < best_res ? 0 : roundoff_steps + 1;
+      if (r < best_res) best_res = r;
+      if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+    }
     if (ls < 0) {
       *nonfinite = 2; /* xd is still the last finite iterate */
       break;
