@@ -1,7 +1,7 @@
 /* bench_sim: times ss_sim on a built-in scene (a benchmark, not a test).
  *
  *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method]
- *   defaults:  twist   19000  60      quasi-newton 1  20  1e-4  walk
+ *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings)
  *
  * Prints one line of medians per frame (ms): total, walk (anchor updates and
  * pose), assemble, factor, solve; mean iterations, failures, stalls, area

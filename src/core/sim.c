@@ -43,7 +43,7 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.solver = SS_SOLVER_QUASI_NEWTON;
   s.dt = 1.0 / 30.0;
   s.substeps = 1;
-  s.iterations = 20;
+  s.iterations = 8;
   s.tol = 1e-4;
   s.lbfgs_history = 6;
   s.young = 50.0;
