@@ -160,6 +160,10 @@ const double *ss_sim_anchor_uv(const ss_sim *sim);  /* (nanchors x 2) */
 /* World positions of the anchors in the current body pose into out
  * (nanchors x 3). */
 void ss_sim_anchor_positions(const ss_sim *sim, double *out);
+/* Sizes of the body given at create: body_pos of ss_sim_step holds
+ * ss_sim_body_nvert x 3 values (callers receiving meshes check this). */
+int ss_sim_body_nvert(const ss_sim *sim);
+int ss_sim_body_nface(const ss_sim *sim);
 /* Body topology, as built at create (for metrics that need it). */
 const ss_topo *ss_sim_body_topo(const ss_sim *sim);
 

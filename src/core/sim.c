@@ -434,6 +434,8 @@ const double *ss_sim_skin_rest(const ss_sim *sim) { return sim->rest; }
 const double *ss_sim_skin_positions(const ss_sim *sim) { return sim->x; }
 const double *ss_sim_skin_velocities(const ss_sim *sim) { return sim->v; }
 int ss_sim_ndof(const ss_sim *sim) { return sim->ndof; }
+int ss_sim_body_nvert(const ss_sim *sim) { return sim->nbvert; }
+int ss_sim_body_nface(const ss_sim *sim) { return sim->nbface; }
 int ss_sim_nanchors(const ss_sim *sim) { return sim->nanchor; }
 const int *ss_sim_anchor_faces(const ss_sim *sim) { return sim->anchor_face; }
 const double *ss_sim_anchor_uv(const ss_sim *sim) { return sim->anchor_uv; }

@@ -393,32 +393,43 @@ static void test_violent_motion(void) {
   fx_free(&g);
 }
 
-/* Same inputs, same bits (both solvers, substeps, all terms on). */
+/* Same inputs, same bits (both solvers, substeps, all terms on), also after
+ * ss_sim_reset. */
 static void test_determinism(void) {
   fx_mesh g = fx_grid(10, 10, 1.0, 1.0, 0.2);
   double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
   for (int solver = 0; solver < 2; solver++) {
-    double *out[2];
-    for (int run = 0; run < 2; run++) {
+    double *out[3];
+    ss_sim *sim = NULL;
+    /* Runs 0 and 1: two simulations; run 2: the second one after a reset. */
+    for (int run = 0; run < 3; run++) {
       ss_sim_settings set = ss_sim_default_settings();
       set.solver = solver;
       set.substeps = 2;
       set.bending = 1e-3;
       set.damping = 0.5;
       set.gravity[2] = -9.81;
-      ss_sim *sim = make_sim(&g, &set);
+      if (run < 2) {
+        if (sim) ss_sim_destroy(sim);
+        sim = make_sim(&g, &set);
+      } else {
+        ss_sim_reset(sim);
+        CHECK(memcmp(ss_sim_skin_positions(sim), g.pos, 3 * (size_t)g.nvert * sizeof(double)) == 0);
+      }
+      CHECK_EQ_INT(ss_sim_body_nvert(sim), g.nvert);
+      CHECK_EQ_INT(ss_sim_body_nface(sim), g.nface);
       for (int f = 1; f <= 10; f++) {
         fx_pose(&g, f / 30.0, pose);
         ss_sim_step(sim, pose, 0.0, NULL, NULL, 0);
       }
       out[run] = malloc(3 * (size_t)g.nvert * sizeof(double));
       memcpy(out[run], ss_sim_skin_positions(sim), 3 * (size_t)g.nvert * sizeof(double));
-      ss_sim_destroy(sim);
     }
-    CHECK_MSG(memcmp(out[0], out[1], 3 * (size_t)g.nvert * sizeof(double)) == 0, "solver %d not deterministic",
-              solver);
-    free(out[0]);
-    free(out[1]);
+    ss_sim_destroy(sim);
+    size_t bytes = 3 * (size_t)g.nvert * sizeof(double);
+    CHECK_MSG(memcmp(out[0], out[1], bytes) == 0, "solver %d not deterministic", solver);
+    CHECK_MSG(memcmp(out[0], out[2], bytes) == 0, "solver %d: a reset run differs", solver);
+    for (int r = 0; r < 3; r++) free(out[r]);
   }
   free(pose);
   fx_free(&g);
