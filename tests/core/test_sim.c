@@ -319,6 +319,41 @@ static void test_slide(void) {
   fx_free(&g);
 }
 
+/* A skin coarser than the body (every other grid line), bound by closest
+ * point: it follows the moving body, its vertices near their anchors. */
+static void test_coarse_skin(void) {
+  fx_mesh body = fx_grid(13, 13, 1.0, 1.0, 0.15), skin = fx_grid(7, 7, 1.0, 1.0, 0.15);
+  ss_sim_settings set = ss_sim_default_settings();
+  set.iterations = 50;
+  ss_sim_mesh sk = {skin.nvert, skin.pos, skin.nface, skin.faces};
+  char err[256];
+  ss_sim *sim = NULL;
+  CHECK_EQ_INT(ss_sim_create(&sim, body.nvert, body.pos, body.nface, body.faces, &sk, &set, err, sizeof err),
+               SS_OK);
+  if (!sim) return;
+  CHECK_EQ_INT(ss_sim_skin_nvert(sim), skin.nvert);
+  CHECK_EQ_INT(ss_sim_nanchors(sim), skin.nvert + skin.nface);
+  double *pose = malloc(3 * (size_t)body.nvert * sizeof(double));
+  double *ap = malloc(3 * (size_t)ss_sim_nanchors(sim) * sizeof(double));
+  ss_sim_stats st;
+  for (int f = 1; f <= 15; f++) {
+    fx_pose(&body, f / 30.0, pose);
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, err, sizeof err), SS_OK);
+  }
+  ss_sim_anchor_positions(sim, ap);
+  const double *p = ss_sim_skin_positions(sim);
+  double worst = 0.0;
+  for (int v = 0; v < skin.nvert; v++) worst = fmax(worst, max_dist(p + 3 * v, ap + 3 * v, 1));
+  /* Edge length of the skin: 1/6. */
+  CHECK_MSG(worst < 0.1 / 6.0, "coarse skin: %g from its anchors", worst);
+  CHECK(st.min_area_ratio > 0.5 && st.max_area_ratio < 2.0);
+  free(ap);
+  free(pose);
+  ss_sim_destroy(sim);
+  fx_free(&body);
+  fx_free(&skin);
+}
+
 /* Bad input: an error code and a message, and the state kept. */
 static void test_bad_input(void) {
   fx_mesh g = fx_grid(6, 6, 1.0, 1.0, 0.0);
@@ -442,6 +477,7 @@ int main(void) {
   test_solvers_agree();
   test_face_mask();
   test_gravity_sag();
+  test_coarse_skin();
   test_slide();
   test_bad_input();
   test_violent_motion();
