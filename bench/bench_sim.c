@@ -3,8 +3,8 @@
  *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method]
  *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings)
  *
- * Prints one line of medians per frame (ms): total, walk (anchor updates and
- * pose), assemble, factor, solve; mean iterations, failures, stalls, area
+ * Prints one line of medians per frame (ms): total, pose (body frames, anchor
+ * positions), walk (anchor updates), assemble, factor, solve; mean iterations, failures, stalls, area
  * ratio range over all frames, and an FNV-1a hash of the final positions. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,6 +51,7 @@ int main(int argc, char **argv) {
   double *t_total = malloc((size_t)frames * sizeof(double)), *t_walk = malloc((size_t)frames * sizeof(double));
   double *t_asm = malloc((size_t)frames * sizeof(double)), *t_fac = malloc((size_t)frames * sizeof(double));
   double *t_sol = malloc((size_t)frames * sizeof(double));
+  double *t_pose = malloc((size_t)frames * sizeof(double));
   double it_sum = 0.0, amin = 1e300, amax = 0.0;
   int failures = 0, stalls = 0, unconverged = 0;
   double dt = 1.0 / ss_scene_fps(scene);
@@ -62,7 +63,7 @@ int main(int argc, char **argv) {
       return 1;
     }
     t_total[f] = st.total_ms, t_walk[f] = st.walk_ms, t_asm[f] = st.assemble_ms;
-    t_fac[f] = st.factor_ms, t_sol[f] = st.solve_ms;
+    t_fac[f] = st.factor_ms, t_sol[f] = st.solve_ms, t_pose[f] = st.pose_ms;
     it_sum += st.iterations;
     failures += st.failures;
     stalls += st.stalled;
@@ -74,13 +75,13 @@ int main(int argc, char **argv) {
   const unsigned char *bytes = (const unsigned char *)ss_sim_skin_positions(sim);
   for (size_t i = 0; i < 3 * (size_t)nv * sizeof(double); i++) hash = (hash ^ bytes[i]) * 1099511628211ULL;
   printf("scene %s tris %d verts %d dofs %d solver %s method %s substeps %d frames %d: "
-         "ms/frame total %.2f walk %.2f assemble %.2f factor %.2f solve %.2f (medians); "
+         "ms/frame total %.2f pose %.2f walk %.2f assemble %.2f factor %.2f solve %.2f (medians); "
          "iterations %.2f/frame, unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
          scene_name, nf, nv, ss_sim_ndof(sim), solver, ss_method_name(set.mover.method), set.substeps, frames,
-         median(t_total, frames), median(t_walk, frames), median(t_asm, frames), median(t_fac, frames),
+         median(t_total, frames), median(t_pose, frames), median(t_walk, frames), median(t_asm, frames), median(t_fac, frames),
          median(t_sol, frames), it_sum / frames, unconverged, stalls, failures, amin, amax, hash);
   ss_sim_destroy(sim);
   ss_scene_destroy(scene);
-  free(pose), free(t_total), free(t_walk), free(t_asm), free(t_fac), free(t_sol);
+  free(pose), free(t_total), free(t_walk), free(t_asm), free(t_fac), free(t_sol), free(t_pose);
   return 0;
 }

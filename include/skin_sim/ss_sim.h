@@ -109,8 +109,9 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
 /* What one ss_sim_step did (sums over its substeps unless said otherwise). */
 typedef struct ss_sim_stats {
   double total_ms;     /* the whole step */
-  double walk_ms;      /* anchor updates (mover), including the body's per-face frames
-                          and anchor positions of each substep pose */
+  double pose_ms;      /* the body's per-face frames (and BVH refit) of each substep pose,
+                          anchor positions, fixed vertices put on their anchors */
+  double walk_ms;      /* anchor updates (ss_mover_move: walk, project or nring) */
   double assemble_ms;  /* energies, gradients and (Newton) Hessian assembly */
   double factor_ms;    /* CHOLMOD numeric factorisations */
   double solve_ms;     /* CHOLMOD triangular solves and the L-BFGS two-loop */

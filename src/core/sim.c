@@ -373,7 +373,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     }
     ss_mover_set_pose(sim->mover, sim->body_sub);
     update_anchor_positions(sim);
-    st->walk_ms += ss_now_ms() - t0;
+    st->pose_ms += ss_now_ms() - t0;
     memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));
     for (int v = 0; v < sim->nvert; v++)
       if (sim->dof[v] < 0) memcpy(sim->x + 3 * v, sim->anchor_pos + 3 * v, 3 * sizeof(double));

@@ -152,16 +152,14 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
   }
 }
 
-/* The isotropic (x I3) constant terms: calls add(j, rank, value) through a
- * small switch on the target matrix. scalar != 0: n x n values; else 3n. */
-static void add_iso(const ss_sim *sim, double *vals, int scalar, int i, int j, int rank,
-                    double w) {
+/* Adds w (x I3) to block (rank, column j): scalar != 0 in the n x n values,
+ * else in the 3n x 3n values. */
+static void add_iso(const ss_sim *sim, double *vals, int scalar, int j, int rank, double w) {
   if (scalar) {
     vals[sim->bcolp[j] + rank] += w;
   } else {
     for (int c = 0; c < 3; c++) vals[ss_sim_slot3(sim, j, rank, c, c)] += w;
   }
-  (void)i;
 }
 
 static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
@@ -170,7 +168,7 @@ static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
   for (int k = 0; k < sim->ndof; k++) {
     int v = sim->dof_vert[k];
     int diag_rank = sim->bcolp[k + 1] - sim->bcolp[k] - 1;
-    add_iso(sim, vals, scalar, k, k, diag_rank, sim->mi[k] + sim->k_vert[v]);
+    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->k_vert[v]);
   }
   if (sim->set.barycenter_anchors) {
     for (int f = 0; f < sim->nface; f++) {
@@ -186,7 +184,7 @@ static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
           /* Upper triangle: (a, b) and (b, a) meet in one block; count once
            * unless a == b. Off-diagonal blocks get the (a, b) value only, as
            * the symmetric (b, a) is implied. */
-          add_iso(sim, vals, scalar, i, j, sim->face_rank[9 * f + 3 * a + b], kf / 9.0);
+          add_iso(sim, vals, scalar, j, sim->face_rank[9 * f + 3 * a + b], kf / 9.0);
         }
       }
     }
