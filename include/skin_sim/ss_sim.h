@@ -62,8 +62,10 @@ typedef struct ss_sim_settings {
   double bending;        /* hinge bending stiffness k (N m); 0 = off (default) */
   double gravity[3];     /* m/s^2; default 0 (off) */
   double damping;        /* 1/s: mass-proportional damping; default 0 */
-  double slide;          /* in [0, 1]: how far an anchor follows the skin point it holds in
-                            one step: 1 frictionless sliding, 0 glued to the body; default 0.5 */
+  double slide;          /* in [0, 1]: how far an anchor moves towards the skin point it holds
+                            in one substep (a* = a0 + slide (p - a0), then walked there):
+                            1 frictionless sliding, 0 glued to the body; default 0.5. Per
+                            substep, so the sliding resistance depends on the step size. */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   const unsigned char *face_mask; /* (skin nface) non-zero: simulate this face; NULL = all.
                                      Copied at create. Vertices of no simulated face follow
