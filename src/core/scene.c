@@ -48,6 +48,13 @@
  *  boundary An open rectangular sheet (boundary edges all round) that slides
  *           and turns in its plane and bends at a joint: lagging anchors near
  *           its trailing border are pulled off the sheet and must stop on it.
+ *  quadruped A raccoon-scale four-legged body (~19,000 triangles, the paper's
+ *           Figure 1 raccoon had 18,929) in a fast gallop, 2.5 strides per
+ *           second: the hind legs swing forward through the belly (the body
+ *           mesh intersects itself), the front legs back under the chest, the
+ *           spine flexes. Torso, neck, head, tail and legs are separate closed
+ *           capsules overlapping where they join. Built and posed in
+ *           scene_quadruped.c.
  */
 #include "skin_sim/ss_scene.h"
 
@@ -56,9 +63,10 @@
 #include <string.h>
 
 #include "scene_geom.h"
+#include "scene_quadruped.h"
 #include "ss_err.h"
 
-enum { ARMPIT, ELBOW, FOLD, TWIST, SLIVERS, BOUNDARY, NSCENE };
+enum { ARMPIT, ELBOW, FOLD, TWIST, SLIVERS, BOUNDARY, QUADRUPED, NSCENE }; /* append only */
 
 static const struct scene_info {
   const char *name, *about;
@@ -71,6 +79,8 @@ static const struct scene_info {
     {"twist", "a capsule spins about its axis: anchors cross many faces per frame", 3000, 60},
     {"slivers", "a bending sheet of slivers (aspect ~300) and zero-area faces", 3000, 80},
     {"boundary", "an open sheet slides and bends: lagging anchors reach its border", 2500, 90},
+    {"quadruped", "a raccoon-scale body gallops: the hind legs pass through the belly", 19000,
+     90},
 };
 
 #define MIN_TRIS 100
@@ -98,6 +108,7 @@ struct ss_scene {
   double *rest;
   int *faces;
   int arm_first;  /* armpit: first vertex of the arm */
+  ss_quad quad;   /* quadruped: where its parts lie */
   double omega;   /* twist: peak angular speed, radians per frame */
 };
 
@@ -160,6 +171,9 @@ static plan make_plan(int kind, int n) {
       p.b = n;
       break;
     }
+    case QUADRUPED:
+      p.a = n; /* segments around the torso */
+      break;
   }
   return p;
 }
@@ -169,6 +183,7 @@ static long long plan_faces(int kind, const plan *p) {
     case ARMPIT: return 2LL * p->a * p->b + 2LL * p->c * p->d;
     case ELBOW:
     case TWIST: return 2LL * p->a * p->b;
+    case QUADRUPED: return ss_quad_faces(p->a);
     case FOLD: return 4LL * p->a * p->b + 4LL * (p->a + p->b);
     case BOUNDARY: return (2LL * p->a + 1) * p->b;
     case SLIVERS: { /* thin columns only: T-cells counted on column indices */
@@ -185,7 +200,8 @@ static long long plan_faces(int kind, const plan *p) {
 }
 
 static int min_n(int kind) {
-  return (kind == ARMPIT || kind == ELBOW || kind == TWIST) ? 6 : kind == SLIVERS ? 3 : 2;
+  if (kind == SLIVERS) return 3;
+  return (kind == ARMPIT || kind == ELBOW || kind == TWIST || kind == QUADRUPED) ? 6 : 2;
 }
 
 /* The resolution whose face count is nearest to tris. */
@@ -233,6 +249,9 @@ static int build(ss_scene *s, ss_mb *mb, int n) {
       s->omega = TWIST_SEGS_PER_FRAME * 2.0 * SS_PI / p.a;
       break;
     }
+    case QUADRUPED:
+      ss_quad_build(mb, p.a, &s->quad);
+      break;
     case FOLD:
       ss_mb_plate(mb, 0.0, FOLD_L, FOLD_W, FOLD_THICK * p.h, p.a, p.b);
       break;
@@ -286,7 +305,8 @@ int ss_scene_create(ss_scene **out, const char *name, int tris, char *err, int e
     if (strcmp(name, scene_infos[i].name) == 0) kind = i;
   if (kind < 0)
     return ss_fail(err, err_sz, SS_E_ARG,
-                   "unknown scene '%s' (valid: armpit, elbow, fold, twist, slivers, boundary)",
+                   "unknown scene '%s' (valid: armpit, elbow, fold, twist, slivers, boundary, "
+                   "quadruped)",
                    name ? name : "(null)");
   if (tris != 0 && (tris < MIN_TRIS || tris > MAX_TRIS))
     return ss_fail(err, err_sz, SS_E_ARG,
@@ -397,5 +417,8 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
       }
       break;
     }
+    case QUADRUPED:
+      ss_quad_pose(&s->quad, rest, t, pos);
+      break;
   }
 }

@@ -134,13 +134,25 @@ static void scatter_element(const ss_sim *sim, const int *verts, int n, const in
   }
 }
 
-void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals) {
+/* Current area over rest area of face f. */
+static double area_ratio(const ss_sim *sim, const double *x9, int f) {
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) e1[i] = x9[3 + i] - x9[i], e2[i] = x9[6 + i] - x9[i];
+  double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2], c2 = e1[0] * e2[1] - e1[1] * e2[0];
+  return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->rest_area[f];
+}
+
+void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact) {
   for (int q = 0; q < sim->nsimface; q++) {
     int f = sim->simface[q];
     const int *fv = sim->faces + 3 * f;
     double x9[9], h81[81];
     for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
-    ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+    /* The exact Hessian grows like 1/J: nearly collapsed faces stay projected. */
+    if (exact && area_ratio(sim, x9, f) > 1e-3)
+      ss_membrane_eval_raw(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+    else
+      ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
     scatter_element(sim, fv, 3, sim->face_rank + 9 * f, h81, vals);
   }
   for (int q = 0; q < sim->nhinge; q++) {

@@ -132,9 +132,11 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g);
  * (inertia + springs + rest membrane stiffness): the size of a Jacobi step,
  * in edge lengths (see settings tol). */
 double ss_sim_residual(const ss_sim *sim, const double *g);
-/* Adds the Hessian of membrane and hinges (PSD per element) at xfull to the
- * values vals of the 3n x 3n upper-triangular matrix H. */
-void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals);
+/* Adds the Hessian of membrane and hinges at xfull to the values vals of the
+ * 3n x 3n upper-triangular matrix H: each element's projected to PSD, or with
+ * exact != 0 the membrane's exact (possibly indefinite) Hessian except on
+ * nearly collapsed faces (hinges keep their Gauss-Newton Hessian). */
+void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact);
 /* Values of the constant part (inertia + springs) of H, for the current h. */
 void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
 /* diag_const from the model (once, at create). */

@@ -93,7 +93,7 @@ static void test_assembly(void) {
   ss_sim_scatter(sim, x0, full);
   double *vals = malloc((size_t)sim->nnz3 * sizeof(double));
   ss_sim_constant_hessian(sim, vals);
-  ss_sim_add_elastic_hessian(sim, full, vals);
+  ss_sim_add_elastic_hessian(sim, full, vals, 0);
   for (int trial = 0; trial < 3; trial++) {
     for (int q = 0; q < n3; q++) dirv[q] = 2.0 * ss_test_rand(&rng) - 1.0;
     upper_matvec(sim, vals, dirv, hv);

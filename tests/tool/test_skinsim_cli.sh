@@ -11,7 +11,7 @@ check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 
 "$exe" scenes > "$tmp/scenes.txt"; rc=$?
 check "scenes exits 0" "[ $rc -eq 0 ]"
-for s in armpit elbow fold twist slivers boundary; do
+for s in armpit elbow fold twist slivers boundary quadruped; do
   check "scenes lists $s" "grep -q '^$s ' '$tmp/scenes.txt'"
 done
 
@@ -26,6 +26,13 @@ check "track JSON parses, frames = 5" \
 "$exe" track --scene fold --method project --frames 3 --json - > "$tmp/p.json"; rc=$?
 check "track --json - writes JSON to stdout" \
   "[ $rc -eq 0 ] && /usr/bin/python3 -c 'import json; json.load(open(\"$tmp/p.json\"))'"
+
+for m in walk project; do
+  "$exe" track --scene quadruped --method $m --frames 2 --json "$tmp/q.json" > /dev/null; rc=$?
+  check "track quadruped $m exits 0" "[ $rc -eq 0 ]"
+  check "track quadruped $m: ~19k triangles, no failure" \
+    "/usr/bin/python3 -c 'import json,sys; d=json.load(open(\"$tmp/q.json\")); sys.exit(0 if 17000<=d[\"triangles\"]<=21000 and d[\"failures\"]==0 else 1)'"
+done
 
 bad() { # bad <description> <args...>: exit 2, one line on stderr naming the problem
   local what="$1"; shift
