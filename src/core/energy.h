@@ -14,7 +14,8 @@
 /* ---- membrane: 2D Stable Neo-Hookean (Smith, de Goes, Kim 2018) ----------
  * F = [x1-x0, x2-x0] Dm^-1 (3x2), I_C = tr(F^T F), J = sqrt(det(F^T F)),
  * Psi = mu/2 (I_C - 2) + lam/2 (J - alpha)^2, alpha = 1 + mu/lam,
- * energy = rest_area * Psi. */
+ * energy = rest_area (Psi - mu^2 / (2 lam)): the constant makes the rest
+ * state's energy exactly 0 and changes no derivative. */
 
 /* Lamé parameters for the stable form from Young's modulus E (Pa, as energy
  * per rest area here: thickness folded in) and Poisson ratio nu (plane stress,
@@ -37,7 +38,9 @@ double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_a
  * energy = k (theta - theta0)^2 |e|^2 / A_e with theta the signed dihedral
  * angle from atan2 and A_e the rest area of the two faces (precomputed in
  * `weight` = k |e_rest|^2 / A_e). The Hessian is the Gauss-Newton part
- * 2 weight grad(theta) grad(theta)^T, plus the PSD projection of the rest. */
+ * 2 weight grad(theta) grad(theta)^T only (PSD by construction, exact where
+ * theta = theta0); the indefinite 2 weight (theta - theta0) Hess(theta) is
+ * left out (see hinge.c for why). */
 double ss_hinge_angle(const double x[12]);
 double ss_hinge_eval(const double x[12], double theta0, double weight, double *grad,
                      double *hess);
@@ -45,5 +48,17 @@ double ss_hinge_eval(const double x[12], double theta0, double weight, double *g
 /* ---- projection of a small symmetric matrix to PSD ------------------------
  * In place, n <= 12, by a Jacobi eigen-decomposition (clamps eigenvalues < 0). */
 void ss_project_psd(double *m, int n);
+
+/* Eigen-decomposition of a symmetric n x n matrix (n <= 12, row-major; only
+ * its symmetric part is used) by the cyclic Jacobi method: evals[n] (not
+ * sorted), evecs[n*n] row-major with eigenvector k in column k. Deterministic. */
+void ss_sym_eigen(const double *m, int n, double *evals, double *evecs);
+
+/* As ss_membrane_eval, but the Hessian is the exact second derivative, NOT
+ * projected (it may be indefinite). For tests and diagnostics only; it needs a
+ * non-degenerate current triangle (J > 0): the exact Hessian of J = |f0 x f1|
+ * grows like 1/J. */
+double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double rest_area,
+                            double mu, double lam, double *grad, double *hess);
 
 #endif

@@ -1,0 +1,176 @@
+/* skin_sim core: the dynamic skin (DESIGN.md, "The skin model").
+ *
+ * One ss_sim simulates a triangle-mesh skin sliding over a moving body mesh:
+ * implicit Euler posed as the minimisation of
+ *   E(x) = 1/(2 h^2) |x - x_pred|_M^2 + membrane + anchor springs (+ bending)
+ * solved by Newton or by quasi-Newton (L-BFGS), followed by the anchor update
+ * (the spring force drags each anchor over the body by walk, project or nring).
+ *
+ * Model and data: topology, rest shape and settings are fixed at create, where
+ * all memory is allocated. With the quasi-Newton solver ss_sim_step allocates
+ * nothing at a constant dt (a new dt refactors a matrix, and CHOLMOD allocates
+ * temporaries inside cholmod_factorize, as it does in every Newton iteration).
+ * Deterministic: the same inputs give the same bits. The quasi-Newton path
+ * uses no BLAS; Newton's supernodal factorisation goes through the BLAS,
+ * whose results are reproducible for a given BLAS and thread count (e.g.
+ * OPENBLAS_NUM_THREADS) but may differ across them.
+ *
+ * Units are SI by convention (metres, seconds, kilograms), but any consistent
+ * set works: only ratios matter. Do not reach into the struct behind ss_sim. */
+#ifndef SKIN_SIM_SS_SIM_H
+#define SKIN_SIM_SS_SIM_H
+
+#include "ss_anchor.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- settings ------------------------------------------------------------- */
+
+enum ss_solver {
+  SS_SOLVER_NEWTON = 0,       /* projected Newton, CHOLMOD factorisation per iteration */
+  SS_SOLVER_QUASI_NEWTON = 1  /* L-BFGS on a constant Hessian factored once per time step */
+};
+/* "newton", "quasi-newton"; NULL for an unknown value. */
+const char *ss_solver_name(int solver);
+/* Parses a solver name; returns the ss_solver or -1 if unknown. */
+int ss_solver_parse(const char *name);
+
+/* Definition of a simulation; get one from ss_sim_default_settings() and
+ * change what you need. Stiffnesses are per unit REST AREA of skin, so a
+ * refined mesh behaves the same. */
+typedef struct ss_sim_settings {
+  int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */
+  double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0; default 1/30 */
+  int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
+                            linearly in between); default 1 */
+  int iterations;        /* max solver iterations per substep; default 8, the real-time
+                            budget of quasi-Newton (~30 ms at 19k triangles on 2 cores);
+                            raise it (e.g. 50-500) for Newton or tight tolerances */
+  double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
+                            rest edge length), i.e. roughly the position error in edge
+                            lengths; default 1e-4 */
+  int lbfgs_history;     /* L-BFGS pairs kept (quasi-Newton); default 6, 1..32 */
+  double young;          /* N/m: membrane Young's modulus times thickness; default 50 */
+  double poisson;        /* Poisson ratio in [0, 0.5); default 0.3 */
+  double density;        /* kg/m^2: mass per rest area (> 0); default 1 */
+  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs; default 1e4 */
+  int barycenter_anchors;  /* 1: a spring at every face barycenter too (the springs of
+                              vertices and barycenters then share the stiffness half and
+                              half); default 1 */
+  double bending;        /* hinge bending stiffness k (N m); 0 = off (default) */
+  double gravity[3];     /* m/s^2; default 0 (off) */
+  double damping;        /* 1/s: mass-proportional damping; default 0 */
+  double slide;          /* in [0, 1]: how far an anchor moves towards the skin point it holds
+                            in one substep (a* = a0 + slide (p - a0), then walked there):
+                            1 frictionless sliding, 0 glued to the body; default 0.5. Per
+                            substep, so the sliding resistance depends on the step size. */
+  ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
+  const unsigned char *face_mask; /* (skin nface) non-zero: simulate this face; NULL = all.
+                                     Copied at create. Vertices of no simulated face follow
+                                     the body; vertices on the region's border are pinned. */
+} ss_sim_settings;
+
+ss_sim_settings ss_sim_default_settings(void);
+
+/* ---- life cycle ------------------------------------------------------------ */
+
+/* A separate skin mesh (flat arrays owned by the caller, read at create only). */
+typedef struct ss_sim_mesh {
+  int nvert;
+  const double *pos;  /* (nvert x 3) rest positions, placed on the body at rest */
+  int nface;
+  const int *faces;   /* (nface x 3) */
+} ss_sim_mesh;
+
+typedef struct ss_sim ss_sim;
+
+/* Creates a simulation on a body mesh at rest (body_rest: nvert x 3, faces:
+ * nface x 3, both read at create only). skin: NULL makes the skin a copy of
+ * the body at rest, its anchors at its own vertices; else each skin vertex and
+ * barycenter is bound once to the closest point of the body at rest. Returns
+ * SS_OK, or an error (SS_E_ARG bad settings, SS_E_MESH, SS_E_NONFINITE,
+ * SS_E_NOMEM, SS_E_SOLVER) with a message in err; *out is NULL on error. */
+int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int body_nface,
+                  const int *body_faces, const ss_sim_mesh *skin,
+                  const ss_sim_settings *settings, char *err, int err_sz);
+void ss_sim_destroy(ss_sim *sim);
+
+/* Back to the rest state (skin at rest, zero velocity, anchors as bound at
+ * create), e.g. when time goes backwards. */
+void ss_sim_reset(ss_sim *sim);
+
+/* Sets the skin's positions (nvert x 3) and velocities (NULL: zero), e.g.
+ * to start from a deformed state. SS_E_NONFINITE if any value is not finite
+ * (the state is then untouched). */
+int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *err, int err_sz);
+
+/* ---- stepping -------------------------------------------------------------- */
+
+/* What one ss_sim_step did (sums over its substeps unless said otherwise). */
+typedef struct ss_sim_stats {
+  double total_ms;     /* the whole step */
+  double pose_ms;      /* the body's per-face frames (and BVH refit) of each substep pose,
+                          anchor positions, fixed vertices put on their anchors */
+  double walk_ms;      /* anchor updates (ss_mover_move: walk, project or nring) */
+  double assemble_ms;  /* energies, gradients and (Newton) Hessian assembly */
+  double factor_ms;    /* CHOLMOD numeric factorisations */
+  double solve_ms;     /* CHOLMOD triangular solves and the L-BFGS two-loop */
+  int substeps;
+  int iterations;      /* solver iterations, all substeps */
+  int factorizations;
+  double residual;     /* final convergence measure of the last substep (see tol) */
+  double energy;       /* final incremental energy E(x) of the last substep */
+  int converged;       /* 1 if every substep reached tol */
+  int stalled;         /* substeps that stopped because no step decreased the energy */
+  int failures;        /* substeps that met a non-finite value (the last good state kept) */
+  int anchors_moved;   /* anchor updates done */
+  int anchors_boundary;   /* ... that stopped on a boundary edge (walk) */
+  int anchors_crease;     /* ... that stopped at a crease (walk) */
+  int anchors_step_limit; /* ... that hit walk_max_steps */
+  int walk_steps;      /* edges crossed by all walks */
+  double min_area_ratio; /* over simulated faces after the step: area / rest area */
+  double max_area_ratio;
+} ss_sim_stats;
+
+/* Advances by dt (<= 0: settings dt) to the body pose body_pos (body nvert x
+ * 3). stats may be NULL. Returns SS_OK (even if a substep stalled or failed:
+ * see stats), or SS_E_ARG / SS_E_NONFINITE for bad input (message in err; the
+ * state is untouched), or SS_E_SOLVER if CHOLMOD failed (the last good state
+ * kept). Never leaves NaN or Inf in the state. */
+int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *stats,
+                char *err, int err_sz);
+
+/* ---- reading back ---------------------------------------------------------- */
+
+const ss_sim_settings *ss_sim_get_settings(const ss_sim *sim); /* face_mask points inside sim */
+int ss_sim_skin_nvert(const ss_sim *sim);
+int ss_sim_skin_nface(const ss_sim *sim);
+const int *ss_sim_skin_faces(const ss_sim *sim);        /* (nface x 3) */
+const double *ss_sim_skin_rest(const ss_sim *sim);      /* (nvert x 3) */
+const double *ss_sim_skin_positions(const ss_sim *sim); /* (nvert x 3), current */
+const double *ss_sim_skin_velocities(const ss_sim *sim);/* (nvert x 3), current */
+/* Number of free vertices (the unknowns), after the face mask. */
+int ss_sim_ndof(const ss_sim *sim);
+
+/* Anchors: first one per skin vertex (index v), then, with barycenter anchors
+ * on, one per skin face (index nvert + f). Each lives on the BODY as
+ * (face, u, v). */
+int ss_sim_nanchors(const ss_sim *sim);
+const int *ss_sim_anchor_faces(const ss_sim *sim);  /* (nanchors) body face */
+const double *ss_sim_anchor_uv(const ss_sim *sim);  /* (nanchors x 2) */
+/* World positions of the anchors in the current body pose into out
+ * (nanchors x 3). */
+void ss_sim_anchor_positions(const ss_sim *sim, double *out);
+/* Sizes of the body given at create: body_pos of ss_sim_step holds
+ * ss_sim_body_nvert x 3 values (callers receiving meshes check this). */
+int ss_sim_body_nvert(const ss_sim *sim);
+int ss_sim_body_nface(const ss_sim *sim);
+/* Body topology, as built at create (for metrics that need it). */
+const ss_topo *ss_sim_body_topo(const ss_sim *sim);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

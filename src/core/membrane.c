@@ -1,0 +1,351 @@
+/* The skin's membrane energy: 2D Stable Neo-Hookean on each triangle, with its
+ * gradient and a positive semi-definite Hessian (DESIGN.md, "Membrane").
+ *
+ * Model (Smith, de Goes, Kim, "Stable Neo-Hookean Flesh Simulation", ACM TOG
+ * 2018, restricted to a surface in 3D as in Kim's HOBAK shells):
+ *   F = [x1-x0, x2-x0] Dm^-1 (3x2, columns f0, f1), I_C = |f0|^2 + |f1|^2,
+ *   J = |f0 x f1| (the area ratio, always >= 0 in 3D),
+ *   Psi = mu/2 (I_C - 2) + lam/2 (J - alpha)^2,  alpha = 1 + mu/lam,
+ *   energy = rest_area * (Psi - Psi_rest),  Psi_rest = lam/2 (1 - alpha)^2 = mu^2 / (2 lam):
+ * the constant makes the energy of the rest state 0 (energies in statistics
+ * and line searches then mean "stored elastic energy"); it changes no
+ * derivative.
+ * Without the paper's -mu/2 log(I_C + 1) term, alpha = 1 + mu/lam makes the
+ * rest state stress free: dPsi/dF = mu F + lam (J - alpha) dJ/dF, and at
+ * F = [I; 0] dJ/dF = F, so the stress is (mu + lam (1 - alpha)) F = 0.
+ *
+ * Lamé parameters. Linearising Psi at rest (F = I + G in the plane) gives
+ *   Psi ~ mu |sym G|^2 + (lam - mu)/2 (tr G)^2,
+ * i.e. linear elasticity with shear modulus mu and first Lamé parameter
+ * lam - mu (the 2D analogue of Smith et al. 2018, section 3.4). So to match a
+ * thin sheet of Young's modulus E and Poisson ratio nu in plane stress
+ * (mu = E / (2 (1 + nu)), lambda = E nu / (1 - nu^2)) we pass lam = lambda + mu.
+ *
+ * Gradient: dJ/df0 = f1 x n, dJ/df1 = n x f0 (n the unit normal), mapped to
+ * the 9 coordinates through dF/dx (constant: the rows of Dm^-1).
+ *
+ * Hessian: Psi is invariant under rotations on both sides of F, so with the
+ * SVD F = U S V^T (U completed by u2 = u0 x u1 = n, V a rotation) its
+ * Hessian in F-space is Q H' Q^T, Q = V (x) U, where H' is the Hessian at
+ * F' = diag(s0, s1) padded with a zero row. H' splits into 1x1 and 2x2 blocks
+ * with closed-form eigenpairs (k = lam (J - alpha), J = s0 s1):
+ *   out-of-plane f0z:  mu + k s1/s0;     out-of-plane f1z:  mu + k s0/s1;
+ *   twist (f0y - f1x)/sqrt2: mu + k;    flip (f0y + f1x)/sqrt2: mu - k;
+ *   two scaling modes: eigenpairs of [[mu + lam s1^2, lam (2J - alpha)],
+ *                                     [lam (2J - alpha), mu + lam s0^2]] on (f0x, f1y).
+ * Negative eigenvalues are clamped to 0 and the six rank-one terms are mapped
+ * to the 9x9 Hessian through dF/dx, which keeps it PSD. The out-of-plane
+ * eigenvalues that blow up like 1/s as the triangle collapses are negative
+ * then (J < alpha), so the clamp also keeps them finite.
+ *
+ * Degenerate current triangles (J = 0: collinear or coincident points): n is
+ * undefined; a deterministic normal perpendicular to the longest stretched
+ * direction is used (any unit n gives a valid subgradient of |f0 x f1| there),
+ * and everything stays finite. "Inverted" triangles in 3D are flipped normals,
+ * which J (an unsigned area ratio) does not see: the energy is symmetric. */
+#include <math.h>
+#include <string.h>
+
+#include "energy.h"
+
+void ss_membrane_lame(double young, double poisson, double *mu, double *lam) {
+  double m = young / (2.0 * (1.0 + poisson));
+  double lambda_plane_stress = young * poisson / (1.0 - poisson * poisson);
+  if (mu) *mu = m;
+  if (lam) *lam = lambda_plane_stress + m;
+}
+
+int ss_membrane_rest(const double x0[3], const double x1[3], const double x2[3],
+                     double dm_inv[4], double *area) {
+  double e1[3], e2[3], c[3];
+  for (int i = 0; i < 3; i++) {
+    e1[i] = x1[i] - x0[i];
+    e2[i] = x2[i] - x0[i];
+  }
+  c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  double len1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  double len2sq = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+  double twice_area = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  /* Relative test: a sliver with sin(angle) ~ 1e-13 has no usable 2D frame. */
+  if (!(isfinite(twice_area) && isfinite(len2sq)) || len1 == 0.0 ||
+      twice_area <= 1e-13 * (len1 * len1 + len2sq)) {
+    dm_inv[0] = 1.0, dm_inv[1] = 0.0, dm_inv[2] = 0.0, dm_inv[3] = 1.0;
+    *area = 0.0;
+    return -1;
+  }
+  /* Own 2D frame: a along e1, b = n x a in the plane. Then
+   * Dm = [[|e1|, e2.a], [0, e2.b]] with e2.b = 2 area / |e1|. */
+  double e2a = (e2[0] * e1[0] + e2[1] * e1[1] + e2[2] * e1[2]) / len1;
+  double e2b = twice_area / len1;
+  double det = len1 * e2b; /* = twice_area > 0 */
+  dm_inv[0] = e2b / det;
+  dm_inv[1] = -e2a / det;
+  dm_inv[2] = 0.0;
+  dm_inv[3] = len1 / det;
+  *area = 0.5 * twice_area;
+  return 0;
+}
+
+/* ---- small vector helpers ---------------------------------------------- */
+
+static inline void cross3(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static inline double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* A deterministic unit vector perpendicular to the unit vector u. */
+static void perpendicular_unit(const double u[3], double out[3]) {
+  double axis[3] = {0.0, 0.0, 0.0};
+  double ax = fabs(u[0]), ay = fabs(u[1]), az = fabs(u[2]);
+  if (ax <= ay && ax <= az)
+    axis[0] = 1.0;
+  else if (ay <= az)
+    axis[1] = 1.0;
+  else
+    axis[2] = 1.0;
+  cross3(u, axis, out);
+  double len = sqrt(dot3(out, out));
+  for (int i = 0; i < 3; i++) out[i] /= len;
+}
+
+/* What every evaluation needs: F, its invariants, and the unit normal. */
+typedef struct {
+  double f[2][3]; /* columns f0, f1 of F */
+  double c[3];    /* f0 x f1 */
+  double ic, j;   /* I_C, J */
+  double n[3];    /* unit normal (fallback when J = 0) */
+} membrane_state;
+
+/* F = Ds Dm^-1, Ds = [x1-x0, x2-x0]. */
+static void membrane_state_init(const double x[9], const double dm_inv[4], membrane_state *s) {
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) {
+    e1[i] = x[3 + i] - x[i];
+    e2[i] = x[6 + i] - x[i];
+  }
+  for (int i = 0; i < 3; i++) {
+    s->f[0][i] = e1[i] * dm_inv[0] + e2[i] * dm_inv[2];
+    s->f[1][i] = e1[i] * dm_inv[1] + e2[i] * dm_inv[3];
+  }
+  cross3(s->f[0], s->f[1], s->c);
+  s->ic = dot3(s->f[0], s->f[0]) + dot3(s->f[1], s->f[1]);
+  s->j = sqrt(dot3(s->c, s->c));
+  if (s->j > 1e-280) {
+    for (int i = 0; i < 3; i++) s->n[i] = s->c[i] / s->j;
+  } else {
+    /* Collinear or coincident: perpendicular to the longer column, or e_z. */
+    const double *longest = dot3(s->f[0], s->f[0]) >= dot3(s->f[1], s->f[1]) ? s->f[0] : s->f[1];
+    double len = sqrt(dot3(longest, longest));
+    if (len > 1e-280) {
+      double u[3] = {longest[0] / len, longest[1] / len, longest[2] / len};
+      perpendicular_unit(u, s->n);
+    } else {
+      s->n[0] = 0.0, s->n[1] = 0.0, s->n[2] = 1.0;
+    }
+  }
+}
+
+/* The coefficients of dF/dx: f_j = sum_a d[a][j] x_a. */
+static void shape_derivatives(const double dm_inv[4], double d[3][2]) {
+  for (int j = 0; j < 2; j++) {
+    d[1][j] = dm_inv[0 * 2 + j];
+    d[2][j] = dm_inv[1 * 2 + j];
+    d[0][j] = -d[1][j] - d[2][j];
+  }
+}
+
+static double alpha_of(double mu, double lam) { return lam > 0.0 ? 1.0 + mu / lam : 1.0; }
+
+/* Energy and (optionally) gradient; shared by both evaluations. */
+static double energy_and_gradient(const membrane_state *s, const double d[3][2],
+                                  double rest_area, double mu, double lam, double *grad) {
+  double alpha = alpha_of(mu, lam);
+  /* The constant -lam/2 (1 - alpha)^2 = -mu^2 / (2 lam) makes the rest energy
+   * exactly 0 (it changes no derivative). */
+  double rest_offset = lam > 0.0 ? 0.5 * mu * mu / lam : 0.0;
+  double psi = 0.5 * mu * (s->ic - 2.0) + 0.5 * lam * (s->j - alpha) * (s->j - alpha) - rest_offset;
+  if (grad) {
+    /* P = dPsi/dF = mu F + lam (J - alpha) [f1 x n, n x f0]. */
+    double dj0[3], dj1[3], p[2][3];
+    cross3(s->f[1], s->n, dj0);
+    cross3(s->n, s->f[0], dj1);
+    double k = lam * (s->j - alpha);
+    for (int i = 0; i < 3; i++) {
+      p[0][i] = mu * s->f[0][i] + k * dj0[i];
+      p[1][i] = mu * s->f[1][i] + k * dj1[i];
+    }
+    for (int a = 0; a < 3; a++)
+      for (int i = 0; i < 3; i++)
+        grad[3 * a + i] = rest_area * (d[a][0] * p[0][i] + d[a][1] * p[1][i]);
+  }
+  return rest_area * psi;
+}
+
+/* hess += w * g g^T for a mode of F given as (df0, df1), mapped to x. */
+static void add_mode(const double d[3][2], const double df[2][3], double w, double *hess) {
+  double g[9];
+  for (int a = 0; a < 3; a++)
+    for (int i = 0; i < 3; i++) g[3 * a + i] = d[a][0] * df[0][i] + d[a][1] * df[1][i];
+  for (int r = 0; r < 9; r++) {
+    double wr = w * g[r];
+    for (int col = r; col < 9; col++) hess[9 * r + col] += wr * g[col];
+  }
+}
+
+double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_area,
+                        double mu, double lam, double *grad, double *hess) {
+  membrane_state s;
+  double d[3][2];
+  membrane_state_init(x, dm_inv, &s);
+  shape_derivatives(dm_inv, d);
+  double energy = energy_and_gradient(&s, d, rest_area, mu, lam, grad);
+  if (!hess) return energy;
+
+  /* SVD of F through the eigen-decomposition of C = F^T F = [[p, q], [q, r]]:
+   * V = [v0, v1] a rotation, s0 >= s1 >= 0, and s1 = J / s0 so that s0 s1 = J
+   * exactly. */
+  double p = dot3(s.f[0], s.f[0]), r = dot3(s.f[1], s.f[1]), q = dot3(s.f[0], s.f[1]);
+  double phi = 0.5 * atan2(2.0 * q, p - r);
+  double v0[2] = {cos(phi), sin(phi)}, v1[2] = {-v0[1], v0[0]};
+  double half_diff = 0.5 * (p - r);
+  double lambda0 = 0.5 * (p + r) + sqrt(half_diff * half_diff + q * q);
+  double s0 = sqrt(lambda0);
+  double s1 = s0 > 1e-280 ? s.j / s0 : 0.0;
+  if (s1 > s0) s1 = s0; /* round-off only */
+  double u0[3], u1[3];
+  if (s0 > 1e-280) {
+    for (int i = 0; i < 3; i++) u0[i] = (s.f[0][i] * v0[0] + s.f[1][i] * v0[1]) / s0;
+    /* Remove the round-off component along n, renormalise. */
+    double along = dot3(u0, s.n);
+    for (int i = 0; i < 3; i++) u0[i] -= along * s.n[i];
+    double len = sqrt(dot3(u0, u0));
+    if (len > 0.5) {
+      for (int i = 0; i < 3; i++) u0[i] /= len;
+    } else {
+      perpendicular_unit(s.n, u0);
+    }
+  } else {
+    perpendicular_unit(s.n, u0);
+  }
+  cross3(s.n, u0, u1); /* u0 x u1 = n */
+
+  double alpha = alpha_of(mu, lam);
+  double k = lam * (s.j - alpha);
+
+  memset(hess, 0, 81 * sizeof(double));
+  double w = rest_area;
+  double df[2][3];
+  const double *n = s.n;
+
+  /* Out-of-plane f0z: mu + k s1/s0 (s1/s0 in [0, 1]; 1 in the limit F = 0). */
+  double ratio01 = s0 > 1e-280 ? s1 / s0 : 1.0;
+  double ev = mu + k * ratio01;
+  if (ev > 0.0) {
+    for (int i = 0; i < 3; i++) df[0][i] = v0[0] * n[i], df[1][i] = v0[1] * n[i];
+    add_mode(d, df, w * ev, hess);
+  }
+  /* Out-of-plane f1z: mu + k s0/s1, evaluated as (mu s1 + k s0) / s1 so that
+   * s1 -> 0 (where k < 0) clamps without dividing by zero. */
+  double numer = mu * s1 + k * s0;
+  if (numer > 0.0 && s1 > 0.0) {
+    ev = numer / s1;
+    for (int i = 0; i < 3; i++) df[0][i] = v1[0] * n[i], df[1][i] = v1[1] * n[i];
+    add_mode(d, df, w * ev, hess);
+  }
+  /* Twist and flip on (f0y, f1x). */
+  const double inv_sqrt2 = 0.70710678118654752440;
+  ev = mu + k;
+  if (ev > 0.0) {
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 2; j++) df[j][i] = inv_sqrt2 * (v0[j] * u1[i] - v1[j] * u0[i]);
+    add_mode(d, df, w * ev, hess);
+  }
+  ev = mu - k;
+  if (ev > 0.0) {
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 2; j++) df[j][i] = inv_sqrt2 * (v0[j] * u1[i] + v1[j] * u0[i]);
+    add_mode(d, df, w * ev, hess);
+  }
+  /* Scaling modes on (f0x, f1y). */
+  double ha = mu + lam * s1 * s1, hd = mu + lam * s0 * s0, hb = lam * (2.0 * s.j - alpha);
+  double mean = 0.5 * (ha + hd), hdiff = 0.5 * (ha - hd);
+  double radius = sqrt(hdiff * hdiff + hb * hb);
+  double psi_angle = 0.5 * atan2(hb, hdiff);
+  double cs = cos(psi_angle), sn = sin(psi_angle);
+  ev = mean + radius;
+  if (ev > 0.0) {
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 2; j++) df[j][i] = cs * v0[j] * u0[i] + sn * v1[j] * u1[i];
+    add_mode(d, df, w * ev, hess);
+  }
+  ev = mean - radius;
+  if (ev > 0.0) {
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 2; j++) df[j][i] = -sn * v0[j] * u0[i] + cs * v1[j] * u1[i];
+    add_mode(d, df, w * ev, hess);
+  }
+  for (int row = 0; row < 9; row++)
+    for (int col = 0; col < row; col++) hess[9 * row + col] = hess[9 * col + row];
+  return energy;
+}
+
+/* The exact F-space Hessian, assembled directly (not through the SVD):
+ *   d2Psi/dF2 = mu I6 + lam gJ gJ^T + lam (J - alpha) d2J/dF2,
+ *   d2J/dF2 = A^T (I - n n^T) A / J + [[0, -[n]x], [[n]x, 0]],
+ * A = [-[f1]x, [f0]x] (dc/dF for c = f0 x f1), gJ = [f1 x n; n x f0]. */
+double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double rest_area,
+                            double mu, double lam, double *grad, double *hess) {
+  membrane_state s;
+  double d[3][2];
+  membrane_state_init(x, dm_inv, &s);
+  shape_derivatives(dm_inv, d);
+  double energy = energy_and_gradient(&s, d, rest_area, mu, lam, grad);
+  if (!hess) return energy;
+
+  double alpha = alpha_of(mu, lam);
+  double k = lam * (s.j - alpha);
+  double hf[6][6];
+  double gj[6], a[3][6], pa[3][6];
+  cross3(s.f[1], s.n, gj);
+  cross3(s.n, s.f[0], gj + 3);
+  /* A = [-[f1]x, [f0]x]; [v]x has rows (0,-v2,v1), (v2,0,-v0), (-v1,v0,0). */
+  for (int blk = 0; blk < 2; blk++) {
+    const double *v = blk == 0 ? s.f[1] : s.f[0];
+    double sign = blk == 0 ? -1.0 : 1.0;
+    double m[3][3] = {{0.0, -v[2], v[1]}, {v[2], 0.0, -v[0]}, {-v[1], v[0], 0.0}};
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) a[i][3 * blk + j] = sign * m[i][j];
+  }
+  for (int col = 0; col < 6; col++) {
+    double na = s.n[0] * a[0][col] + s.n[1] * a[1][col] + s.n[2] * a[2][col];
+    for (int i = 0; i < 3; i++) pa[i][col] = a[i][col] - s.n[i] * na;
+  }
+  double nx[3][3] = {{0.0, -s.n[2], s.n[1]}, {s.n[2], 0.0, -s.n[0]}, {-s.n[1], s.n[0], 0.0}};
+  for (int r = 0; r < 6; r++) {
+    for (int c = 0; c < 6; c++) {
+      double apa = a[0][r] * pa[0][c] + a[1][r] * pa[1][c] + a[2][r] * pa[2][c];
+      double bilinear = 0.0;
+      if (r < 3 && c >= 3) bilinear = -nx[r][c - 3];
+      if (r >= 3 && c < 3) bilinear = nx[r - 3][c];
+      hf[r][c] = (r == c ? mu : 0.0) + lam * gj[r] * gj[c] + k * (apa / s.j + bilinear);
+    }
+  }
+  /* H_x[a i][b l] = sum_{j,m} d[a][j] d[b][m] hf[3j + i][3m + l]. */
+  for (int pa_ = 0; pa_ < 3; pa_++)
+    for (int i = 0; i < 3; i++)
+      for (int pb = 0; pb < 3; pb++)
+        for (int l = 0; l < 3; l++) {
+          double sum = 0.0;
+          for (int j = 0; j < 2; j++)
+            for (int m = 0; m < 2; m++) sum += d[pa_][j] * d[pb][m] * hf[3 * j + i][3 * m + l];
+          hess[9 * (3 * pa_ + i) + 3 * pb + l] = rest_area * sum;
+        }
+  return energy;
+}

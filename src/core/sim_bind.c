@@ -1,0 +1,205 @@
+/* The skin's model, built once at create: anchors bound to the body at rest,
+ * the face mask's split of vertices into free / pinned / followers, lumped
+ * masses, anchor spring stiffnesses, membrane rest data and bending hinges.
+ *
+ * Binding (DESIGN.md, "Anchor springs"): a skin that is a copy of the body
+ * anchors each vertex at its own corner of the first body face using it
+ * (canonical coordinates (0,0), (1,0) or (0,1)) and each face barycenter at
+ * (1/3, 1/3) of the same face: exact, no search. A separate skin mesh is bound
+ * by Euclidean closest point on the body at rest (the BVH), once.
+ *
+ * Stiffness is per rest area: a vertex spring gets k A_v, a barycenter spring
+ * k A_f, where A_v is the lumped area (a third of each adjacent face). With
+ * barycenter anchors on, both halve, so that the total stiffness of a patch
+ * stays k times its area. Masses are lumped the same way: density A_v.
+ *
+ * Hinges (bending on): each interior skin edge shared by two simulated faces
+ * of opposite orientation along it; weight = k |e|^2 / (A_0 + A_1) at rest and
+ * theta0 the rest dihedral angle, so a curved rest shape has no bending stress. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "energy.h"
+#include "sim_internal.h"
+#include "ss_err.h"
+
+int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
+                int err_sz) {
+  int nv = sim->nvert, nf = sim->nface;
+  for (int a = 0; a < sim->nanchor; a++) {
+    sim->anchor_face0[a] = -1;
+    sim->anchor_uv0[2 * a] = sim->anchor_uv0[2 * a + 1] = 0.0;
+  }
+  if (!skin) {
+    static const double corner_uv[3][2] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
+    for (int f = 0; f < nf; f++)
+      for (int c = 0; c < 3; c++) {
+        int v = sim->faces[3 * f + c];
+        if (sim->anchor_face0[v] >= 0) continue;
+        sim->anchor_face0[v] = f;
+        sim->anchor_uv0[2 * v] = corner_uv[c][0];
+        sim->anchor_uv0[2 * v + 1] = corner_uv[c][1];
+      }
+    if (sim->set.barycenter_anchors)
+      for (int f = 0; f < nf; f++) {
+        sim->anchor_face0[nv + f] = f;
+        sim->anchor_uv0[2 * (nv + f)] = sim->anchor_uv0[2 * (nv + f) + 1] = 1.0 / 3.0;
+      }
+    return SS_OK;
+  }
+  ss_bvh *bvh = NULL;
+  int status = ss_bvh_create(&bvh, sim->btopo);
+  if (status != SS_OK) return ss_fail(err, err_sz, status, "cannot build the body's BVH to bind the skin");
+  ss_bvh_refit(bvh, body_rest);
+  for (int a = 0; a < sim->nanchor; a++) {
+    double p[3];
+    if (a < nv) {
+      memcpy(p, sim->rest + 3 * a, sizeof p);
+    } else {
+      const int *fv = sim->faces + 3 * (a - nv);
+      for (int i = 0; i < 3; i++)
+        p[i] = (sim->rest[3 * fv[0] + i] + sim->rest[3 * fv[1] + i] + sim->rest[3 * fv[2] + i]) / 3.0;
+    }
+    ss_bvh_closest(bvh, body_rest, p, &sim->anchor_face0[a], sim->anchor_uv0 + 2 * a);
+  }
+  ss_bvh_destroy(bvh);
+  return SS_OK;
+}
+
+/* Hinges from sorted half-edges: key (min, max) vertex, then face. */
+typedef struct {
+  int lo, hi, face, corner;
+} half_edge;
+
+static int cmp_half_edge(const void *pa, const void *pb) {
+  const half_edge *a = pa, *b = pb;
+  if (a->lo != b->lo) return (a->lo > b->lo) - (a->lo < b->lo);
+  if (a->hi != b->hi) return (a->hi > b->hi) - (a->hi < b->hi);
+  return (a->face > b->face) - (a->face < b->face);
+}
+
+static int build_hinges(ss_sim *sim, char *err, int err_sz) {
+  int nf = sim->nface;
+  half_edge *he = malloc(3 * (size_t)(nf ? nf : 1) * sizeof *he);
+  if (!he) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
+  int nhe = 0;
+  for (int f = 0; f < nf; f++) {
+    if (!sim->mask[f] || sim->rest_area[f] <= 0.0) continue;
+    for (int c = 0; c < 3; c++) {
+      int a = sim->faces[3 * f + c], b = sim->faces[3 * f + (c + 1) % 3];
+      if (a == b) continue;
+      he[nhe].lo = a < b ? a : b;
+      he[nhe].hi = a < b ? b : a;
+      he[nhe].face = f;
+      he[nhe].corner = c;
+      nhe++;
+    }
+  }
+  qsort(he, (size_t)nhe, sizeof *he, cmp_half_edge);
+  /* Count, then fill: an edge with exactly two opposite half-edges. */
+  int count = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    int e = 0;
+    for (int q = 0; q < nhe;) {
+      int r = q + 1;
+      while (r < nhe && he[r].lo == he[q].lo && he[r].hi == he[q].hi) r++;
+      if (r - q == 2) {
+        const half_edge *h0 = &he[q], *h1 = &he[q + 1];
+        const int *f0 = sim->faces + 3 * h0->face, *f1 = sim->faces + 3 * h1->face;
+        int e0 = f0[h0->corner], e1 = f0[(h0->corner + 1) % 3], o0 = f0[(h0->corner + 2) % 3];
+        int opposite = f1[h1->corner] == e1 && f1[(h1->corner + 1) % 3] == e0;
+        int o1 = f1[(h1->corner + 2) % 3];
+        int any_free = sim->dof[e0] >= 0 || sim->dof[e1] >= 0 || sim->dof[o0] >= 0 || sim->dof[o1] >= 0;
+        if (opposite && any_free && o0 != o1) {
+          if (pass == 1) {
+            int *hv = sim->hinge_vert + 4 * e;
+            hv[0] = e0, hv[1] = e1, hv[2] = o0, hv[3] = o1;
+            double x12[12];
+            for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, sim->rest + 3 * hv[c], 3 * sizeof(double));
+            double el2 = 0.0;
+            for (int i = 0; i < 3; i++) el2 += (x12[3 + i] - x12[i]) * (x12[3 + i] - x12[i]);
+            sim->hinge_theta0[e] = ss_hinge_angle(x12);
+            sim->hinge_weight[e] =
+                sim->set.bending * el2 / (sim->rest_area[h0->face] + sim->rest_area[h1->face]);
+          }
+          e++;
+        }
+      }
+      q = r;
+    }
+    if (pass == 0) {
+      count = e;
+      sim->nhinge = count;
+      sim->hinge_vert = malloc(4 * (size_t)(count ? count : 1) * sizeof(int));
+      sim->hinge_theta0 = malloc((size_t)(count ? count : 1) * sizeof(double));
+      sim->hinge_weight = malloc((size_t)(count ? count : 1) * sizeof(double));
+      if (!sim->hinge_vert || !sim->hinge_theta0 || !sim->hinge_weight) {
+        free(he);
+        return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
+      }
+    }
+  }
+  free(he);
+  return SS_OK;
+}
+
+int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
+  int nv = sim->nvert, nf = sim->nface;
+  const ss_sim_settings *set = &sim->set;
+  ss_membrane_lame(set->young, set->poisson, &sim->mu, &sim->lam);
+  /* Rest data and lumped areas. */
+  double edge_sum = 0.0, area_sum = 0.0;
+  int edge_count = 0;
+  memset(sim->vert_area, 0, (size_t)nv * sizeof(double));
+  for (int f = 0; f < nf; f++) {
+    const int *fv = sim->faces + 3 * f;
+    const double *p0 = sim->rest + 3 * fv[0], *p1 = sim->rest + 3 * fv[1], *p2 = sim->rest + 3 * fv[2];
+    ss_membrane_rest(p0, p1, p2, sim->dm_inv + 4 * f, &sim->rest_area[f]);
+    area_sum += sim->rest_area[f];
+    for (int c = 0; c < 3; c++) sim->vert_area[fv[c]] += sim->rest_area[f] / 3.0;
+    for (int c = 0; c < 3; c++) {
+      const double *a = sim->rest + 3 * fv[c], *b = sim->rest + 3 * fv[(c + 1) % 3];
+      double d2 = 0.0;
+      for (int i = 0; i < 3; i++) d2 += (a[i] - b[i]) * (a[i] - b[i]);
+      edge_sum += sqrt(d2);
+      edge_count++;
+    }
+  }
+  sim->edge_len = edge_count && edge_sum > 0.0 ? edge_sum / edge_count : 1.0;
+  if (!(area_sum > 0.0)) return ss_fail(err, err_sz, SS_E_MESH, "the skin has no area at rest");
+  /* A vertex whose faces all have zero area still needs a little mass. */
+  double mass_floor = 1e-6 * set->density * area_sum / nf;
+  for (int v = 0; v < nv; v++) sim->mass[v] = fmax(set->density * sim->vert_area[v], mass_floor);
+
+  /* Vertex kinds: free if it touches only simulated faces. */
+  unsigned char *touch_in = sim->kind; /* bit 1: simulated face, bit 2: other face */
+  memset(touch_in, 0, (size_t)nv);
+  for (int f = 0; f < nf; f++)
+    for (int c = 0; c < 3; c++) touch_in[sim->faces[3 * f + c]] |= sim->mask[f] ? 1 : 2;
+  sim->ndof = 0;
+  for (int v = 0; v < nv; v++) {
+    unsigned char t = touch_in[v];
+    sim->kind[v] = t == 1 ? SS_VERT_FREE : (t & 1) ? SS_VERT_PINNED : SS_VERT_FOLLOWER;
+    sim->dof[v] = sim->kind[v] == SS_VERT_FREE ? sim->ndof++ : -1;
+  }
+  sim->dof_vert = malloc((size_t)(sim->ndof ? sim->ndof : 1) * sizeof(int));
+  if (!sim->dof_vert) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the unknowns");
+  for (int v = 0; v < nv; v++)
+    if (sim->dof[v] >= 0) sim->dof_vert[sim->dof[v]] = v;
+
+  /* Simulated faces and springs. */
+  double share = set->barycenter_anchors ? 0.5 : 1.0;
+  sim->nsimface = 0;
+  for (int f = 0; f < nf; f++) {
+    const int *fv = sim->faces + 3 * f;
+    int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
+    sim->k_face[f] = set->barycenter_anchors && any_free ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
+    if (any_free && sim->rest_area[f] > 0.0) sim->simface[sim->nsimface++] = f;
+  }
+  for (int v = 0; v < nv; v++)
+    sim->k_vert[v] = sim->dof[v] >= 0 ? share * set->anchor_stiffness * sim->vert_area[v] : 0.0;
+  if (set->bending > 0.0) return build_hinges(sim, err, err_sz);
+  sim->nhinge = 0;
+  return SS_OK;
+}

@@ -1,0 +1,259 @@
+/* The incremental potential of one implicit Euler step and its derivatives.
+ *
+ * Backward Euler, x_{n+1} = argmin E(x) (Martin et al. 2011 "Example-based
+ * elastic materials"; Gast et al. 2015 "Optimization integrator"):
+ *   E(x) = sum_v m_v/(2h^2) |x_v - x~_v|^2 + c m_v/(2h) |x_v - x_n,v|^2 - m_v g.x_v
+ *        + sum_v k_v/2 |x_v - a_v|^2 + sum_f k_f/2 |(x0 + x1 + x2)/3 - a_f|^2
+ *        + sum_f A_f Psi_SNH(F_f) + sum_e hinge_e,
+ * x~ = x_n + h v_n, c the mass damping (1/s), g gravity. The three diagonal
+ * quadratic terms in the first line are folded into one,
+ *   mi_v/2 |x_v - t_v|^2,  mi = m (1/h^2 + c/h),
+ *   t = (x~ + c h x_n) / (1 + c h) + g / (1/h^2 + c/h),
+ * which has the same minimiser and derivatives (E differs by a constant).
+ * Only free vertices are unknowns; terms touching only fixed vertices are
+ * constants and skipped.
+ *
+ * Sums run in a fixed order, single-threaded: bit-for-bit deterministic. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "energy.h"
+#include "sim_internal.h"
+
+void ss_sim_energy_begin(ss_sim *sim, double h) {
+  double c = sim->set.damping;
+  double w = 1.0 / (h * h) + c / h;
+  const double *g = sim->set.gravity;
+  sim->h = h;
+  for (int k = 0; k < sim->ndof; k++) {
+    int v = sim->dof_vert[k];
+    sim->mi[k] = sim->mass[v] * w;
+    for (int i = 0; i < 3; i++) {
+      double xn = sim->x_prev[3 * v + i];
+      double pred = xn + h * sim->v[3 * v + i];
+      sim->target[3 * k + i] = (pred + c * h * xn) / (1.0 + c * h) + g[i] / w;
+    }
+  }
+}
+
+void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull) {
+  for (int k = 0; k < sim->ndof; k++) memcpy(xfull + 3 * sim->dof_vert[k], xd + 3 * k, 3 * sizeof(double));
+}
+
+/* g[dof of v] += gv (3 values), if v is free. */
+static inline void add_grad(const ss_sim *sim, double *g, int v, const double *gv) {
+  int k = sim->dof[v];
+  if (k < 0) return;
+  g[3 * k] += gv[0];
+  g[3 * k + 1] += gv[1];
+  g[3 * k + 2] += gv[2];
+}
+
+double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
+  double e = 0.0;
+  int n = sim->ndof;
+  if (g) memset(g, 0, 3 * (size_t)n * sizeof *g);
+  /* Inertia (with damping and gravity) and vertex springs. */
+  for (int k = 0; k < n; k++) {
+    int v = sim->dof_vert[k];
+    const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
+    double mi = sim->mi[k], kv = sim->k_vert[v];
+    for (int i = 0; i < 3; i++) {
+      double dt = x[i] - t[i], da = x[i] - a[i];
+      e += 0.5 * (mi * dt * dt + kv * da * da);
+      if (g) g[3 * k + i] = mi * dt + kv * da;
+    }
+  }
+  /* Barycenter springs. */
+  if (sim->set.barycenter_anchors) {
+    for (int f = 0; f < sim->nface; f++) {
+      double kf = sim->k_face[f];
+      if (kf == 0.0) continue;
+      const int *fv = sim->faces + 3 * f;
+      const double *a = sim->anchor_pos + 3 * ((size_t)sim->nvert + f);
+      double d[3];
+      for (int i = 0; i < 3; i++)
+        d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
+      e += 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (g) {
+        double gv[3] = {kf * d[0] / 3.0, kf * d[1] / 3.0, kf * d[2] / 3.0};
+        for (int c = 0; c < 3; c++) add_grad(sim, g, fv[c], gv);
+      }
+    }
+  }
+  /* Membrane. */
+  for (int q = 0; q < sim->nsimface; q++) {
+    int f = sim->simface[q];
+    const int *fv = sim->faces + 3 * f;
+    double x9[9], g9[9];
+    for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
+    e += ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam,
+                          g ? g9 : NULL, NULL);
+    if (g)
+      for (int c = 0; c < 3; c++) add_grad(sim, g, fv[c], g9 + 3 * c);
+  }
+  /* Bending. */
+  for (int q = 0; q < sim->nhinge; q++) {
+    const int *hv = sim->hinge_vert + 4 * q;
+    double x12[12], g12[12];
+    for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, xfull + 3 * hv[c], 3 * sizeof(double));
+    e += ss_hinge_eval(x12, sim->hinge_theta0[q], sim->hinge_weight[q], g ? g12 : NULL, NULL);
+    if (g)
+      for (int c = 0; c < 4; c++) add_grad(sim, g, hv[c], g12 + 3 * c);
+  }
+  return e;
+}
+
+double ss_sim_residual(const ss_sim *sim, const double *g) {
+  double worst = 0.0;
+  for (int k = 0; k < sim->ndof; k++) {
+    double gn = sqrt(g[3 * k] * g[3 * k] + g[3 * k + 1] * g[3 * k + 1] + g[3 * k + 2] * g[3 * k + 2]);
+    double r = gn / ((sim->mi[k] + sim->diag_const[k]) * sim->edge_len);
+    if (!(r <= worst)) worst = r; /* NaN propagates */
+  }
+  return worst;
+}
+
+/* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
+ * triangle of the 3n matrix through its ranks. */
+static void scatter_element(const ss_sim *sim, const int *verts, int n, const int *rank,
+                            const double *he, double *vals) {
+  int m = 3 * n;
+  for (int a = 0; a < n; a++) {
+    int i = sim->dof[verts[a]];
+    if (i < 0) continue;
+    for (int b = 0; b < n; b++) {
+      int j = sim->dof[verts[b]];
+      if (j < i) continue; /* j < 0 too; the transpose is added from (b, a) */
+      int r = rank[n * a + b];
+      for (int c1 = 0; c1 < 3; c1++)
+        for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
+          vals[ss_sim_slot3(sim, j, r, c1, c2)] += he[m * (3 * a + c1) + 3 * b + c2];
+    }
+  }
+}
+
+/* Current area over rest area of face f. */
+static double area_ratio(const ss_sim *sim, const double *x9, int f) {
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) e1[i] = x9[3 + i] - x9[i], e2[i] = x9[6 + i] - x9[i];
+  double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2], c2 = e1[0] * e2[1] - e1[1] * e2[0];
+  return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->rest_area[f];
+}
+
+void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact) {
+  for (int q = 0; q < sim->nsimface; q++) {
+    int f = sim->simface[q];
+    const int *fv = sim->faces + 3 * f;
+    double x9[9], h81[81];
+    for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
+    /* The exact Hessian grows like 1/J: nearly collapsed faces stay projected. */
+    if (exact && area_ratio(sim, x9, f) > 1e-3)
+      ss_membrane_eval_raw(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+    else
+      ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+    scatter_element(sim, fv, 3, sim->face_rank + 9 * f, h81, vals);
+  }
+  for (int q = 0; q < sim->nhinge; q++) {
+    const int *hv = sim->hinge_vert + 4 * q;
+    double x12[12], h144[144];
+    for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, xfull + 3 * hv[c], 3 * sizeof(double));
+    ss_hinge_eval(x12, sim->hinge_theta0[q], sim->hinge_weight[q], NULL, h144);
+    scatter_element(sim, hv, 4, sim->hinge_rank + 16 * q, h144, vals);
+  }
+}
+
+/* Adds w (x I3) to block (rank, column j): scalar != 0 in the n x n values,
+ * else in the 3n x 3n values. */
+static void add_iso(const ss_sim *sim, double *vals, int scalar, int j, int rank, double w) {
+  if (scalar) {
+    vals[sim->bcolp[j] + rank] += w;
+  } else {
+    for (int c = 0; c < 3; c++) vals[ss_sim_slot3(sim, j, rank, c, c)] += w;
+  }
+}
+
+static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
+  size_t nnz = scalar ? (size_t)sim->nblock : (size_t)sim->nnz3;
+  memset(vals, 0, nnz * sizeof *vals);
+  for (int k = 0; k < sim->ndof; k++) {
+    int v = sim->dof_vert[k];
+    int diag_rank = sim->bcolp[k + 1] - sim->bcolp[k] - 1;
+    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->k_vert[v]);
+  }
+  if (sim->set.barycenter_anchors) {
+    for (int f = 0; f < sim->nface; f++) {
+      double kf = sim->k_face[f];
+      if (kf == 0.0) continue;
+      const int *fv = sim->faces + 3 * f;
+      for (int a = 0; a < 3; a++) {
+        int i = sim->dof[fv[a]];
+        if (i < 0) continue;
+        for (int b = 0; b < 3; b++) {
+          int j = sim->dof[fv[b]];
+          if (j < i) continue;
+          /* Upper triangle: (a, b) and (b, a) meet in one block; count once
+           * unless a == b. Off-diagonal blocks get the (a, b) value only, as
+           * the symmetric (b, a) is implied. */
+          add_iso(sim, vals, scalar, j, sim->face_rank[9 * f + 3 * a + b], kf / 9.0);
+        }
+      }
+    }
+  }
+}
+
+void ss_sim_constant_hessian(const ss_sim *sim, double *vals) { constant_terms(sim, vals, 0); }
+
+static void rest_laplacian(const ss_sim *sim, double *vals);
+
+void ss_sim_scalar_matrix(const ss_sim *sim, double *vals) {
+  constant_terms(sim, vals, 1);
+  rest_laplacian(sim, vals);
+}
+
+void ss_sim_diag_const(ss_sim *sim) {
+  /* Build the scalar matrix without inertia into a scratch of nblock values:
+   * borrow h-independent terms only (mi = 0 during the call). */
+  double *vals = calloc((size_t)(sim->nblock ? sim->nblock : 1), sizeof *vals);
+  double *mi_save = sim->mi;
+  double *zeros = calloc((size_t)(sim->ndof ? sim->ndof : 1), sizeof *zeros);
+  if (!vals || !zeros) {
+    for (int k = 0; k < sim->ndof; k++) sim->diag_const[k] = 0.0;
+  } else {
+    sim->mi = zeros;
+    ss_sim_scalar_matrix(sim, vals);
+    sim->mi = mi_save;
+    for (int k = 0; k < sim->ndof; k++) sim->diag_const[k] = vals[sim->bcolp[k + 1] - 1];
+  }
+  free(vals);
+  free(zeros);
+}
+
+static void rest_laplacian(const ss_sim *sim, double *vals) {
+  /* Rest membrane stiffness: (mu + lam) times the cotangent Laplacian, the
+   * exact Hessian of (mu + lam)/2 A |F|^2. It lies between the rest
+   * membrane's in-plane eigenvalues 2 mu (shear) and 2 lam (area). */
+  double w = sim->mu + sim->lam;
+  for (int q = 0; q < sim->nsimface; q++) {
+    int f = sim->simface[q];
+    const int *fv = sim->faces + 3 * f;
+    const double *di = sim->dm_inv + 4 * f;
+    double d[3][2];
+    for (int j = 0; j < 2; j++) {
+      d[1][j] = di[j];
+      d[2][j] = di[2 + j];
+      d[0][j] = -d[1][j] - d[2][j];
+    }
+    for (int a = 0; a < 3; a++) {
+      int i = sim->dof[fv[a]];
+      if (i < 0) continue;
+      for (int b = 0; b < 3; b++) {
+        int j = sim->dof[fv[b]];
+        if (j < i) continue;
+        double kab = w * sim->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
+        vals[sim->bcolp[j] + sim->face_rank[9 * f + 3 * a + b]] += kab;
+      }
+    }
+  }
+}

@@ -1,0 +1,171 @@
+/* Internal: the inside of ss_sim, shared by its modules.
+ *
+ *   sim.c            create / destroy / step / reset / accessors
+ *   sim_bind.c       anchors at create (copy or closest point), face mask, hinges
+ *   sim_pattern.c    sparsity pattern of the unknowns and element-to-slot maps
+ *   sim_energy.c     E(x), its gradient, and Hessian assembly over all terms
+ *   solver_newton.c  projected Newton with CHOLMOD (3n x 3n)
+ *   solver_qn.c      L-BFGS on the constant L (x) I3 matrix (scalar n x n CHOLMOD)
+ *
+ * The model (fixed at create) comes first, then the data of a run. Arrays are
+ * flat with their shape in a comment. Unknowns ("dofs") are the free skin
+ * vertices in increasing vertex order; dof vector entry 3k + c is coordinate c
+ * of free vertex dof_vert[k]. */
+#ifndef SKIN_SIM_SIM_INTERNAL_H
+#define SKIN_SIM_SIM_INTERNAL_H
+
+#include <cholmod.h>
+
+#include "skin_sim/ss_sim.h"
+
+enum ss_vert_kind {
+  SS_VERT_FREE = 0,     /* an unknown */
+  SS_VERT_PINNED = 1,   /* on the border of the simulated region: follows its anchor */
+  SS_VERT_FOLLOWER = 2  /* outside the simulated region: follows its anchor */
+};
+
+struct ss_sim {
+  /* ---------------- model: fixed at create */
+  ss_sim_settings set;        /* face_mask points to mask below (or NULL) */
+  double mu, lam;             /* membrane Lamé parameters (stable form) */
+  /* body */
+  int nbvert, nbface;
+  double *body_rest;          /* (nbvert x 3) */
+  ss_topo *btopo;
+  ss_mover *mover;
+  /* skin */
+  int nvert, nface;
+  int *faces;                 /* (nface x 3) */
+  double *rest;               /* (nvert x 3) */
+  unsigned char *mask;        /* (nface) 1 = simulated face */
+  double *dm_inv;             /* (nface x 4) membrane rest data */
+  double *rest_area;          /* (nface) 0 for degenerate rest triangles */
+  double *vert_area;          /* (nvert) lumped rest area: sum of adjacent areas / 3 */
+  double *mass;               /* (nvert) density * vert_area (>= a tiny floor) */
+  double *k_vert;             /* (nvert) vertex spring stiffness (0 if not free) */
+  double *k_face;             /* (nface) barycenter spring stiffness (0 if none) */
+  unsigned char *kind;        /* (nvert) ss_vert_kind */
+  int *dof;                   /* (nvert) dof index or -1 */
+  int ndof;
+  int *dof_vert;              /* (ndof) vertex of each dof */
+  int nsimface;               /* faces with a membrane term (masked, >= 1 free vertex) */
+  int *simface;               /* (nsimface) those faces */
+  int nhinge;
+  int *hinge_vert;            /* (nhinge x 4) e0, e1, o0, o1 */
+  double *hinge_theta0;       /* (nhinge) */
+  double *hinge_weight;       /* (nhinge) k |e|^2 / A_e */
+  double edge_len;            /* mean rest edge length of the skin */
+  int nanchor;                /* nvert + (barycenters ? nface : 0) */
+  int *anchor_face0;          /* (nanchor) bound at create */
+  double *anchor_uv0;         /* (nanchor x 2) */
+  /* sparsity: block pattern over dofs, upper triangle, CSC; the scalar
+   * n x n matrix uses it directly, the 3n x 3n one expands each block. */
+  int *bcolp;                 /* (ndof + 1) */
+  int *brow;                  /* (nblock) block rows in each block column, sorted */
+  int nblock;
+  int *colp3;                 /* (3 ndof + 1) column starts of the 3n x 3n matrix */
+  int nnz3;                   /* its stored entries */
+  int *face_rank;             /* (nface x 9) rank of block (min, max) of corners (a, b) in
+                                 column max, -1 if either corner is not free */
+  int *hinge_rank;            /* (nhinge x 16) same for hinge corners */
+
+  /* ---------------- data of a run */
+  double *x;                  /* (nvert x 3) skin positions */
+  double *x_prev;             /* (nvert x 3) at the start of the substep */
+  double *v;                  /* (nvert x 3) velocities */
+  double *body_prev;          /* (nbvert x 3) body pose at the end of the last step */
+  double *body_sub;           /* (nbvert x 3) body pose of the current substep */
+  int *anchor_face;           /* (nanchor) */
+  double *anchor_uv;          /* (nanchor x 2) */
+  double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
+  double h;                   /* substep of the current system */
+  double *mi;                 /* (ndof) inertia weight: mass (1/h^2 + damping/h) */
+  double *diag_const;         /* (ndof) diagonal of the scalar matrix without inertia */
+  double *target;             /* (ndof x 3) inertia target (prediction, damping, gravity) */
+  /* solver scratch: dof vectors (ndof x 3) and full position arrays */
+  double *xd, *gd, *dir, *xt, *gt;
+  double *guess;              /* (ndof x 3) anchors of free vertices in the previous pose */
+  double *xfull_t;            /* (nvert x 3) trial positions (fixed vertices in place) */
+  /* CHOLMOD */
+  cholmod_common cc;
+  int cc_started;
+  /* Newton: 3n x 3n */
+  cholmod_sparse *H;
+  cholmod_factor *LH;
+  double *h_const;            /* (nnz of H) inertia + springs */
+  double h_const_h;           /* h for which h_const was built (0: none) */
+  cholmod_dense *nb, *nx, *ny, *ne; /* rhs, solution, workspaces (3n x 1) */
+  /* quasi-Newton: n x n, applied to 3 right-hand sides */
+  cholmod_sparse *A;
+  cholmod_factor *LA;
+  double a_h;                 /* h of the current factorisation of A (0: none) */
+  cholmod_dense *qb, *qx, *qy, *qe; /* (n x 3) */
+  int lb_m;                   /* history size */
+  double *lb_s, *lb_y;        /* (m x ndof x 3) ring buffers */
+  double *lb_rho, *lb_alpha;  /* (m) */
+  int lb_count, lb_head;
+  /* per-step counters */
+  ss_sim_stats *st;
+};
+
+/* ---- sim_bind.c ---- */
+/* Anchors of the skin on the body at rest (copy of the body or closest point). */
+int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
+                int err_sz);
+/* Vertex kinds, dofs, simulated faces, masses, spring stiffnesses, hinges. */
+int ss_sim_build_model(ss_sim *sim, char *err, int err_sz);
+
+/* ---- sim_pattern.c ---- */
+int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
+
+/* ---- sim_energy.c ---- */
+/* Sets up the inertia weights and targets of a substep of length h from
+ * x_prev, v and the settings. */
+void ss_sim_energy_begin(ss_sim *sim, double h);
+/* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
+void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
+/* E at the full positions xfull; gradient over dofs into g (may be NULL).
+ * Returns NaN/Inf if anything is non-finite. */
+double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g);
+/* Convergence measure of a dof gradient: max over free vertices of
+ * |g_v| / (D_v * mean edge length), D the diagonal of the scalar matrix
+ * (inertia + springs + rest membrane stiffness): the size of a Jacobi step,
+ * in edge lengths (see settings tol). */
+double ss_sim_residual(const ss_sim *sim, const double *g);
+/* Adds the Hessian of membrane and hinges at xfull to the values vals of the
+ * 3n x 3n upper-triangular matrix H: each element's projected to PSD, or with
+ * exact != 0 the membrane's exact (possibly indefinite) Hessian except on
+ * nearly collapsed faces (hinges keep their Gauss-Newton Hessian). */
+void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact);
+/* Values of the constant part (inertia + springs) of H, for the current h. */
+void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
+/* diag_const from the model (once, at create). */
+void ss_sim_diag_const(ss_sim *sim);
+/* Values of the scalar n x n matrix: inertia + springs + rest membrane
+ * Laplacian scaled by (mu + lam). */
+void ss_sim_scalar_matrix(const ss_sim *sim, double *vals);
+/* Slot of entry (row 3i+a, col 3j+b) of the 3n matrix from block rank r in
+ * block column j (i <= j; a <= b when i == j). */
+static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b) {
+  return sim->colp3[3 * j + b] + 3 * rank + a;
+}
+
+/* ---- solvers: both minimise E from xd (in/out, dofs); return SS_OK or
+ * SS_E_SOLVER. They fill stats (iterations, residual, ...). *nonfinite is 1
+ * if E was not finite at the start (xd unusable), 2 if only trial points
+ * were (xd is the last finite iterate). ---- */
+int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz);
+int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled,
+                           int *nonfinite);
+int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz);
+int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite);
+
+/* Shared by both solvers: backtracking line search along dir from xd (energy
+ * e0, gradient g0). On success xd, gd, e are updated to the accepted point
+ * (gd is the gradient there) and 1 is returned (2 if E did not decrease:
+ * accepted by the approximate Wolfe conditions, E flat to round-off); 0 if no step decreased E; -1 if
+ * everything tried was non-finite. */
+#define SS_ROUNDOFF_STEPS 8
+int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir);
+
+#endif

@@ -1,0 +1,134 @@
+/* Sparsity pattern of the skin's system matrices, built once per topology.
+ *
+ * Two vertices of the unknowns interact when they share a simulated face (the
+ * membrane and barycenter springs) or a hinge (bending). The pattern is kept
+ * per vertex pair ("block"), upper triangle, in compressed columns: block
+ * column j lists its block rows i <= j in increasing order, the diagonal last.
+ * The scalar n x n matrix of the quasi-Newton solver is exactly this pattern;
+ * the 3n x 3n Newton matrix expands each block into 3x3 entries (only the
+ * upper triangle of diagonal blocks), in the column order CHOLMOD expects
+ * (sorted rows, stype = 1).
+ *
+ * Every element then stores, for each pair of its corners, the rank of the
+ * block in its column: together with the column starts that gives the slot
+ * of any element Hessian entry in the values array without a search, so that
+ * assembly is a scatter (MuJoCo's engine_util_solve does the same). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim_internal.h"
+#include "ss_err.h"
+
+static int cmp_ll(const void *a, const void *b) {
+  long long x = *(const long long *)a, y = *(const long long *)b;
+  return (x > y) - (x < y);
+}
+
+/* Rank of block row i in block column j, or -1 if not there. */
+static int block_rank(const ss_sim *sim, int i, int j) {
+  int lo = sim->bcolp[j], hi = sim->bcolp[j + 1] - 1;
+  while (lo <= hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (sim->brow[mid] == i) return mid - sim->bcolp[j];
+    if (sim->brow[mid] < i)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
+  }
+  return -1;
+}
+
+/* Fills ranks for the corners verts[0..n-1] into rank[n x n]. */
+static void element_ranks(const ss_sim *sim, const int *verts, int n, int *rank) {
+  for (int a = 0; a < n; a++) {
+    for (int b = 0; b < n; b++) {
+      int i = sim->dof[verts[a]], j = sim->dof[verts[b]];
+      if (i < 0 || j < 0) {
+        rank[n * a + b] = -1;
+        continue;
+      }
+      int lo = i < j ? i : j, hi = i < j ? j : i;
+      rank[n * a + b] = block_rank(sim, lo, hi);
+    }
+  }
+}
+
+int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
+  int n = sim->ndof;
+  /* Candidate pairs: diagonal, simulated faces' corner pairs, hinges. */
+  size_t cap = (size_t)n + 3 * (size_t)sim->nface + 6 * (size_t)sim->nhinge;
+  long long *key = malloc((cap ? cap : 1) * sizeof *key);
+  sim->bcolp = calloc((size_t)n + 1, sizeof *sim->bcolp);
+  sim->colp3 = calloc(3 * (size_t)n + 1, sizeof *sim->colp3);
+  sim->face_rank = malloc((size_t)(sim->nface ? sim->nface : 1) * 9 * sizeof(int));
+  sim->hinge_rank = malloc((size_t)(sim->nhinge ? sim->nhinge : 1) * 16 * sizeof(int));
+  if (!key || !sim->bcolp || !sim->colp3 || !sim->face_rank || !sim->hinge_rank) {
+    free(key);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
+  }
+  size_t nk = 0;
+  for (int k = 0; k < n; k++) key[nk++] = (long long)k * n + k;
+  for (int f = 0; f < sim->nface; f++) {
+    const int *fv = sim->faces + 3 * f;
+    for (int a = 0; a < 3; a++) {
+      int i = sim->dof[fv[a]], j = sim->dof[fv[(a + 1) % 3]];
+      if (i < 0 || j < 0 || i == j) continue;
+      if (i > j) {
+        int t = i;
+        i = j;
+        j = t;
+      }
+      key[nk++] = (long long)j * n + i;
+    }
+  }
+  for (int e = 0; e < sim->nhinge; e++) {
+    const int *hv = sim->hinge_vert + 4 * e;
+    for (int a = 0; a < 4; a++)
+      for (int b = a + 1; b < 4; b++) {
+        int i = sim->dof[hv[a]], j = sim->dof[hv[b]];
+        if (i < 0 || j < 0 || i == j) continue;
+        if (i > j) {
+          int t = i;
+          i = j;
+          j = t;
+        }
+        key[nk++] = (long long)j * n + i;
+      }
+  }
+  qsort(key, nk, sizeof *key, cmp_ll);
+  size_t nu = 0;
+  for (size_t q = 0; q < nk; q++)
+    if (nu == 0 || key[q] != key[nu - 1]) key[nu++] = key[q];
+  sim->nblock = (int)nu;
+  sim->brow = malloc((nu ? nu : 1) * sizeof *sim->brow);
+  if (!sim->brow) {
+    free(key);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
+  }
+  /* Keys sorted by (column, row): the CSC order directly. */
+  for (size_t q = 0; q < nu; q++) {
+    int j = (int)(key[q] / n), i = (int)(key[q] % n);
+    sim->brow[q] = i;
+    sim->bcolp[j + 1]++;
+  }
+  free(key);
+  for (int j = 0; j < n; j++) sim->bcolp[j + 1] += sim->bcolp[j];
+  /* 3n columns: block column j with nb blocks (the diagonal last) gives
+   * columns of 3 (nb - 1) + 1, + 2, + 3 entries. */
+  long long nnz3 = 0;
+  for (int j = 0; j < n; j++) {
+    int nb = sim->bcolp[j + 1] - sim->bcolp[j];
+    for (int b = 0; b < 3; b++) {
+      sim->colp3[3 * j + b] = (int)nnz3;
+      nnz3 += 3LL * (nb - 1) + b + 1;
+    }
+  }
+  if (nnz3 > 2000000000LL)
+    return ss_fail(err, err_sz, SS_E_ARG, "skin too large: %lld matrix entries", nnz3);
+  sim->colp3[3 * n] = (int)nnz3;
+  sim->nnz3 = (int)nnz3;
+  for (int f = 0; f < sim->nface; f++) element_ranks(sim, sim->faces + 3 * f, 3, sim->face_rank + 9 * f);
+  for (int e = 0; e < sim->nhinge; e++)
+    element_ranks(sim, sim->hinge_vert + 4 * e, 4, sim->hinge_rank + 16 * e);
+  return SS_OK;
+}
