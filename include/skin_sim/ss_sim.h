@@ -7,9 +7,13 @@
  * (the spring force drags each anchor over the body by walk, project or nring).
  *
  * Model and data: topology, rest shape and settings are fixed at create, where
- * all memory is allocated; ss_sim_step allocates nothing (except CHOLMOD's
- * internal workspace, sized at the first factorisation). Deterministic: the
- * same inputs give the same bits.
+ * all memory is allocated. With the quasi-Newton solver ss_sim_step allocates
+ * nothing at a constant dt (a new dt refactors a matrix, and CHOLMOD allocates
+ * temporaries inside cholmod_factorize, as it does in every Newton iteration).
+ * Deterministic: the same inputs give the same bits. The quasi-Newton path
+ * uses no BLAS; Newton's supernodal factorisation goes through the BLAS,
+ * whose results are reproducible for a given BLAS and thread count (e.g.
+ * OPENBLAS_NUM_THREADS) but may differ across them.
  *
  * Units are SI by convention (metres, seconds, kilograms), but any consistent
  * set works: only ratios matter. Do not reach into the struct behind ss_sim. */
@@ -41,7 +45,9 @@ typedef struct ss_sim_settings {
   double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0; default 1/30 */
   int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
                             linearly in between); default 1 */
-  int iterations;        /* max solver iterations per substep; default 20 */
+  int iterations;        /* max solver iterations per substep; default 8, the real-time
+                            budget of quasi-Newton (~30 ms at 19k triangles on 2 cores);
+                            raise it (e.g. 50-500) for Newton or tight tolerances */
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
                             lengths; default 1e-4 */
@@ -56,8 +62,10 @@ typedef struct ss_sim_settings {
   double bending;        /* hinge bending stiffness k (N m); 0 = off (default) */
   double gravity[3];     /* m/s^2; default 0 (off) */
   double damping;        /* 1/s: mass-proportional damping; default 0 */
-  double slide;          /* in [0, 1]: how far an anchor follows the skin point it holds in
-                            one step: 1 frictionless sliding, 0 glued to the body; default 0.5 */
+  double slide;          /* in [0, 1]: how far an anchor moves towards the skin point it holds
+                            in one substep (a* = a0 + slide (p - a0), then walked there):
+                            1 frictionless sliding, 0 glued to the body; default 0.5. Per
+                            substep, so the sliding resistance depends on the step size. */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   const unsigned char *face_mask; /* (skin nface) non-zero: simulate this face; NULL = all.
                                      Copied at create. Vertices of no simulated face follow
@@ -103,7 +111,9 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
 /* What one ss_sim_step did (sums over its substeps unless said otherwise). */
 typedef struct ss_sim_stats {
   double total_ms;     /* the whole step */
-  double walk_ms;      /* anchor updates (mover) */
+  double pose_ms;      /* the body's per-face frames (and BVH refit) of each substep pose,
+                          anchor positions, fixed vertices put on their anchors */
+  double walk_ms;      /* anchor updates (ss_mover_move: walk, project or nring) */
   double assemble_ms;  /* energies, gradients and (Newton) Hessian assembly */
   double factor_ms;    /* CHOLMOD numeric factorisations */
   double solve_ms;     /* CHOLMOD triangular solves and the L-BFGS two-loop */
@@ -128,7 +138,7 @@ typedef struct ss_sim_stats {
  * 3). stats may be NULL. Returns SS_OK (even if a substep stalled or failed:
  * see stats), or SS_E_ARG / SS_E_NONFINITE for bad input (message in err; the
  * state is untouched), or SS_E_SOLVER if CHOLMOD failed (the last good state
- * kept). Never leaves NaN or Inf in the state. Allocates nothing. */
+ * kept). Never leaves NaN or Inf in the state. */
 int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *stats,
                 char *err, int err_sz);
 
@@ -153,6 +163,10 @@ const double *ss_sim_anchor_uv(const ss_sim *sim);  /* (nanchors x 2) */
 /* World positions of the anchors in the current body pose into out
  * (nanchors x 3). */
 void ss_sim_anchor_positions(const ss_sim *sim, double *out);
+/* Sizes of the body given at create: body_pos of ss_sim_step holds
+ * ss_sim_body_nvert x 3 values (callers receiving meshes check this). */
+int ss_sim_body_nvert(const ss_sim *sim);
+int ss_sim_body_nface(const ss_sim *sim);
 /* Body topology, as built at create (for metrics that need it). */
 const ss_topo *ss_sim_body_topo(const ss_sim *sim);
 

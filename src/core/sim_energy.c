@@ -134,13 +134,25 @@ static void scatter_element(const ss_sim *sim, const int *verts, int n, const in
   }
 }
 
-void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals) {
+/* Current area over rest area of face f. */
+static double area_ratio(const ss_sim *sim, const double *x9, int f) {
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) e1[i] = x9[3 + i] - x9[i], e2[i] = x9[6 + i] - x9[i];
+  double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2], c2 = e1[0] * e2[1] - e1[1] * e2[0];
+  return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->rest_area[f];
+}
+
+void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact) {
   for (int q = 0; q < sim->nsimface; q++) {
     int f = sim->simface[q];
     const int *fv = sim->faces + 3 * f;
     double x9[9], h81[81];
     for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
-    ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+    /* The exact Hessian grows like 1/J: nearly collapsed faces stay projected. */
+    if (exact && area_ratio(sim, x9, f) > 1e-3)
+      ss_membrane_eval_raw(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+    else
+      ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
     scatter_element(sim, fv, 3, sim->face_rank + 9 * f, h81, vals);
   }
   for (int q = 0; q < sim->nhinge; q++) {
@@ -152,16 +164,14 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
   }
 }
 
-/* The isotropic (x I3) constant terms: calls add(j, rank, value) through a
- * small switch on the target matrix. scalar != 0: n x n values; else 3n. */
-static void add_iso(const ss_sim *sim, double *vals, int scalar, int i, int j, int rank,
-                    double w) {
+/* Adds w (x I3) to block (rank, column j): scalar != 0 in the n x n values,
+ * else in the 3n x 3n values. */
+static void add_iso(const ss_sim *sim, double *vals, int scalar, int j, int rank, double w) {
   if (scalar) {
     vals[sim->bcolp[j] + rank] += w;
   } else {
     for (int c = 0; c < 3; c++) vals[ss_sim_slot3(sim, j, rank, c, c)] += w;
   }
-  (void)i;
 }
 
 static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
@@ -170,7 +180,7 @@ static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
   for (int k = 0; k < sim->ndof; k++) {
     int v = sim->dof_vert[k];
     int diag_rank = sim->bcolp[k + 1] - sim->bcolp[k] - 1;
-    add_iso(sim, vals, scalar, k, k, diag_rank, sim->mi[k] + sim->k_vert[v]);
+    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->k_vert[v]);
   }
   if (sim->set.barycenter_anchors) {
     for (int f = 0; f < sim->nface; f++) {
@@ -186,7 +196,7 @@ static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
           /* Upper triangle: (a, b) and (b, a) meet in one block; count once
            * unless a == b. Off-diagonal blocks get the (a, b) value only, as
            * the symmetric (b, a) is implied. */
-          add_iso(sim, vals, scalar, i, j, sim->face_rank[9 * f + 3 * a + b], kf / 9.0);
+          add_iso(sim, vals, scalar, j, sim->face_rank[9 * f + 3 * a + b], kf / 9.0);
         }
       }
     }

@@ -84,6 +84,7 @@ struct ss_sim {
   double *target;             /* (ndof x 3) inertia target (prediction, damping, gravity) */
   /* solver scratch: dof vectors (ndof x 3) and full position arrays */
   double *xd, *gd, *dir, *xt, *gt;
+  double *guess;              /* (ndof x 3) anchors of free vertices in the previous pose */
   double *xfull_t;            /* (nvert x 3) trial positions (fixed vertices in place) */
   /* CHOLMOD */
   cholmod_common cc;
@@ -131,9 +132,11 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g);
  * (inertia + springs + rest membrane stiffness): the size of a Jacobi step,
  * in edge lengths (see settings tol). */
 double ss_sim_residual(const ss_sim *sim, const double *g);
-/* Adds the Hessian of membrane and hinges (PSD per element) at xfull to the
- * values vals of the 3n x 3n upper-triangular matrix H. */
-void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals);
+/* Adds the Hessian of membrane and hinges at xfull to the values vals of the
+ * 3n x 3n upper-triangular matrix H: each element's projected to PSD, or with
+ * exact != 0 the membrane's exact (possibly indefinite) Hessian except on
+ * nearly collapsed faces (hinges keep their Gauss-Newton Hessian). */
+void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact);
 /* Values of the constant part (inertia + springs) of H, for the current h. */
 void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
 /* diag_const from the model (once, at create). */
@@ -159,8 +162,10 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
 
 /* Shared by both solvers: backtracking line search along dir from xd (energy
  * e0, gradient g0). On success xd, gd, e are updated to the accepted point
- * (gd is the gradient there) and 1 is returned; 0 if no step decreased E;
- * -1 if everything tried was non-finite. */
+ * (gd is the gradient there) and 1 is returned (2 if E did not decrease:
+ * accepted by the approximate Wolfe conditions, E flat to round-off); 0 if no step decreased E; -1 if
+ * everything tried was non-finite. */
+#define SS_ROUNDOFF_STEPS 8
 int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir);
 
 #endif

@@ -1,11 +1,14 @@
 /* Projected Newton for the implicit Euler step, with CHOLMOD; and the
  * backtracking line search both solvers share.
  *
- * Each iteration assembles H = (inertia + springs, constant per h) + the sum
- * of per-element Hessians each projected to PSD (membrane: closed-form
- * eigensystem; hinge: Gauss-Newton), so H is positive definite (mass > 0) and
- * -H^-1 g a descent direction (Teran et al. 2005 "Robust quasistatic finite
- * elements"; Smith et al. 2018). H is a 3n x 3n symmetric matrix with its
+ * Each iteration assembles H = (inertia + springs, constant per h) + the
+ * elastic Hessian and factors it. It first tries the exact membrane Hessian;
+ * if CHOLMOD finds that H is not positive definite, it assembles the sum of
+ * per-element Hessians each projected to PSD (membrane: closed-form
+ * eigensystem; hinge: Gauss-Newton), positive definite with the mass, so that
+ * -H^-1 g is a descent direction (Teran et al. 2005 "Robust quasistatic
+ * finite elements"; Smith et al. 2018), and tries the exact one again after
+ * an exponentially growing wait. H is a 3n x 3n symmetric matrix with its
  * upper triangle stored in compressed columns; its pattern and the map from
  * element entries to slots are built once (sim_pattern.c), cholmod_analyze
  * (fill-reducing ordering, symbolic factor) runs once at create, then
@@ -14,8 +17,11 @@
  * Line search: backtracking from the full step, Armijo's sufficient decrease
  * E(x + a d) <= E(x) + 1e-4 a g.d, halving a up to 40 times (Nocedal and
  * Wright, "Numerical Optimization", 3.1). Close to the minimum the decrease
- * g.d is below the round-off of E; a step is then also accepted when E did not
- * rise beyond round-off and the gradient norm fell. */
+ * g.d is below the round-off of E; a step is then also accepted by Hager and
+ * Zhang's approximate Wolfe conditions (which use the slope, not E). A solver
+ * whose energy does not decrease and whose residual does not improve over
+ * SS_ROUNDOFF_STEPS accepted steps in a row has reached the floor of its
+ * precision and stops (reported as stalled unless within tolerance). */
 #include <math.h>
 #include <string.h>
 
@@ -33,7 +39,6 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
   int n3 = 3 * sim->ndof;
   double slope = dot(gd, dir, n3);
   if (!(slope < 0.0)) return 0;
-  double g2 = dot(gd, gd, n3);
   double alpha = 1.0;
   int any_finite = 0;
   for (int tries = 0; tries < 40; tries++, alpha *= 0.5) {
@@ -42,16 +47,22 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
     double t0 = ss_now_ms();
     double et = ss_sim_energy(sim, sim->xfull_t, sim->gt);
     sim->st->assemble_ms += ss_now_ms() - t0;
-    double gt2 = dot(sim->gt, sim->gt, n3);
-    if (!isfinite(et) || !isfinite(gt2)) continue;
+    if (!isfinite(et) || !isfinite(dot(sim->gt, sim->gt, n3))) continue;
     any_finite = 1;
-    int armijo = et <= *e + 1e-4 * alpha * slope;
-    int roundoff = et <= *e + 1e-13 * fabs(*e) && gt2 < g2;
+    /* Armijo, on the difference (exact for nearby values): it asks for a
+     * strict decrease even when 1e-4 a g.d is below the last bit of E. */
+    int armijo = et - *e <= 1e-4 * alpha * slope;
+    /* Near the minimum the change of E drowns in round-off: Hager and
+     * Zhang's approximate Wolfe conditions (CG_DESCENT, 2005), E not above
+     * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
+    double st_slope = dot(sim->gt, dir, n3);
+    int roundoff = et <= *e + 1e-12 * fabs(*e) && st_slope >= 0.9 * slope && st_slope <= -0.8 * slope;
     if (armijo || roundoff) {
       memcpy(xd, sim->xt, (size_t)n3 * sizeof *xd);
       memcpy(gd, sim->gt, (size_t)n3 * sizeof *gd);
+      int decreased = et < *e;
       *e = et;
-      return 1;
+      return decreased ? 1 : 2;
     }
   }
   return any_finite ? 0 : -1;
@@ -94,12 +105,48 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
   return SS_OK;
 }
 
-int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
+/* Newton direction dir = -H^-1 g at xd with the exact (exact != 0) or the
+ * per-element projected elastic Hessian. Returns 1 on success, 0 if H is not
+ * positive definite, or SS_E_SOLVER (< 0) if CHOLMOD failed. */
+static int newton_direction(ss_sim *sim, const double *xd, const double *g, double *dir, int exact) {
   int n3 = 3 * sim->ndof;
   cholmod_common *cc = &sim->cc;
   ss_sim_stats *st = sim->st;
+  double t0 = ss_now_ms();
+  ss_sim_scatter(sim, xd, sim->xfull_t); /* a failed line search left a trial point there */
+  double *vals = sim->H->x;
+  memcpy(vals, sim->h_const, (size_t)sim->nnz3 * sizeof *vals);
+  ss_sim_add_elastic_hessian(sim, sim->xfull_t, vals, exact);
+  double t1 = ss_now_ms();
+  st->assemble_ms += t1 - t0;
+  int ok = cholmod_factorize(sim->H, sim->LH, cc);
+  st->factorizations++;
+  double t2 = ss_now_ms();
+  st->factor_ms += t2 - t1;
+  if (!ok || cc->status < CHOLMOD_OK) return SS_E_SOLVER;
+  if (cc->status == CHOLMOD_NOT_POSDEF) return 0;
+  double *b = sim->nb->x;
+  for (int i = 0; i < n3; i++) b[i] = -g[i];
+  if (!cholmod_solve2(CHOLMOD_A, sim->LH, sim->nb, NULL, &sim->nx, NULL, &sim->ny, &sim->ne, cc))
+    return SS_E_SOLVER;
+  memcpy(dir, sim->nx->x, (size_t)n3 * sizeof *dir);
+  st->solve_ms += ss_now_ms() - t2;
+  return 1;
+}
+
+int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
+  ss_sim_stats *st = sim->st;
   double *g = sim->gd, *dir = sim->dir;
   *converged = *stalled = *nonfinite = 0;
+  int roundoff_steps = 0;
+  double best_res = INFINITY;
+  /* Projection on demand (in the spirit of Longva et al. 2023): the exact
+   * Hessian where it is positive definite and its step decreases E
+   * (quadratic convergence near the solution, where projecting element by
+   * element leaves only a linear rate in compressed regions); else the
+   * per-element projected one, trying the exact one again after 1, 2, 4, ...
+   * iterations; else (no decrease either) a Jacobi-scaled gradient step. */
+  int skip_exact = 0, backoff = 1;
   if (sim->h_const_h != sim->h) {
     ss_sim_constant_hessian(sim, sim->h_const);
     sim->h_const_h = sim->h;
@@ -122,38 +169,53 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
     }
     if (it >= sim->set.iterations) break;
     st->iterations++;
-    t0 = ss_now_ms();
-    double *vals = sim->H->x;
-    memcpy(vals, sim->h_const, (size_t)sim->nnz3 * sizeof *vals);
-    ss_sim_add_elastic_hessian(sim, sim->xfull_t, vals);
-    double t1 = ss_now_ms();
-    st->assemble_ms += t1 - t0;
-    int ok = cholmod_factorize(sim->H, sim->LH, cc);
-    st->factorizations++;
-    if (!ok || cc->status < CHOLMOD_OK) return SS_E_SOLVER;
-    if (cc->status == CHOLMOD_NOT_POSDEF) {
-      /* Round-off in a nearly singular projected Hessian: fall back on the
-       * constant part, positive definite by construction. */
-      memcpy(vals, sim->h_const, (size_t)sim->nnz3 * sizeof *vals);
-      ok = cholmod_factorize(sim->H, sim->LH, cc);
-      st->factorizations++;
-      if (!ok || cc->status != CHOLMOD_OK) return SS_E_SOLVER;
+    int ls = 0;
+    if (skip_exact == 0) {
+      int d = newton_direction(sim, xd, g, dir, 1);
+      if (d < 0) return SS_E_SOLVER;
+      if (d > 0) ls = ss_sim_line_search(sim, xd, g, &e, dir);
+      if (ls != 0) {
+        backoff = 1;
+      } else {
+        skip_exact = backoff;
+        backoff = backoff < 64 ? 2 * backoff : backoff;
+      }
+    } else {
+      skip_exact--;
     }
-    double t2 = ss_now_ms();
-    st->factor_ms += t2 - t1;
-    double *b = sim->nb->x;
-    for (int i = 0; i < n3; i++) b[i] = -g[i];
-    if (!cholmod_solve2(CHOLMOD_A, sim->LH, sim->nb, NULL, &sim->nx, NULL, &sim->ny, &sim->ne, cc))
-      return SS_E_SOLVER;
-    memcpy(dir, sim->nx->x, (size_t)n3 * sizeof *dir);
-    st->solve_ms += ss_now_ms() - t2;
-    int ls = ss_sim_line_search(sim, xd, g, &e, dir);
+    if (ls == 0) {
+      int d = newton_direction(sim, xd, g, dir, 0);
+      if (d < 0) return SS_E_SOLVER;
+      if (d > 0) ls = ss_sim_line_search(sim, xd, g, &e, dir);
+    }
+    if (ls == 0) {
+      /* No decrease along the projected step either (clamped eigenvalues can
+       * leave it nearly orthogonal to -g deep in compression): a
+       * Jacobi-scaled gradient step, a descent direction by construction. */
+      for (int k = 0; k < sim->ndof; k++) {
+        double inv = 1.0 / (sim->mi[k] + sim->diag_const[k]);
+        for (int c = 0; c < 3; c++) dir[3 * k + c] = -inv * g[3 * k + c];
+      }
+      ls = ss_sim_line_search(sim, xd, g, &e, dir);
+    }
+    if (ls == 2) {
+      /* E flat to round-off: progress is judged by the residual. */
+      double r = ss_sim_residual(sim, g);
+      roundoff_steps = r < best_res ? 0 : roundoff_steps + 1;
+      if (r < best_res) best_res = r;
+      if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+    }
     if (ls < 0) {
       *nonfinite = 2; /* xd is still the last finite iterate */
       break;
     }
     if (ls == 0) {
-      *stalled = 1;
+      st->residual = ss_sim_residual(sim, g); /* g is at xd */
+      st->energy = e;
+      if (st->residual <= sim->set.tol)
+        *converged = 1;
+      else
+        *stalled = 1;
       break;
     }
     ss_sim_scatter(sim, xd, sim->xfull_t);

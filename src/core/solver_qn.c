@@ -52,6 +52,11 @@ static int apply_inverse(ss_sim *sim, const double *q, double *z) {
   double *b = sim->qb->x;
   for (int k = 0; k < n; k++)
     for (int c = 0; c < 3; c++) b[k + (size_t)c * n] = q[3 * k + c];
+  /* cholmod_solve2's simplicial path asks for a workspace Y of 4 x n
+   * (4 columns at a time) and leaves it shaped 3 x n after three columns;
+   * restore the shape, or the next call frees and reallocates it. */
+  cholmod_dense *y = sim->qy;
+  if (y && y->nzmax >= 4 * (size_t)n) y->nrow = 4, y->d = 4, y->ncol = (size_t)n;
   if (!cholmod_solve2(CHOLMOD_A, sim->LA, sim->qb, NULL, &sim->qx, NULL, &sim->qy, &sim->qe, &sim->cc))
     return SS_E_SOLVER;
   const double *xs = sim->qx->x;
@@ -75,6 +80,13 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the quasi-Newton solver");
   memcpy(sim->A->p, sim->bcolp, ((size_t)n + 1) * sizeof(int));
   memcpy(sim->A->i, sim->brow, (size_t)sim->nblock * sizeof(int));
+  /* A simplicial LL' factor: with three right-hand sides the solve is
+   * memory bound, CHOLMOD's simplicial solve does the three columns in one
+   * pass over L, and no BLAS (nor its threads) is involved, which keeps the
+   * result bit-for-bit reproducible. The factorisation itself is once per h.
+   * (This cholmod_common serves only this solver.) */
+  cc->supernodal = CHOLMOD_SIMPLICIAL;
+  cc->final_ll = 1;
   sim->LA = cholmod_analyze(sim->A, cc);
   if (!sim->LA || cc->status < CHOLMOD_OK)
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD analysis of the quasi-Newton matrix failed (status %d)",
@@ -94,6 +106,8 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
   ss_sim_stats *st = sim->st;
   double *g = sim->gd, *dir = sim->dir;
   *converged = *stalled = *nonfinite = 0;
+  int roundoff_steps = 0;
+  double best_res = INFINITY;
   if (sim->a_h != sim->h) {
     double t = ss_now_ms();
     int status = factor_scalar(sim);
@@ -160,12 +174,24 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
       for (int i = 0; i < n3; i++) dir[i] = -dir[i];
       ls = ss_sim_line_search(sim, xd, g, &e, dir);
     }
+    if (ls == 2) {
+      /* E flat to round-off: progress is judged by the residual. */
+      double r = ss_sim_residual(sim, g);
+      roundoff_steps = r < best_res ? 0 : roundoff_steps + 1;
+      if (r < best_res) best_res = r;
+      if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+    }
     if (ls < 0) {
       *nonfinite = 2; /* xd is still the last finite iterate */
       break;
     }
     if (ls == 0) {
-      *stalled = 1;
+      st->residual = ss_sim_residual(sim, g); /* g is at xd */
+      st->energy = e;
+      if (st->residual <= sim->set.tol)
+        *converged = 1;
+      else
+        *stalled = 1;
       break;
     }
     for (int i = 0; i < n3; i++) {

@@ -95,6 +95,7 @@ static void test_stretched_returns(void) {
     set.solver = SS_SOLVER_NEWTON;
     set.anchor_stiffness = 0.0;
     set.damping = 5.0;
+    set.tol = 1e-8;
     ss_sim *sim = make_sim(&g, &set);
     double *x = malloc(3 * (size_t)g.nvert * sizeof(double));
     for (int v = 0; v < g.nvert; v++) {
@@ -240,9 +241,132 @@ static void test_face_mask(void) {
   }
   CHECK_MSG(worst_fixed < 1e-12, "fixed vertices off the body by %g", worst_fixed);
   CHECK_MSG(most_free > 1e-6, "free vertices did not move off the body (%g)", most_free);
+  ss_sim_destroy(sim);
+  /* Nothing simulated: the skin is the body. */
+  unsigned char *none = calloc((size_t)g.nface, 1);
+  for (int solver = 0; solver < 2; solver++) {
+    set = ss_sim_default_settings();
+    set.solver = solver;
+    set.face_mask = none;
+    sim = make_sim(&g, &set);
+    if (!sim) continue;
+    CHECK_EQ_INT(ss_sim_ndof(sim), 0);
+    fx_pose(&g, 0.2, pose);
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, NULL, 0), SS_OK);
+    CHECK(max_dist(ss_sim_skin_positions(sim), pose, g.nvert) < 1e-12);
+    ss_sim_destroy(sim);
+  }
+  free(none);
+  free(pose);
+  fx_free(&g);
+}
+
+/* Gravity on a patch held by anchor springs only (no membrane): every vertex
+ * sags by rho g / k (stiffness and mass are both per area, shared half and
+ * half between vertex and barycenter springs). Solved quasi-statically. */
+static void test_gravity_sag(void) {
+  fx_mesh g = fx_grid(7, 7, 1.0, 1.0, 0.0);
+  for (int bary = 0; bary < 2; bary++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.young = 0.0;
+    set.density = 2.0;
+    set.anchor_stiffness = 500.0;
+    set.barycenter_anchors = bary;
+    set.gravity[2] = -9.81;
+    set.slide = 0.0;
+    set.dt = 1e3;
+    set.tol = 1e-12;
+    ss_sim *sim = make_sim(&g, &set);
+    if (!sim) continue;
+    for (int f = 0; f < 3; f++) ss_sim_step(sim, g.pos, 0.0, NULL, NULL, 0);
+    const double *p = ss_sim_skin_positions(sim);
+    double expect = -2.0 * 9.81 / 500.0, worst = 0.0;
+    for (int v = 0; v < g.nvert; v++) {
+      worst = fmax(worst, fabs(p[3 * v + 2] - expect));
+      worst = fmax(worst, fabs(p[3 * v] - g.pos[3 * v]) + fabs(p[3 * v + 1] - g.pos[3 * v + 1]));
+    }
+    CHECK_MSG(worst < 1e-9, "barycenters %d: sag off by %g (expected %g)", bary, worst, expect);
+    ss_sim_destroy(sim);
+  }
+  fx_free(&g);
+}
+
+/* slide = 0 glues the anchors; slide > 0 lets them follow the skin, and the
+ * statistics count every move. */
+static void test_slide(void) {
+  fx_mesh g = fx_grid(9, 9, 1.0, 1.0, 0.1);
+  double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
+  for (int k = 0; k < 2; k++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.slide = k ? 1.0 : 0.0;
+    ss_sim *sim = make_sim(&g, &set);
+    if (!sim) continue;
+    int na = ss_sim_nanchors(sim);
+    CHECK_EQ_INT(na, g.nvert + g.nface);
+    int *face0 = malloc((size_t)na * sizeof(int));
+    double *uv0 = malloc(2 * (size_t)na * sizeof(double));
+    memcpy(face0, ss_sim_anchor_faces(sim), (size_t)na * sizeof(int));
+    memcpy(uv0, ss_sim_anchor_uv(sim), 2 * (size_t)na * sizeof(double));
+    ss_sim_stats st;
+    for (int f = 1; f <= 10; f++) {
+      fx_pose(&g, f / 30.0, pose);
+      ss_sim_step(sim, pose, 0.0, &st, NULL, 0);
+    }
+    int changed = memcmp(face0, ss_sim_anchor_faces(sim), (size_t)na * sizeof(int)) != 0 ||
+                  memcmp(uv0, ss_sim_anchor_uv(sim), 2 * (size_t)na * sizeof(double)) != 0;
+    if (k == 0) {
+      CHECK_MSG(!changed, "slide 0: anchors moved");
+      CHECK_EQ_INT(st.anchors_moved, 0);
+    } else {
+      CHECK_MSG(changed, "slide 1: anchors did not move");
+      CHECK_EQ_INT(st.anchors_moved, na);
+    }
+    /* Anchor world positions lie on the body in its current pose. */
+    double *ap = malloc(3 * (size_t)na * sizeof(double));
+    ss_sim_anchor_positions(sim, ap);
+    CHECK(all_finite(ap, 3 * na));
+    free(ap);
+    free(face0);
+    free(uv0);
+    ss_sim_destroy(sim);
+  }
+  free(pose);
+  fx_free(&g);
+}
+
+/* A skin coarser than the body (every other grid line), bound by closest
+ * point: it follows the moving body, its vertices near their anchors. */
+static void test_coarse_skin(void) {
+  fx_mesh body = fx_grid(13, 13, 1.0, 1.0, 0.15), skin = fx_grid(7, 7, 1.0, 1.0, 0.15);
+  ss_sim_settings set = ss_sim_default_settings();
+  set.iterations = 50;
+  ss_sim_mesh sk = {skin.nvert, skin.pos, skin.nface, skin.faces};
+  char err[256];
+  ss_sim *sim = NULL;
+  CHECK_EQ_INT(ss_sim_create(&sim, body.nvert, body.pos, body.nface, body.faces, &sk, &set, err, sizeof err),
+               SS_OK);
+  if (!sim) return;
+  CHECK_EQ_INT(ss_sim_skin_nvert(sim), skin.nvert);
+  CHECK_EQ_INT(ss_sim_nanchors(sim), skin.nvert + skin.nface);
+  double *pose = malloc(3 * (size_t)body.nvert * sizeof(double));
+  double *ap = malloc(3 * (size_t)ss_sim_nanchors(sim) * sizeof(double));
+  ss_sim_stats st;
+  for (int f = 1; f <= 15; f++) {
+    fx_pose(&body, f / 30.0, pose);
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, err, sizeof err), SS_OK);
+  }
+  ss_sim_anchor_positions(sim, ap);
+  const double *p = ss_sim_skin_positions(sim);
+  double worst = 0.0;
+  for (int v = 0; v < skin.nvert; v++) worst = fmax(worst, max_dist(p + 3 * v, ap + 3 * v, 1));
+  /* Edge length of the skin: 1/6. */
+  CHECK_MSG(worst < 0.1 / 6.0, "coarse skin: %g from its anchors", worst);
+  CHECK(st.min_area_ratio > 0.5 && st.max_area_ratio < 2.0);
+  free(ap);
   free(pose);
   ss_sim_destroy(sim);
-  fx_free(&g);
+  fx_free(&body);
+  fx_free(&skin);
 }
 
 /* Bad input: an error code and a message, and the state kept. */
@@ -319,32 +443,43 @@ static void test_violent_motion(void) {
   fx_free(&g);
 }
 
-/* Same inputs, same bits (both solvers, substeps, all terms on). */
+/* Same inputs, same bits (both solvers, substeps, all terms on), also after
+ * ss_sim_reset. */
 static void test_determinism(void) {
   fx_mesh g = fx_grid(10, 10, 1.0, 1.0, 0.2);
   double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
   for (int solver = 0; solver < 2; solver++) {
-    double *out[2];
-    for (int run = 0; run < 2; run++) {
+    double *out[3];
+    ss_sim *sim = NULL;
+    /* Runs 0 and 1: two simulations; run 2: the second one after a reset. */
+    for (int run = 0; run < 3; run++) {
       ss_sim_settings set = ss_sim_default_settings();
       set.solver = solver;
       set.substeps = 2;
       set.bending = 1e-3;
       set.damping = 0.5;
       set.gravity[2] = -9.81;
-      ss_sim *sim = make_sim(&g, &set);
+      if (run < 2) {
+        if (sim) ss_sim_destroy(sim);
+        sim = make_sim(&g, &set);
+      } else {
+        ss_sim_reset(sim);
+        CHECK(memcmp(ss_sim_skin_positions(sim), g.pos, 3 * (size_t)g.nvert * sizeof(double)) == 0);
+      }
+      CHECK_EQ_INT(ss_sim_body_nvert(sim), g.nvert);
+      CHECK_EQ_INT(ss_sim_body_nface(sim), g.nface);
       for (int f = 1; f <= 10; f++) {
         fx_pose(&g, f / 30.0, pose);
         ss_sim_step(sim, pose, 0.0, NULL, NULL, 0);
       }
       out[run] = malloc(3 * (size_t)g.nvert * sizeof(double));
       memcpy(out[run], ss_sim_skin_positions(sim), 3 * (size_t)g.nvert * sizeof(double));
-      ss_sim_destroy(sim);
     }
-    CHECK_MSG(memcmp(out[0], out[1], 3 * (size_t)g.nvert * sizeof(double)) == 0, "solver %d not deterministic",
-              solver);
-    free(out[0]);
-    free(out[1]);
+    ss_sim_destroy(sim);
+    size_t bytes = 3 * (size_t)g.nvert * sizeof(double);
+    CHECK_MSG(memcmp(out[0], out[1], bytes) == 0, "solver %d not deterministic", solver);
+    CHECK_MSG(memcmp(out[0], out[2], bytes) == 0, "solver %d: a reset run differs", solver);
+    for (int r = 0; r < 3; r++) free(out[r]);
   }
   free(pose);
   fx_free(&g);
@@ -356,6 +491,9 @@ int main(void) {
   test_membrane_moduli();
   test_solvers_agree();
   test_face_mask();
+  test_gravity_sag();
+  test_coarse_skin();
+  test_slide();
   test_bad_input();
   test_violent_motion();
   test_determinism();

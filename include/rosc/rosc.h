@@ -1,0 +1,343 @@
+/* rosc: a thin C API over ROS 1's roscpp for skin_sim's plain-C nodes.
+ *
+ * The only code in skin_sim that includes ROS headers lives behind this header
+ * (src/rosc/rosc.cpp, C++14). It knows nothing about skins: it passes flat arrays
+ * in and out of the few message types the nodes use.
+ *
+ * Conventions
+ * - Every function that can fail returns an int status: ROSC_OK (0) or a negative
+ *   ROSC_E_* code; rosc_strerror() names it. No C++ exception ever crosses this API.
+ * - Outputs go through pointer arguments; on error they are left unchanged unless
+ *   the function says otherwise (parameter getters always fill in the default).
+ * - Names follow ROS: "~x" is private to the node, "/x" global, "x" relative to the
+ *   node's namespace. Give topics relative names so users can remap them
+ *   (`mesh_in:=/body/mesh` on the command line or <remap> in a launch file).
+ * - Threading: call everything from one thread (the one that spins); callbacks run
+ *   in that thread inside rosc_spin_*. Logging is safe from any thread.
+ * - Message views: a message is a plain struct whose arrays are (pointer, count)
+ *   pairs. A count always counts elements of the message's own array (floats of
+ *   SkinMesh.positions, points of Marker.points). A subscriber callback gets a const
+ *   view valid only during the callback; copy what you keep. Publishing copies the
+ *   view into a message object that each publisher reuses, so steady publishing
+ *   does not reallocate.
+ */
+#ifndef ROSC_ROSC_H
+#define ROSC_ROSC_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__)
+#define ROSC_PRINTF(fmt_idx, first_arg) __attribute__((format(printf, fmt_idx, first_arg)))
+#else
+#define ROSC_PRINTF(fmt_idx, first_arg)
+#endif
+
+/* ------------------------------------------------------------------ status codes */
+enum {
+  ROSC_OK = 0,
+  ROSC_E_INVALID = -1,   /* bad argument: NULL, unterminated string, wrong message type */
+  ROSC_E_STATE = -2,     /* not initialised, initialised twice, or already shut down */
+  ROSC_E_ROS = -3,       /* roscpp raised an error (its text went to the log) */
+  ROSC_E_NOMEM = -4,     /* out of memory */
+  ROSC_E_TYPE = -5,      /* parameter is set but has another type; default returned */
+  ROSC_E_TRUNCATED = -6, /* output buffer too small; the output holds a prefix */
+  ROSC_E_TIMEOUT = -7,   /* the master did not answer in time */
+  ROSC_E_NOTFOUND = -8,  /* a required parameter is not set */
+  ROSC_E_SHUTDOWN = -9   /* interrupted because the node is shutting down */
+};
+/* A short constant English text for a status code (never NULL). */
+const char *rosc_strerror(int status);
+
+/* ------------------------------------------------------------------ node life */
+enum {
+  ROSC_INIT_ANONYMOUS = 1u << 0,      /* append a unique suffix to the node name */
+  ROSC_INIT_NO_SIGINT = 1u << 1,      /* do not install roscpp's SIGINT handler */
+  ROSC_INIT_NO_ROSOUT = 1u << 2       /* do not send log messages to /rosout */
+};
+/* Initialises roscpp and starts the node. Consumes ROS arguments from argv
+ * (remappings `a:=b`, `_param:=value`, `__name:=`, `__ns:=`) and updates *argc,
+ * so the caller parses only its own options afterwards. `node_name` is the default
+ * name (no slashes). The node needs the master (ROS_MASTER_URI): with
+ * master_timeout_s >= 0, rosc_init waits that long (wall clock) for it and returns
+ * ROSC_E_TIMEOUT if it does not answer (calling rosc_init again waits again); with
+ * master_timeout_s < 0 it waits for ever, as roscpp nodes do. ROSC_E_STATE once the
+ * node has started (one node per process). */
+int rosc_init(int *argc, char **argv, const char *node_name, unsigned options,
+              double master_timeout_s);
+/* 1 while the node runs; 0 before rosc_init, after rosc_shutdown, after SIGINT (with
+ * roscpp's handler) or when another node with the same name took over. */
+int rosc_ok(void);
+/* Stops the node: unregisters every publisher and subscriber, closes connections.
+ * Handles stay valid to destroy. Called automatically at exit if forgotten. */
+int rosc_shutdown(void);
+/* The fully resolved node name (e.g. "/skin_sim"), copied into buf. */
+int rosc_node_name(char *buf, size_t buf_size);
+/* Resolves a name ("~x", "x", "/x") with the node's namespace and remappings. */
+int rosc_resolve_name(const char *name, char *buf, size_t buf_size);
+
+/* ------------------------------------------------------------------ spinning */
+/* Runs the callbacks that are ready, waiting up to timeout_s seconds (wall clock)
+ * for the first one if none is (0: do not wait). */
+int rosc_spin_once(double timeout_s);
+/* Runs callbacks until duration_s seconds (wall clock) have passed or the node stops;
+ * duration_s < 0 spins until the node stops. ROSC_OK when the time ran out,
+ * ROSC_E_SHUTDOWN when it returned because the node stopped. */
+int rosc_spin_for(double duration_s);
+
+/* ------------------------------------------------------------------ time */
+typedef struct rosc_time { uint32_t sec, nsec; } rosc_time;       /* since 1970 */
+typedef struct rosc_duration { int32_t sec, nsec; } rosc_duration;
+
+static inline double rosc_time_to_s(rosc_time t) { return (double)t.sec + 1e-9 * (double)t.nsec; }
+static inline int64_t rosc_time_to_ns(rosc_time t) { return (int64_t)t.sec * 1000000000 + (int64_t)t.nsec; }
+static inline rosc_time rosc_time_from_ns(int64_t ns)
+{
+  rosc_time t;
+  if (ns < 0) ns = 0;                                   /* clamped to what fits */
+  if (ns > (int64_t)4294967295 * 1000000000 + 999999999) ns = (int64_t)4294967295 * 1000000000 + 999999999;
+  t.sec = (uint32_t)(ns / 1000000000);
+  t.nsec = (uint32_t)(ns % 1000000000);
+  return t;
+}
+static inline rosc_time rosc_time_from_s(double s)
+{
+  if (!(s > 0.0)) return rosc_time_from_ns(0);   /* also NaN */
+  if (s >= 4294967296.0) return rosc_time_from_ns(INT64_MAX);
+  return rosc_time_from_ns((int64_t)(s * 1e9 + 0.5));
+}
+
+/* ROS time: simulated (/clock) when the parameter /use_sim_time is true, else wall.
+ * With sim time it is zero until the first /clock message arrives. */
+int rosc_now(rosc_time *out);
+int rosc_now_s(double *out);
+/* Wall-clock time (system clock), available before rosc_init too. */
+int rosc_wall_now(rosc_time *out);
+int rosc_wall_now_s(double *out);
+/* Sleeps for seconds of ROS time (follows /clock with sim time).
+ * ROSC_E_SHUTDOWN when the sleep was cut short by shutdown. */
+int rosc_sleep(double seconds);
+/* Sleeps for seconds of wall-clock time. */
+int rosc_wall_sleep(double seconds);
+
+/* A loop rate in ROS time. rosc_rate_sleep sleeps for what is left of the cycle;
+ * *met (may be NULL) is 1 if the cycle was on time, 0 if it overran. */
+typedef struct rosc_rate rosc_rate;
+int rosc_rate_create(rosc_rate **out, double hz);
+int rosc_rate_sleep(rosc_rate *rate, int *met);
+int rosc_rate_reset(rosc_rate *rate);
+int rosc_rate_destroy(rosc_rate *rate);   /* NULL is fine */
+
+/* ------------------------------------------------------------------ parameters */
+/* Getters: name is "~x" (private), "/x" (global) or "x" (relative). *out always
+ * receives either the server's value or the default; *was_set (may be NULL) says
+ * which. Not set: ROSC_OK with the default. Set with another type: ROSC_E_TYPE with
+ * the default (a double getter accepts an int; an int getter accepts a double with
+ * no fractional part). Strings: ROSC_E_TRUNCATED if the value does not fit (buf then
+ * holds a terminated prefix; *was_set is 1). `def` may be NULL for "". */
+int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const char *def,
+                          int *was_set);
+int rosc_param_get_double(const char *name, double *out, double def, int *was_set);
+int rosc_param_get_int(const char *name, int *out, int def, int *was_set);
+int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
+/* A string parameter of any size, malloc'd (caller frees) and NUL-terminated;
+ * *len (may be NULL) is its length. ROSC_E_NOTFOUND if not set, ROSC_E_TYPE if not a
+ * string. */
+int rosc_param_get_string_alloc(const char *name, char **out, size_t *len);
+/* *out = 1 if the parameter is set (any type), else 0. */
+int rosc_param_has(const char *name, int *out);
+/* Setters (tests and tools); bool is any non-zero int. */
+int rosc_param_set_string(const char *name, const char *value);
+int rosc_param_set_double(const char *name, double value);
+int rosc_param_set_int(const char *name, int value);
+int rosc_param_set_bool(const char *name, int value);
+int rosc_param_delete(const char *name);   /* ROSC_OK also when it was not set */
+/* The URDF as robot_state_publisher finds it: the parameter "robot_description"
+ * searched upwards from the node's namespace (so "/robot_description" for a node in
+ * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND
+ * if no such parameter exists. */
+int rosc_robot_description(char **out, size_t *len);
+
+/* ------------------------------------------------------------------ messages */
+#define ROSC_FRAME_ID_MAX 256   /* bytes, with the terminating NUL */
+
+/* std_msgs/Header. seq: roscpp writes its own sequence number into messages sent
+ * over TCP, so the value given to publish is not what subscribers see. */
+typedef struct rosc_header {
+  uint32_t seq;
+  rosc_time stamp;
+  char frame_id[ROSC_FRAME_ID_MAX];   /* NUL-terminated */
+} rosc_header;
+
+/* skin_sim/SkinMesh: a whole triangle mesh in one frame. */
+typedef struct rosc_skin_mesh {
+  rosc_header header;
+  uint32_t topology_id;
+  const float *positions;      /* (n_positions) = (n_vertices x 3) xyz interleaved, metres */
+  size_t n_positions;
+  const uint32_t *triangles;   /* (n_triangles) = (n_faces x 3) vertex indices */
+  size_t n_triangles;
+} rosc_skin_mesh;
+
+/* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg). */
+typedef struct rosc_skin_stats {
+  rosc_header header;
+  float total_ms, walk_ms, assemble_ms, solve_ms;
+  uint32_t iterations;
+  float residual;
+  uint32_t substeps, anchors_at_boundary, anchors_at_crease;
+  float max_slide;
+  uint32_t inputs_rejected, inputs_dropped, resets;
+} rosc_skin_stats;
+
+/* sensor_msgs/JointState. Arrays may be empty (NULL, 0). */
+typedef struct rosc_joint_state {
+  rosc_header header;
+  const char *const *name;     /* (n_name) NUL-terminated joint names */
+  size_t n_name;
+  const double *position;      /* (n_position) rad or m */
+  size_t n_position;
+  const double *velocity;      /* (n_velocity) */
+  size_t n_velocity;
+  const double *effort;        /* (n_effort) */
+  size_t n_effort;
+} rosc_joint_state;
+
+/* visualization_msgs/Marker, all fields. Points travel as float64 in the message;
+ * here they are float (the skin's type): float -> double -> float is exact. */
+enum {
+  ROSC_MARKER_ARROW = 0, ROSC_MARKER_CUBE = 1, ROSC_MARKER_SPHERE = 2,
+  ROSC_MARKER_CYLINDER = 3, ROSC_MARKER_LINE_STRIP = 4, ROSC_MARKER_LINE_LIST = 5,
+  ROSC_MARKER_CUBE_LIST = 6, ROSC_MARKER_SPHERE_LIST = 7, ROSC_MARKER_POINTS = 8,
+  ROSC_MARKER_TEXT_VIEW_FACING = 9, ROSC_MARKER_MESH_RESOURCE = 10,
+  ROSC_MARKER_TRIANGLE_LIST = 11
+};
+enum { ROSC_MARKER_ADD = 0, ROSC_MARKER_DELETE = 2, ROSC_MARKER_DELETEALL = 3 };
+#define ROSC_MARKER_NS_MAX 256
+typedef struct rosc_marker {
+  rosc_header header;
+  char ns[ROSC_MARKER_NS_MAX];  /* NUL-terminated */
+  int32_t id;
+  int32_t type;                 /* ROSC_MARKER_TRIANGLE_LIST, ... */
+  int32_t action;               /* ROSC_MARKER_ADD, ... */
+  double position[3];           /* pose of the marker frame in header.frame_id */
+  double orientation[4];        /* quaternion x y z w; all zero is read by rviz as identity
+                                   with a warning: give w = 1 */
+  double scale[3];              /* TRIANGLE_LIST: 1 1 1 */
+  float color[4];               /* r g b a in [0, 1]; used where colors is empty */
+  rosc_duration lifetime;       /* 0: forever */
+  int frame_locked;
+  const float *points;          /* (n_points x 3) xyz; TRIANGLE_LIST: 3 per triangle */
+  size_t n_points;
+  const float *colors;          /* (n_colors x 4) rgba; 0 or one per point */
+  size_t n_colors;
+  const char *text;             /* NULL means "" */
+  const char *mesh_resource;    /* NULL means "" */
+  int mesh_use_embedded_materials;
+} rosc_marker;
+/* Fills a marker with what rviz needs for a TRIANGLE_LIST: action ADD, identity
+ * orientation, unit scale, opaque white, no arrays. */
+int rosc_marker_init_triangle_list(rosc_marker *m);
+
+/* std_msgs/String. */
+typedef struct rosc_string {
+  const char *data;             /* NUL-terminated; may contain no NUL inside */
+  size_t len;
+} rosc_string;
+
+typedef enum rosc_msg_type {
+  ROSC_MSG_SKIN_MESH = 1,
+  ROSC_MSG_SKIN_STATS,
+  ROSC_MSG_JOINT_STATE,
+  ROSC_MSG_MARKER,
+  ROSC_MSG_STRING
+} rosc_msg_type;
+
+/* ------------------------------------------------------------------ publishers */
+typedef struct rosc_pub rosc_pub;
+/* Advertises `topic` (give it relative) for one message type (a rosc_msg_type;
+ * an int so that any value is safe to pass: others give ROSC_E_INVALID). queue_size: outgoing
+ * messages kept per subscriber before the oldest is dropped (>= 1). latch: new
+ * subscribers get the last message. */
+int rosc_pub_create(rosc_pub **out, int type, const char *topic,
+                    unsigned queue_size, int latch);
+/* Publish: ROSC_E_INVALID if the publisher has another message type, a pointer is
+ * NULL with a non-zero count, or a string is not terminated within its buffer. */
+int rosc_publish_skin_mesh(rosc_pub *pub, const rosc_skin_mesh *msg);
+int rosc_publish_skin_stats(rosc_pub *pub, const rosc_skin_stats *msg);
+int rosc_publish_joint_state(rosc_pub *pub, const rosc_joint_state *msg);
+int rosc_publish_marker(rosc_pub *pub, const rosc_marker *msg);
+int rosc_publish_string(rosc_pub *pub, const char *text);
+/* Number of subscribers connected now. */
+int rosc_pub_num_subscribers(const rosc_pub *pub, unsigned *out);
+/* The fully resolved topic name (after remapping). */
+int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size);
+int rosc_pub_destroy(rosc_pub *pub);   /* unadvertises; NULL is fine */
+
+/* ------------------------------------------------------------------ subscribers */
+typedef struct rosc_sub rosc_sub;
+typedef void (*rosc_skin_mesh_cb)(const rosc_skin_mesh *msg, void *user);
+typedef void (*rosc_skin_stats_cb)(const rosc_skin_stats *msg, void *user);
+typedef void (*rosc_joint_state_cb)(const rosc_joint_state *msg, void *user);
+typedef void (*rosc_marker_cb)(const rosc_marker *msg, void *user);
+typedef void (*rosc_string_cb)(const rosc_string *msg, void *user);
+/* Subscribes `topic` (give it relative); cb(msg, user) runs inside rosc_spin_*.
+ * queue_size: incoming messages kept before the oldest is dropped (>= 1); a node
+ * that must not fall behind uses 1. TCP_NODELAY is requested (low latency).
+ * A message whose frame_id or marker ns does not fit the C struct is dropped with a
+ * throttled error. */
+int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
+                       rosc_skin_mesh_cb cb, void *user);
+int rosc_sub_skin_stats(rosc_sub **out, const char *topic, unsigned queue_size,
+                        rosc_skin_stats_cb cb, void *user);
+int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
+                         rosc_joint_state_cb cb, void *user);
+int rosc_sub_marker(rosc_sub **out, const char *topic, unsigned queue_size,
+                    rosc_marker_cb cb, void *user);
+int rosc_sub_string(rosc_sub **out, const char *topic, unsigned queue_size,
+                    rosc_string_cb cb, void *user);
+/* Number of publishers connected now. */
+int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out);
+/* Messages dropped by the shim itself (frame_id or ns too long) so far. */
+int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out);
+int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
+int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
+
+/* ------------------------------------------------------------------ logging */
+/* Levels as rosconsole's. Messages go to the console and, once the node runs, to
+ * /rosout (logger "ros.skin_sim"); the level threshold is rosconsole's (DEBUG is
+ * hidden by default). Safe from any thread and before rosc_init. */
+enum { ROSC_LOG_DEBUG = 0, ROSC_LOG_INFO = 1, ROSC_LOG_WARN = 2, ROSC_LOG_ERROR = 3,
+       ROSC_LOG_FATAL = 4 };
+int rosc_log(int level, const char *fmt, ...) ROSC_PRINTF(2, 3);
+/* Prints at most once per period_s seconds of wall-clock time per key (a bag looping
+ * ROS time back does not silence it). When messages were held back, the next one
+ * that prints says how many. key NULL: the format string's text is the key. */
+int rosc_log_throttle(int level, double period_s, const char *key, const char *fmt, ...)
+    ROSC_PRINTF(4, 5);
+/* The general form the macros below use: the caller's file, line and function show
+ * in the log; period_s <= 0 means no throttling. */
+int rosc_log_at(int level, const char *file, int line, const char *func, double period_s,
+                const char *key, const char *fmt, ...) ROSC_PRINTF(7, 8);
+
+#define ROSC_STR_(x) #x
+#define ROSC_STR(x) ROSC_STR_(x)
+#define ROSC_DEBUG(...) rosc_log_at(ROSC_LOG_DEBUG, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
+#define ROSC_INFO(...) rosc_log_at(ROSC_LOG_INFO, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
+#define ROSC_WARN(...) rosc_log_at(ROSC_LOG_WARN, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
+#define ROSC_ERROR(...) rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
+/* Throttled per call site. */
+#define ROSC_LOG_THROTTLE(level, period_s, ...) \
+  rosc_log_at((level), __FILE__, __LINE__, __func__, (period_s), \
+              __FILE__ ":" ROSC_STR(__LINE__), __VA_ARGS__)
+#define ROSC_WARN_THROTTLE(period_s, ...) ROSC_LOG_THROTTLE(ROSC_LOG_WARN, period_s, __VA_ARGS__)
+#define ROSC_ERROR_THROTTLE(period_s, ...) ROSC_LOG_THROTTLE(ROSC_LOG_ERROR, period_s, __VA_ARGS__)
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* ROSC_ROSC_H */

@@ -1,0 +1,273 @@
+# shellcheck shell=bash
+# tests/ros/ros_env.sh: a private ROS master for one test script. Source it, then:
+#
+#   . "$src/tests/ros/ros_env.sh"
+#   ros_env_setup "$bld" || exit $?       # 77 (CTest: skipped) only if ROS is absent
+#   ros_env_bg echo "$bld/tests/ros/rosc_echo" echo   # a tracked background process
+#   ros_env_wait_node /rosc_echo 10 || exit 1
+#   ...
+# and everything started here is stopped when the script exits (EXIT trap).
+#
+# ros_env_setup: Debian's python3 first in PATH (ROS_NOTES.md, "The Python pitfall"),
+# sources BUILD/devel/setup.bash, picks a free port (bind to port 0), exports
+# ROS_MASTER_URI=http://127.0.0.1:PORT, ROS_HOSTNAME=127.0.0.1 and a private ROS_HOME
+# and ROS_LOG_DIR under a fresh temporary folder ($ROS_ENV_DIR), starts
+# `rosmaster --core -p PORT` and /usr/lib/rosout/rosout in the background and waits
+# (bounded) until /rosout is registered with the master. If the port was taken in
+# between, it tries another (three attempts).
+#
+# Cleanup: every tracked process gets TERM (background rosmaster/rosout ignore INT in a
+# non-interactive shell), then KILL after $ROS_ENV_STOP_TIMEOUT seconds (default 5).
+# A watchdog process does the same if the test script itself dies without running its
+# trap (e.g. killed by a CTest timeout), so no master is ever left behind. The
+# temporary folder is removed when the script succeeds and kept (its path printed,
+# the logs' tails shown) when it fails; ROS_ENV_KEEP=1 always keeps it.
+#
+# After ros_env_setup: ROS_MASTER_URI, ROS_ENV_PORT, ROS_HOME, ROS_LOG_DIR (rosout.log,
+# the master's log), ROS_ENV_DIR (NAME.log of each ros_env_bg process). Functions:
+# ros_env_bg, ros_env_stop PID..., ros_env_wait_node NODE [S],
+# ros_env_wait_subscribers TOPIC N [S], ros_env_free_port, ros_env_now_ms.
+# Everything here works under `set -euo pipefail` as well as without it.
+
+export PATH=/usr/bin:/bin:$PATH
+ROS_ENV_PIDS=()
+ROS_ENV_DIR=
+ROS_ENV_WATCHDOG=
+ROS_ENV_STOP_TIMEOUT=${ROS_ENV_STOP_TIMEOUT:-5}
+ROS_ENV_LAST_PID=
+
+ros_env_log() { echo "ros_env: $*" >&2; }
+
+# Milliseconds since the epoch (for timing messages).
+ros_env_now_ms() { echo $(($(date +%s%N) / 1000000)); }
+
+# ros_env_free_port: prints a TCP port that was free a moment ago.
+ros_env_free_port() {
+  /usr/bin/python3 -c 'import socket
+s = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+s.bind(("127.0.0.1", 0))
+print(s.getsockname()[1])
+s.close()'
+}
+
+# ros_env_wait_node NODE [TIMEOUT_S [PID [LOG]]]: waits until NODE (e.g. /rosout) is
+# registered with the master and its XML-RPC server answers (NODE /master: until the
+# master answers). Returns 1 on timeout, or as soon as PID (if given) has exited;
+# 2 as soon as LOG (if given) says its port is "already in use".
+ros_env_wait_node() {
+  local node="$1" timeout="${2:-10}" pid="${3:-0}" log="${4:-}"
+  /usr/bin/python3 - "$ROS_MASTER_URI" "$node" "$timeout" "$pid" "$log" <<'EOF'
+import os, sys, time, xmlrpc.client, socket
+uri, node, timeout, pid, log = sys.argv[1], sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
+socket.setdefaulttimeout(1.0)
+deadline = time.monotonic() + timeout
+while True:
+    try:
+        if node == "/master":
+            code, _, node_uri = 1, "", uri
+        else:
+            code, _, node_uri = xmlrpc.client.ServerProxy(uri).lookupNode("/ros_env", node)
+        if code == 1:
+            code, _, _ = xmlrpc.client.ServerProxy(node_uri).getPid("/ros_env")
+            if code == 1:
+                sys.exit(0)
+    except (OSError, xmlrpc.client.Error):
+        pass
+    if time.monotonic() > deadline:
+        sys.exit(1)
+    if pid > 0:
+        try:
+            os.kill(pid, 0)
+        except OSError:
+            sys.exit(1)  # the process it waits for is gone
+    if log:
+        try:
+            with open(log, errors="replace") as f:
+                if "already in use" in f.read():
+                    sys.exit(2)  # rosmaster lost the port race (and would hang)
+        except OSError:
+            pass
+    time.sleep(0.02)
+EOF
+}
+
+# ros_env_wait_subscribers TOPIC N [TIMEOUT_S]: waits until TOPIC has at least N
+# subscribers registered with the master.
+ros_env_wait_subscribers() {
+  local topic="$1" n="$2" timeout="${3:-10}"
+  /usr/bin/python3 - "$ROS_MASTER_URI" "$topic" "$n" "$timeout" <<'EOF'
+import sys, time, xmlrpc.client, socket
+uri, topic, n, timeout = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
+socket.setdefaulttimeout(1.0)
+deadline = time.monotonic() + timeout
+while True:
+    try:
+        code, _, state = xmlrpc.client.ServerProxy(uri).getSystemState("/ros_env")
+        if code == 1 and any(t == topic and len(subs) >= n for t, subs in state[1]):
+            sys.exit(0)
+    except (OSError, xmlrpc.client.Error):
+        pass
+    if time.monotonic() > deadline:
+        sys.exit(1)
+    time.sleep(0.05)
+EOF
+}
+
+# ros_env_track PID: stop PID at exit.
+ros_env_track() {
+  ROS_ENV_PIDS+=("$1")
+  [ -n "$ROS_ENV_DIR" ] && echo "$1" >> "$ROS_ENV_DIR/pids"
+  return 0
+}
+
+# ros_env_bg NAME CMD [ARGS...]: starts CMD in the background with its output in
+# $ROS_ENV_DIR/NAME.log, tracked for cleanup; its pid is in ROS_ENV_LAST_PID.
+ros_env_bg() {
+  local name="$1"; shift
+  "$@" > "$ROS_ENV_DIR/$name.log" 2>&1 < /dev/null &
+  ROS_ENV_LAST_PID=$!
+  ros_env_track "$ROS_ENV_LAST_PID"
+}
+
+# ros_env_stop PID...: TERM, then KILL after ROS_ENV_STOP_TIMEOUT seconds; reaps.
+ros_env_stop() {
+  local pid alive t
+  for pid in "$@"; do kill -TERM "$pid" 2> /dev/null || true; done
+  t=0
+  while :; do
+    alive=0
+    for pid in "$@"; do kill -0 "$pid" 2> /dev/null && alive=1; done
+    [ "$alive" = 0 ] && break
+    if [ "$t" -ge $((ROS_ENV_STOP_TIMEOUT * 20)) ]; then
+      for pid in "$@"; do
+        if kill -0 "$pid" 2> /dev/null; then
+          ros_env_log "pid $pid ignored TERM for ${ROS_ENV_STOP_TIMEOUT}s: KILL"
+          kill -KILL "$pid" 2> /dev/null || true
+        fi
+      done
+      break
+    fi
+    sleep 0.05
+    t=$((t + 1))
+  done
+  for pid in "$@"; do wait "$pid" 2> /dev/null || true; done
+  return 0
+}
+
+# ros_env_dump_logs: the last lines of every log of this run (for failures).
+ros_env_dump_logs() {
+  [ -n "$ROS_ENV_DIR" ] || return 0
+  local f
+  for f in "$ROS_ENV_DIR"/*.log; do
+    [ -f "$f" ] || continue
+    echo "---- ${f##*/} (last 30 lines)"
+    tail -n 30 "$f"
+  done
+}
+
+ros_env_cleanup() {
+  local rc=$?
+  set +e
+  if [ "${#ROS_ENV_PIDS[@]}" -gt 0 ]; then
+    # stop the test's own processes first, the master last
+    local i pids=()
+    for ((i = ${#ROS_ENV_PIDS[@]} - 1; i >= 0; i--)); do pids+=("${ROS_ENV_PIDS[$i]}"); done
+    ros_env_stop "${pids[@]}"
+  fi
+  if [ -n "$ROS_ENV_WATCHDOG" ]; then
+    kill -TERM "$ROS_ENV_WATCHDOG" 2> /dev/null
+    wait "$ROS_ENV_WATCHDOG" 2> /dev/null
+  fi
+  if [ -n "$ROS_ENV_DIR" ] && [ -d "$ROS_ENV_DIR" ]; then
+    if [ "$rc" -ne 0 ] && [ "$rc" -ne 77 ]; then
+      ros_env_dump_logs
+      ros_env_log "exit status $rc; logs kept in $ROS_ENV_DIR"
+    elif [ "${ROS_ENV_KEEP:-0}" = 1 ]; then
+      ros_env_log "logs kept in $ROS_ENV_DIR"
+    else
+      rm -rf "$ROS_ENV_DIR"
+    fi
+  fi
+  return "$rc"
+}
+
+# ros_env_setup BUILD_DIR: see the top of this file. Returns 0, 77 (no ROS) or 1.
+ros_env_setup() {
+  local bld="$1"
+  if ! command -v rosmaster > /dev/null 2>&1 || [ ! -x /usr/lib/rosout/rosout ]; then
+    ros_env_log "ROS 1 is not installed (rosmaster, /usr/lib/rosout/rosout): skipped"
+    return 77
+  fi
+  if [ ! -f "$bld/devel/setup.bash" ]; then
+    ros_env_log "$bld/devel/setup.bash missing: was $bld configured with ROS?"
+    return 1
+  fi
+  # setup.bash reads unset variables: relax -u while sourcing it
+  local had_u=0
+  case $- in *u*) had_u=1; set +u ;; esac
+  # shellcheck disable=SC1091
+  . "$bld/devel/setup.bash"
+  [ "$had_u" = 1 ] && set -u
+  export PATH=/usr/bin:/bin:$PATH   # setup.bash may have put other paths first
+
+  ROS_ENV_DIR=$(mktemp -d "${TMPDIR:-/tmp}/ros_env.XXXXXX")
+  : > "$ROS_ENV_DIR/pids"
+  export ROS_HOME="$ROS_ENV_DIR/home" ROS_LOG_DIR="$ROS_ENV_DIR/home/log"
+  mkdir -p "$ROS_LOG_DIR"
+  export ROS_HOSTNAME=127.0.0.1 ROSCONSOLE_STDOUT_LINE_BUFFERED=1 PYTHONUNBUFFERED=1
+  unset ROS_IP ROS_NAMESPACE
+  trap ros_env_cleanup EXIT
+  trap 'exit 130' INT
+  trap 'exit 143' TERM
+
+  # watchdog: if this shell dies without its trap, stop what it started
+  local owner=$$
+  (
+    trap '' INT
+    trap 'exit 0' TERM
+    while kill -0 "$owner" 2> /dev/null; do sleep 0.5; done
+    # shellcheck disable=SC2013  # one pid per line
+    for p in $(cat "$ROS_ENV_DIR/pids" 2> /dev/null); do kill -TERM "$p" 2> /dev/null; done
+    sleep "$ROS_ENV_STOP_TIMEOUT"
+    # shellcheck disable=SC2013
+    for p in $(cat "$ROS_ENV_DIR/pids" 2> /dev/null); do kill -KILL "$p" 2> /dev/null; done
+    rm -rf "$ROS_ENV_DIR"
+  ) > /dev/null 2>&1 < /dev/null &
+  ROS_ENV_WATCHDOG=$!
+
+  local attempt port t0 master_pid wrc
+  t0=$(ros_env_now_ms)
+  for attempt in 1 2 3; do
+    port=$(ros_env_free_port) || { ros_env_log "no free port"; return 1; }
+    export ROS_MASTER_URI="http://127.0.0.1:$port"
+    ros_env_bg master rosmaster --core -p "$port"
+    master_pid=$ROS_ENV_LAST_PID
+    # the master first (rosout started earlier only retries and complains)
+    # (rosmaster does not exit when its port is taken: the log says so)
+    wrc=0
+    ros_env_wait_node /master 15 "$master_pid" "$ROS_ENV_DIR/master.log" || wrc=$?
+    case $wrc in
+      0) ;;
+      2) ros_env_log "port $port was taken before rosmaster bound it: another port"
+         ros_env_stop "$master_pid"
+         continue ;;
+      *) if kill -0 "$master_pid" 2> /dev/null; then
+           ros_env_log "master on port $port running but not answering in 15 s"
+           return 1
+         fi
+         ros_env_log "master on port $port did not start (attempt $attempt):"
+         tail -n 5 "$ROS_ENV_DIR/master.log" >&2
+         ros_env_stop "$master_pid"
+         continue ;;
+    esac
+    ros_env_bg rosout /usr/lib/rosout/rosout
+    if ros_env_wait_node /rosout 15; then
+      export ROS_ENV_PORT=$port
+      ros_env_log "master $ROS_MASTER_URI and /rosout up in $(($(ros_env_now_ms) - t0)) ms"
+      return 0
+    fi
+    ros_env_log "/rosout did not register in 15 s"
+    return 1
+  done
+  return 1
+}
