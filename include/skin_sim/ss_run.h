@@ -5,10 +5,12 @@
  * ss_sim_step of 1/fps seconds. Measured per run:
  *  - time per frame (median) and its parts (walk, assembly, factorisation,
  *    solves), solver iterations;
- *  - snags: anchor updates of a frame that land further along the body
- *    surface from where the anchor was than snag_factor |a1 - a0| + one mean
- *    edge length (a1, a0 the anchor's new and old positions in the new pose:
- *    a jump across a gap is short in space and long on the surface);
+ *  - snags: anchors that in one frame land further along the body surface
+ *    from where they were than snag_factor |a* - a0| + one mean edge length,
+ *    |a* - a0| the pull the anchor update was given (ss_sim_anchor_pull): a
+ *    jump across a gap is short in space and long on the surface. Surface
+ *    distance is bounded by the shortest path known (snag.c), the walk's own
+ *    path included;
  *  - failures: frames with a non-finite value met by the solver, a skin
  *    triangle whose area ratio left [0.05, 20], or a step that returned an
  *    error;

@@ -156,17 +156,15 @@ int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_fram
     }
     const int *new_face = ss_sim_anchor_faces(sim);
     const double *new_uv = ss_sim_anchor_uv(sim);
+    const double *pull = ss_sim_anchor_pull(sim), *path = ss_sim_anchor_path(sim);
+    const int walked = settings->sim.mover.method == SS_METHOD_WALK;
     for (int i = 0; i < nanchor; i++) {
       if (new_face[i] == old_face[i] && new_uv[2 * i] == old_uv[2 * i] &&
           new_uv[2 * i + 1] == old_uv[2 * i + 1])
         continue;
-      double a0[3], a1[3], pull2 = 0.0;
-      ss_anchor_position(fr, old_face[i], old_uv + 2 * i, a0);
-      ss_anchor_position(fr, new_face[i], new_uv + 2 * i, a1);
-      for (int c = 0; c < 3; c++) pull2 += (a1[c] - a0[c]) * (a1[c] - a0[c]);
-      double limit = settings->snag_factor * sqrt(pull2) + edge;
+      double limit = settings->snag_factor * pull[i] + edge;
       if (snag_is(&judge, topo, fr, pos, old_face[i], old_uv + 2 * i, new_face[i],
-                  new_uv + 2 * i, -1.0, limit))
+                  new_uv + 2 * i, walked ? path[i] : -1.0, limit))
         stats->snags++;
     }
     stats->failures += frame_failed;
