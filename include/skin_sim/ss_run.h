@@ -11,9 +11,9 @@
  *    jump across a gap is short in space and long on the surface. Surface
  *    distance is bounded by the shortest path known (snag.c), the walk's own
  *    path included;
- *  - failures: frames with a non-finite value met by the solver, a skin
- *    triangle whose area ratio left [0.05, 20], or a step that returned an
- *    error;
+ *  - failures: frames with a non-finite value met by the solver, a
+ *    simulated skin triangle whose area ratio left [0.05, 20], or a step that
+ *    returned an error;
  *  - hugging: the distance of every skin vertex to the body surface, RMS and
  *    maximum over all frames, in mean edge lengths (the silhouette must
  *    follow the animation);
@@ -41,6 +41,7 @@ ss_run_settings ss_run_default_settings(void);
 
 typedef struct ss_run_stats {
   int triangles, vertices, anchors, frames, dof;
+  int region_faces;                /* simulated skin faces (all without a face mask) */
   double ms_per_frame_median;      /* whole ss_sim_step */
   double walk_ms_per_frame_median; /* anchor updates */
   double walk_share;               /* total walk time / total step time */
@@ -57,12 +58,36 @@ typedef struct ss_run_stats {
   unsigned long long final_hash;
 } ss_run_stats;
 
+/* A moving body from anywhere (a built-in scene, an avatar): its mesh at
+ * rest and its pose at any frame. The caller owns the arrays. */
+typedef int (*ss_body_pose_fn)(void *user, double frame, double *pos); /* SS_OK or an error */
+typedef struct ss_body {
+  int nvert, nface;
+  const double *rest; /* (nvert x 3) the pose of frame 0 */
+  const int *faces;   /* (nface x 3) */
+  int frames;         /* default frame count */
+  double fps;         /* frames per second (> 0) */
+  ss_body_pose_fn pose;
+  void *user;
+} ss_body;
+
+/* The body of a built-in scene. */
+ss_body ss_body_of_scene(const ss_scene *scene);
+
 /* Called after each frame with the simulation (for output); returning
  * non-zero stops the run. */
 typedef int (*ss_frame_fn)(void *user, int frame, const ss_sim *sim, const double *body_pos);
 
-/* Runs the skin over scene. on_frame and progress may be NULL. Returns SS_OK
- * (failures are counted, not returned) or an error with a message. */
+/* Runs the skin over a body. The skin is a copy of the body at rest, its
+ * coincident vertices (UV seams of a mesh file) welded so that it is one
+ * sheet, bound to the body by closest point. on_frame and progress may be
+ * NULL. Returns SS_OK (failures are counted, not returned) or an error with
+ * a message (a pose that fails stops the run with its error). */
+int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,
+                void *frame_user, ss_progress_fn progress, void *progress_user,
+                ss_run_stats *stats, char *err, int err_sz);
+
+/* ss_run_body over a built-in scene. */
 int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_frame_fn on_frame,
                  void *frame_user, ss_progress_fn progress, void *progress_user,
                  ss_run_stats *stats, char *err, int err_sz);

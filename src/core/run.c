@@ -1,4 +1,5 @@
-/* The dynamic skin over a built-in scene, measured (see ss_run.h). The
+/* The dynamic skin over a moving body (a built-in scene, an avatar),
+ * measured (see ss_run.h). The
  * measurements are taken outside the timed step and never change the
  * simulation: a run with and without them gives the same bits. */
 #include "skin_sim/ss_run.h"
@@ -42,21 +43,78 @@ static double median(double *values, int n) {
   return (n % 2) ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+static int scene_pose(void *user, double frame, double *pos) {
+  ss_scene_pose(user, frame, pos);
+  return SS_OK;
+}
+
+ss_body ss_body_of_scene(const ss_scene *scene) {
+  ss_body b;
+  b.nvert = ss_scene_nvert(scene);
+  b.nface = ss_scene_nface(scene);
+  b.rest = ss_scene_rest(scene);
+  b.faces = ss_scene_faces(scene);
+  b.frames = ss_scene_default_frames(scene);
+  b.fps = ss_scene_fps(scene);
+  b.pose = scene_pose;
+  b.user = (void *)scene; /* posing does not change a scene */
+  return b;
+}
+
 int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_frame_fn on_frame,
                  void *frame_user, ss_progress_fn progress, void *progress_user,
                  ss_run_stats *stats, char *err, int err_sz) {
-  if (!scene || !settings || !stats) return ss_fail(err, err_sz, SS_E_ARG, "run: NULL argument");
+  if (!scene) return ss_fail(err, err_sz, SS_E_ARG, "run: NULL scene");
+  ss_body body = ss_body_of_scene(scene);
+  return ss_run_body(&body, settings, on_frame, frame_user, progress, progress_user, stats, err,
+                     err_sz);
+}
+
+/* The skin of a body: its vertices welded where the topology welds them
+ * (one vertex per welded id, at its representative), faces renumbered. */
+static int weld_skin(const ss_topo *topo, const double *rest, double **skin_pos, int **skin_faces) {
+  *skin_pos = malloc(sizeof(double) * 3 * (size_t)topo->nweld);
+  *skin_faces = malloc(sizeof(int) * 3 * (size_t)topo->nface);
+  if (!*skin_pos || !*skin_faces) return SS_E_NOMEM;
+  for (int w = 0; w < topo->nweld; w++)
+    memcpy(*skin_pos + 3 * w, rest + 3 * topo->weld_rep[w], 3 * sizeof(double));
+  for (int i = 0; i < 3 * topo->nface; i++) (*skin_faces)[i] = topo->vert_weld[topo->face_vert[i]];
+  return SS_OK;
+}
+
+int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,
+                void *frame_user, ss_progress_fn progress, void *progress_user,
+                ss_run_stats *stats, char *err, int err_sz) {
+  if (!body || !settings || !stats) return ss_fail(err, err_sz, SS_E_ARG, "run: NULL argument");
+  if (!body->pose || !(body->fps > 0.0 && isfinite(body->fps)))
+    return ss_fail(err, err_sz, SS_E_ARG, "run: the body needs a pose function and fps > 0");
   if (!(settings->snag_factor > 0.0 && isfinite(settings->snag_factor)))
     return ss_fail(err, err_sz, SS_E_ARG, "run: snag factor must be a finite number > 0");
   if (settings->frames < 0) return ss_fail(err, err_sz, SS_E_ARG, "run: frames must be >= 0");
   memset(stats, 0, sizeof *stats);
-  const int nvert = ss_scene_nvert(scene), nface = ss_scene_nface(scene);
-  const int frames = settings->frames > 0 ? settings->frames : ss_scene_default_frames(scene);
-  const double dt = 1.0 / ss_scene_fps(scene);
+  const int nvert = body->nvert, nface = body->nface;
+  const int frames = settings->frames > 0 ? settings->frames : (body->frames > 0 ? body->frames : 1);
+  const double dt = 1.0 / body->fps;
 
+  /* welded skin (a no-op copy where the body has no seams) */
+  ss_topo *weld_topo = NULL;
+  double *weld_pos = NULL;
+  int *weld_faces = NULL;
+  int status = ss_topo_create(&weld_topo, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
+  if (status) return status;
+  status = weld_skin(weld_topo, body->rest, &weld_pos, &weld_faces);
+  ss_sim_mesh skin = {weld_topo->nweld, weld_pos, nface, weld_faces};
+  ss_topo_destroy(weld_topo);
+  if (status) {
+    free(weld_pos);
+    free(weld_faces);
+    return ss_fail(err, err_sz, status, "run: out of memory for the skin");
+  }
   ss_sim *sim = NULL;
-  int status = ss_sim_create(&sim, nvert, ss_scene_rest(scene), nface, ss_scene_faces(scene), NULL,
-                             &settings->sim, err, err_sz);
+  status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, &skin, &settings->sim, err,
+                         err_sz);
+  free(weld_pos);
+  free(weld_faces);
   if (status) return status;
   const ss_topo *topo = ss_sim_body_topo(sim);
   const int nanchor = ss_sim_nanchors(sim), skin_nvert = ss_sim_skin_nvert(sim);
@@ -82,9 +140,14 @@ int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_fram
          *ms_factor = ms + 3 * frames, *ms_solve = ms + 4 * frames;
 
   stats->triangles = nface;
-  stats->vertices = nvert;
+  stats->vertices = skin_nvert;
   stats->anchors = nanchor;
   stats->dof = ss_sim_ndof(sim);
+  stats->region_faces = skin_nface;
+  if (settings->sim.face_mask) {
+    stats->region_faces = 0;
+    for (int f = 0; f < skin_nface; f++) stats->region_faces += settings->sim.face_mask[f] != 0;
+  }
   stats->mean_edge_length = topo->mean_edge_length;
   stats->min_area_ratio = INFINITY;
   stats->max_area_ratio = 0.0;
@@ -107,7 +170,12 @@ int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_fram
   for (int frame = 1; frame <= frames; frame++) {
     memcpy(old_face, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)nanchor);
     memcpy(old_uv, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)nanchor);
-    ss_scene_pose(scene, (double)frame, pos);
+    status = body->pose(body->user, (double)frame, pos);
+    if (status) {
+      ss_fail(err, err_sz, status, "run: the body's pose at frame %d failed (%s)", frame,
+              ss_status_string(status));
+      break;
+    }
     ss_sim_stats st;
     char step_err[256] = "";
     int step_status = ss_sim_step(sim, pos, dt, &st, step_err, sizeof step_err);
@@ -131,7 +199,9 @@ int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_fram
     ss_bvh_refit(bvh, pos);
     const double *x = ss_sim_skin_positions(sim);
     for (int f = 0; f < skin_nface; f++) {
-      if (!(rest_area[f] > 0.0)) continue;
+      /* faces outside the simulated region are the body's own: not judged */
+      if (!(rest_area[f] > 0.0) || (settings->sim.face_mask && !settings->sim.face_mask[f]))
+        continue;
       const double *a = x + 3 * skin_faces[3 * f], *b = x + 3 * skin_faces[3 * f + 1],
                    *c = x + 3 * skin_faces[3 * f + 2];
       double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},

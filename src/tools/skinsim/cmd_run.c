@@ -5,6 +5,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "avatar_body.h"
 #include "cli.h"
 #include "commands.h"
 #include "skin_sim/ss_run.h"
@@ -33,7 +34,7 @@ static int write_ply(const char *path, int nvert, const double *pos, int nface, 
 
 typedef struct frame_writer {
   const char *dir;
-  const ss_scene *scene;
+  const ss_body *body;
   char error[4400];
 } frame_writer;
 
@@ -47,8 +48,7 @@ static int write_frame(void *user, int frame, const ss_sim *sim, const double *b
     return 1;
   }
   snprintf(path, sizeof path, "%s/body_%04d.ply", w->dir, frame);
-  if (write_ply(path, ss_scene_nvert(w->scene), body_pos, ss_scene_nface(w->scene),
-                ss_scene_faces(w->scene))) {
+  if (write_ply(path, w->body->nvert, body_pos, w->body->nface, w->body->faces)) {
     snprintf(w->error, sizeof w->error, "cannot write '%s': %s", path, strerror(errno));
     return 1;
   }
@@ -59,6 +59,7 @@ void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run
   json_out j;
   json_begin(&j, f);
   json_str(&j, "scene", scene);
+  json_int(&j, "region_faces", st->region_faces);
   json_str(&j, "method", ss_method_name(s->sim.mover.method));
   if (s->sim.mover.method == SS_METHOD_NRING) json_int(&j, "nring_rings", s->sim.mover.nring_rings);
   json_str(&j, "solver", ss_solver_name(s->sim.solver));
@@ -103,6 +104,7 @@ void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run
 int cmd_run(int argc, char **argv) {
   const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL;
   int tris = 0;
+  avatar_args av = {0};
   ss_run_settings s = ss_run_default_settings();
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
@@ -172,6 +174,28 @@ int cmd_run(int argc, char **argv) {
       s.sim.gravity[2] = -g;
     } else if (strcmp(a, "--no-barycenters") == 0) {
       s.sim.barycenter_anchors = 0;
+    } else if (strcmp(a, "--avatar") == 0) {
+      if (!(av.avatar = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--urdf") == 0) {
+      if (!(av.urdf = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--mesh") == 0) {
+      if (!(av.mesh = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--motion") == 0) {
+      if (!(av.motion = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--asset") == 0) {
+      if (!(av.asset = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--anim") == 0) {
+      if (!(av.anim = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--region") == 0) {
+      if (!(av.region = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--package-path") == 0) {
+      if (!(av.package_path = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--avatar-tris") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 3000, 5000000, &av.avatar_tris))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--asset-scale") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-9, 1e9, &av.asset_scale))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--json") == 0) {
       if (!(json_path = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--out") == 0) {
@@ -181,49 +205,71 @@ int cmd_run(int argc, char **argv) {
       return EXIT_USAGE;
     }
   }
-  if (!scene_name) {
-    cli_error("run needs --scene NAME (skinsim scenes lists them)");
+  const int avatar = avatar_args_given(&av);
+  if (!scene_name == !avatar) {
+    cli_error("run needs one body: --scene NAME (skinsim scenes lists them), or an avatar "
+              "(--avatar demo, --urdf FILE --motion M, --asset FILE)");
+    return EXIT_USAGE;
+  }
+  if (avatar && tris) {
+    cli_error("--tris sizes a built-in scene; for the demo avatar use --avatar-tris");
     return EXIT_USAGE;
   }
   if (out_dir && mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
     cli_error("cannot create output folder '%s': %s", out_dir, strerror(errno));
     return EXIT_USAGE;
   }
-  char err[256] = "";
+  char err[512] = "";
   ss_scene *scene = NULL;
-  if (ss_scene_create(&scene, scene_name, tris, err, sizeof err)) {
-    cli_error("%s", err);
-    return EXIT_USAGE;
+  avatar_body *ab = NULL;
+  ss_body body;
+  const char *label = scene_name;
+  if (scene_name) {
+    if (ss_scene_create(&scene, scene_name, tris, err, sizeof err)) {
+      cli_error("%s", err);
+      return EXIT_USAGE;
+    }
+    body = ss_body_of_scene(scene);
+  } else {
+    int status = avatar_body_open(&ab, &av, &body, &s.sim.face_mask, err, sizeof err);
+    if (status) {
+      cli_error("%s", err);
+      return status == SS_E_NOMEM || status == SS_E_SOLVER ? EXIT_RUN_FAILED : EXIT_USAGE;
+    }
+    label = av.asset ? av.asset : av.urdf ? av.urdf : "demo";
   }
-  frame_writer writer = {out_dir, scene, ""};
+  frame_writer writer = {out_dir, &body, ""};
   progress bar;
-  progress_begin(&bar, scene_name);
+  progress_begin(&bar, scene_name ? scene_name : "avatar");
   ss_run_stats st;
-  int status = ss_run_scene(scene, &s, out_dir ? write_frame : NULL, &writer, progress_update,
-                            &bar, &st, err, sizeof err);
+  int status = ss_run_body(&body, &s, out_dir ? write_frame : NULL, &writer, progress_update, &bar,
+                           &st, err, sizeof err);
   progress_end(&bar);
   ss_scene_destroy(scene);
   if (status) {
+    avatar_body_close(ab);
     cli_error("run failed: %s", err);
     return status == SS_E_ARG ? EXIT_USAGE : EXIT_RUN_FAILED;
   }
   if (writer.error[0]) {
+    avatar_body_close(ab);
     cli_error("%s", writer.error);
     return EXIT_RUN_FAILED;
   }
   if (json_path) {
     FILE *f = cli_open_json(json_path);
     if (!f) return EXIT_RUN_FAILED;
-    run_json(f, scene_name, &s, &st);
+    run_json(f, label, &s, &st);
     cli_close_json(f);
   }
   if (!json_path || strcmp(json_path, "-") != 0)
     printf("%s/%s/%s: %d triangles, %d frames: %.2f ms/frame (median; walk %.3f ms, %.1f%%), "
            "%.1f iterations/frame, %lld snags, %lld failures, hug rms %.3f max %.3f edges, "
            "area ratio [%.3f, %.3f], hash %016llx\n",
-           scene_name, ss_method_name(s.sim.mover.method), ss_solver_name(s.sim.solver),
+           label, ss_method_name(s.sim.mover.method), ss_solver_name(s.sim.solver),
            st.triangles, st.frames, st.ms_per_frame_median, st.walk_ms_per_frame_median,
            100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
            st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
+  avatar_body_close(ab);
   return 0;
 }

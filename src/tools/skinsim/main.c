@@ -19,14 +19,21 @@ static void usage(FILE *f) {
       "                              edge lengths off the surface, default 0.1) and moved there by\n"
       "                              the method; counts snags and failures\n"
       "  compare [--frames N]        every scene with every method: the table of where methods snag\n"
-      "  run --scene NAME [--tris N] [--frames N] [--method walk|project|nring] [--rings N]\n"
+      "  run BODY [--frames N] [--method walk|project|nring] [--rings N]\n"
       "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
       "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
       "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide R]\n"
       "        [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
       "                              summary (speed, snags, failures, hugging, area ratios,\n"
-      "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply\n"
+      "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply\n"      "        BODY is a built-in scene: --scene NAME [--tris N]\n"
+#ifdef SS_HAVE_AVATAR
+      "        or an avatar:  --avatar demo [--avatar-tris N] [--motion arms|elbows|twist|all|CSV]\n"
+      "                       --urdf FILE [--mesh FILE] --motion CSV|NAME [--package-path NAME=DIR,...]\n"
+      "                       --asset FILE [--anim NAME|INDEX] [--asset-scale M]\n"
+      "                       [--region LINK,...]  simulate only the skin of these links\n"
+#endif
+
       "  help                        this text\n"
       "\n"
       "exit status: 0 ok, 1 the run failed, 2 bad usage or input\n",

@@ -1,0 +1,214 @@
+/* skinsim: avatars as moving bodies (see avatar_body.h). */
+#include "avatar_body.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int avatar_args_given(const avatar_args *a) {
+  return a->avatar || a->urdf || a->mesh || a->motion || a->asset || a->anim || a->region;
+}
+
+#ifdef SS_HAVE_AVATAR
+#include "skin_sim/ssa_avatar.h"
+
+#define AVATAR_FPS 30.0
+
+struct avatar_body {
+  ssa_avatar *av;
+  int builtin;         /* built-in motion index, or -1 */
+  ssa_motion *motion;  /* CSV motion, or NULL */
+  int *map;            /* (motion njoint) robot joint of each column */
+  double *q;           /* (robot njoint) */
+  int anim;            /* asset animation, or -1 */
+  unsigned char *face_mask;
+  double *rest;        /* (nvert x 3) the pose of frame 0: where the skin starts */
+};
+
+
+static int pose(void *user, double frame, double *pos) {
+  avatar_body *ab = user;
+  const double t = frame / AVATAR_FPS;
+  if (ab->anim >= 0) return ssa_avatar_pose_anim(ab->av, ab->anim, t, pos);
+  const ssa_robot *robot = ab->av->robot;
+  memset(ab->q, 0, sizeof(double) * (size_t)robot->njoint);
+  if (ab->builtin >= 0) {
+    int status = ssa_motion_builtin_eval(ab->builtin, t, robot, ab->q);
+    if (status) return status;
+  } else if (ab->motion) {
+    ssa_motion_sample(ab->motion, ab->map, t, ab->q);
+  }
+  return ssa_avatar_pose_joints(ab->av, ab->q, pos);
+}
+
+void avatar_body_close(avatar_body *ab) {
+  if (!ab) return;
+  ssa_avatar_destroy(ab->av);
+  ssa_motion_destroy(ab->motion);
+  free(ab->map);
+  free(ab->q);
+  free(ab->face_mask);
+  free(ab->rest);
+  free(ab);
+}
+
+/* The robot's motion: a built-in name or a CSV file. Sets *duration. */
+static int open_motion(avatar_body *ab, const char *motion, double *duration, char *err,
+                       int err_sz) {
+  const ssa_robot *robot = ab->av->robot;
+  ab->builtin = ssa_motion_builtin_index(motion);
+  if (ab->builtin >= 0) {
+    *duration = ssa_motion_builtin_period(ab->builtin);
+    return SS_OK;
+  }
+  int status = ssa_motion_read_csv(&ab->motion, motion, err, err_sz);
+  if (status) return status;
+  ab->map = malloc(sizeof(int) * (size_t)(ab->motion->njoint > 0 ? ab->motion->njoint : 1));
+  if (!ab->map) return SS_E_NOMEM;
+  status = ssa_motion_bind(ab->motion, robot, ab->map, err, err_sz);
+  if (status) return status;
+  *duration = ab->motion->time[ab->motion->nframe - 1];
+  return SS_OK;
+}
+
+/* Skin faces in the region: those with at least two vertices whose dominant
+ * link is listed. */
+static int open_region(avatar_body *ab, const char *region, char *err, int err_sz) {
+  char *copy = strdup(region);
+  const int nv = ab->av->nvert, nf = ab->av->nface;
+  unsigned char *vmask = malloc((size_t)nv);
+  const char *names[256];
+  int n = 0;
+  ab->face_mask = malloc((size_t)nf);
+  if (!copy || !vmask || !ab->face_mask) {
+    free(copy);
+    free(vmask);
+    snprintf(err, (size_t)err_sz, "out of memory");
+    return SS_E_NOMEM;
+  }
+  for (char *save = NULL, *tok = strtok_r(copy, ",", &save); tok && n < 256;
+       tok = strtok_r(NULL, ",", &save))
+    if (*tok) names[n++] = tok;
+  int status = n ? SS_OK : SS_E_ARG;
+  if (!n) snprintf(err, (size_t)err_sz, "--region lists no link");
+  if (!status) {
+    int marked = ssa_avatar_region_mask(ab->av, n, names, vmask, err, err_sz);
+    if (marked < 0) status = marked;
+    else if (marked == 0) {
+      snprintf(err, (size_t)err_sz, "--region %s: no vertex of the body belongs to it", region);
+      status = SS_E_ARG;
+    }
+  }
+  if (!status) {
+    const int *faces = ab->av->faces;
+    for (int f = 0; f < nf; f++)
+      ab->face_mask[f] =
+          (unsigned char)(vmask[faces[3 * f]] + vmask[faces[3 * f + 1]] + vmask[faces[3 * f + 2]] >= 2);
+  }
+  free(copy);
+  free(vmask);
+  return status;
+}
+
+int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
+                     const unsigned char **face_mask, char *err, int err_sz) {
+  *out = NULL;
+  *face_mask = NULL;
+  const int robot_kind = args->avatar || args->urdf;
+  if (robot_kind + (args->asset != NULL) != 1 || (args->avatar && args->urdf)) {
+    snprintf(err, (size_t)err_sz, "give exactly one body: --avatar demo, --urdf FILE [--mesh FILE] "
+                                  "--motion M, or --asset FILE [--anim A]");
+    return SS_E_ARG;
+  }
+  if (args->avatar && strcmp(args->avatar, "demo") != 0 && strcmp(args->avatar, "mannequin") != 0) {
+    snprintf(err, (size_t)err_sz, "unknown avatar '%s' (the built-in one is 'demo')", args->avatar);
+    return SS_E_ARG;
+  }
+  if (args->asset && (args->motion || args->mesh)) {
+    snprintf(err, (size_t)err_sz, "--asset brings its own mesh and animation: no --mesh or --motion");
+    return SS_E_ARG;
+  }
+  if (args->anim && !args->asset) {
+    snprintf(err, (size_t)err_sz, "--anim selects an animation of an --asset");
+    return SS_E_ARG;
+  }
+  if (args->urdf && !args->motion) {
+    snprintf(err, (size_t)err_sz, "--urdf needs --motion FILE.csv (or a built-in motion name)");
+    return SS_E_ARG;
+  }
+  avatar_body *ab = calloc(1, sizeof *ab);
+  if (!ab) return SS_E_NOMEM;
+  ab->builtin = -1;
+  ab->anim = -1;
+  ssa_avatar_opts opts = ssa_avatar_default_opts();
+  opts.package_path = args->package_path;
+  if (args->asset_scale > 0.0) opts.asset.scale = args->asset_scale;
+  int status;
+  double duration = 0.0;
+  if (args->avatar)
+    status = ssa_avatar_mannequin(&ab->av, args->avatar_tris, err, err_sz);
+  else if (args->urdf)
+    status = ssa_avatar_load_urdf(&ab->av, args->urdf, args->mesh, &opts, err, err_sz);
+  else
+    status = ssa_avatar_load_asset(&ab->av, args->asset, &opts, err, err_sz);
+  if (!status && ab->av->robot) {
+    ab->q = calloc((size_t)(ab->av->robot->njoint > 0 ? ab->av->robot->njoint : 1), sizeof(double));
+    if (!ab->q) status = SS_E_NOMEM;
+    if (!status) status = open_motion(ab, args->motion ? args->motion : "all", &duration, err, err_sz);
+  } else if (!status) {
+    const ssa_asset *asset = ab->av->asset;
+    if (!asset || asset->nanim <= 0) {
+      snprintf(err, (size_t)err_sz, "%s has no animation to drive the body", args->asset);
+      status = SS_E_ARG;
+    } else {
+      const char *a = args->anim ? args->anim : "0";
+      char *end = NULL;
+      errno = 0;
+      long idx = strtol(a, &end, 10);
+      ab->anim = (*a && !*end && !errno) ? (int)idx : ssa_asset_anim_index(asset, a);
+      if (ab->anim < 0 || ab->anim >= asset->nanim) {
+        snprintf(err, (size_t)err_sz, "%s has no animation '%s' (it has %d)", args->asset, a,
+                 asset->nanim);
+        status = SS_E_ARG;
+      } else {
+        duration = asset->anim_duration[ab->anim];
+      }
+    }
+  }
+  if (!status && args->region) status = open_region(ab, args->region, err, err_sz);
+  if (!status) {
+    ab->rest = malloc(sizeof(double) * 3 * (size_t)ab->av->nvert);
+    status = ab->rest ? pose(ab, 0.0, ab->rest) : SS_E_NOMEM;
+    if (status) snprintf(err, (size_t)err_sz, "posing the avatar at time 0 failed (%s)",
+                         ss_status_string(status));
+  }
+  if (status) {
+    avatar_body_close(ab);
+    return status;
+  }
+  body->nvert = ab->av->nvert;
+  body->nface = ab->av->nface;
+  body->rest = ab->rest;
+  body->faces = ab->av->faces;
+  body->fps = AVATAR_FPS;
+  body->frames = duration > 0.0 ? (int)(duration * AVATAR_FPS + 0.5) : 1;
+  if (body->frames < 1) body->frames = 1;
+  body->pose = pose;
+  body->user = ab;
+  *face_mask = ab->face_mask;
+  *out = ab;
+  return SS_OK;
+}
+#else /* built without the avatar layer (urdfdom, assimp) */
+
+int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
+                     const unsigned char **face_mask, char *err, int err_sz) {
+  (void)args, (void)body;
+  *out = NULL;
+  *face_mask = NULL;
+  snprintf(err, (size_t)err_sz, "this skinsim was built without avatars (urdfdom, assimp)");
+  return SS_E_UNSUPPORTED;
+}
+void avatar_body_close(avatar_body *ab) { (void)ab; }
+#endif

@@ -1,0 +1,32 @@
+/* skinsim: avatars as moving bodies for `skinsim run` — the glue between the
+ * avatar layer (URDF + mesh + motion, or a rigged asset with its animation,
+ * or the built-in mannequin) and the core's ss_body. */
+#ifndef SKINSIM_AVATAR_BODY_H
+#define SKINSIM_AVATAR_BODY_H
+
+#include "skin_sim/ss_run.h"
+
+typedef struct avatar_args {
+  const char *avatar;       /* "demo" (the built-in mannequin) or NULL */
+  const char *urdf, *mesh;  /* a URDF, and optionally its body mesh */
+  const char *motion;       /* a CSV file, or a built-in motion name (arms, elbows, twist, all) */
+  const char *asset;        /* a rigged character file */
+  const char *anim;         /* its animation: name or index (default 0) */
+  const char *region;       /* comma-separated links (or asset nodes) to simulate; NULL: all */
+  const char *package_path; /* NAME=DIR,... or search roots, for package:// URIs */
+  int avatar_tris;          /* mannequin size (0: 5000) */
+  double asset_scale;       /* metres per file unit (<= 0: from the file) */
+} avatar_args;
+
+typedef struct avatar_body avatar_body;
+
+/* 1 if args name an avatar at all. */
+int avatar_args_given(const avatar_args *args);
+/* Loads the avatar and its motion; fills body (valid until avatar_body_close)
+ * and, with --region, *face_mask (owned by the avatar_body). Returns SS_OK
+ * or an error with one sentence in err. */
+int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
+                     const unsigned char **face_mask, char *err, int err_sz);
+void avatar_body_close(avatar_body *ab);
+
+#endif
