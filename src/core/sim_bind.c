@@ -194,8 +194,11 @@ int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
   for (int f = 0; f < nf; f++) {
     const int *fv = sim->faces + 3 * f;
     int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
-    sim->k_face[f] = set->barycenter_anchors && any_free ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
-    if (any_free && sim->rest_area[f] > 0.0) sim->simface[sim->nsimface++] = f;
+    int has_area = sim->rest_area[f] > 0.0;
+    /* A zero-area face represents no skin: no spring. */
+    sim->k_face[f] = set->barycenter_anchors && any_free && has_area
+                         ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
+    if (any_free && has_area) sim->simface[sim->nsimface++] = f;
   }
   for (int v = 0; v < nv; v++)
     sim->k_vert[v] = sim->dof[v] >= 0 ? share * set->anchor_stiffness * sim->vert_area[v] : 0.0;
