@@ -120,7 +120,9 @@ typedef struct ss_sim_stats {
   int substeps;
   int iterations;      /* solver iterations, all substeps */
   int factorizations;
-  double residual;     /* final convergence measure of the last substep (see tol) */
+  double residual;     /* final convergence measure of the last substep (see tol): the
+                          worst vertex */
+  double residual_rms; /* the same measure, root mean square over the free vertices */
   double energy;       /* final incremental energy E(x) of the last substep */
   int converged;       /* 1 if every substep reached tol */
   int stalled;         /* substeps that stopped because no step decreased the energy */

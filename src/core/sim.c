@@ -392,6 +392,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
       status = sim->set.solver == SS_SOLVER_NEWTON
                    ? ss_solver_newton_solve(sim, sim->xd, &converged, &stalled, &nonfinite)
                    : ss_solver_qn_solve(sim, sim->xd, &converged, &stalled, &nonfinite);
+      if (status == SS_OK && nonfinite != 1) st->residual_rms = ss_sim_residual_rms(sim, sim->gd);
       if (status != SS_OK || nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->ndof)) {
         /* Keep the last good state of the free vertices, at rest. */
         for (int k = 0; k < sim->ndof; k++) {
