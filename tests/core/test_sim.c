@@ -456,6 +456,45 @@ static void test_bad_input(void) {
   fx_free(&g);
 }
 
+/* Small and odd meshes: one triangle; a body with a vertex in no face (its
+ * skin copy follows it) and a zero-area face. */
+static void test_small_meshes(void) {
+  double p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, q[9] = {0, 0, 0.1, 1, 0, 0.1, 0, 1, 0.1};
+  int f[3] = {0, 1, 2};
+  char err[256];
+  for (int solver = 0; solver < 2; solver++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.solver = solver;
+    set.bending = 1.0;
+    ss_sim *sim = NULL;
+    CHECK_EQ_INT(ss_sim_create(&sim, 3, p, 1, f, NULL, &set, err, sizeof err), SS_OK);
+    if (!sim) continue;
+    CHECK_EQ_INT(ss_sim_ndof(sim), 3);
+    for (int i = 0; i < 30; i++) CHECK_EQ_INT(ss_sim_step(sim, q, 0.0, NULL, NULL, 0), SS_OK);
+    CHECK(max_dist(ss_sim_skin_positions(sim), q, 3) < 1e-3);
+    ss_sim_destroy(sim);
+  }
+  double p2[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 5, 2, 0, 0}, q2[15];
+  int f2[6] = {0, 1, 2, 0, 1, 4}; /* vertex 3 in no face; face 1 has zero area */
+  for (int i = 0; i < 15; i++) q2[i] = p2[i] + 0.1;
+  ss_sim *sim = NULL;
+  CHECK_EQ_INT(ss_sim_create(&sim, 5, p2, 2, f2, NULL, NULL, err, sizeof err), SS_OK);
+  if (sim) {
+    ss_sim_stats st;
+    CHECK_EQ_INT(ss_sim_step(sim, q2, 0.0, &st, NULL, 0), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 15));
+    CHECK(max_dist(ss_sim_skin_positions(sim) + 9, q2 + 9, 1) < 1e-15);
+    CHECK_EQ_INT(st.failures, 0);
+    ss_sim_destroy(sim);
+  }
+  /* A skin without area is refused. */
+  double line[9] = {0, 0, 0, 0.5, 0, 0, 1, 0, 0};
+  ss_sim_mesh m = {3, line, 1, f};
+  err[0] = 0;
+  CHECK_EQ_INT(ss_sim_create(&sim, 3, p, 1, f, &m, NULL, err, sizeof err), SS_E_MESH);
+  CHECK(sim == NULL && strlen(err) > 0);
+}
+
 /* Violent motion (teleports, huge stretch): finite, areas positive. */
 static void test_violent_motion(void) {
   fx_mesh g = fx_grid(8, 8, 1.0, 1.0, 0.1);
@@ -533,6 +572,7 @@ int main(void) {
   test_bending_cantilever();
   test_slide();
   test_bad_input();
+  test_small_meshes();
   test_violent_motion();
   test_determinism();
   return ss_test_finish("test_sim");
