@@ -55,7 +55,10 @@ typedef struct ss_sim_settings {
   double young;          /* N/m: membrane Young's modulus times thickness; default 50 */
   double poisson;        /* Poisson ratio in [0, 0.5); default 0.3 */
   double density;        /* kg/m^2: mass per rest area (> 0); default 1 */
-  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs; default 1e4 */
+  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs; default 1e3:
+                              with the default density the skin rings at sqrt(k/rho) ~ 32
+                              rad/s (5 Hz, a soft adipose layer) and lags a/1000 s^2 behind
+                              a body accelerating at a, e.g. 1.6 cm on the flapping fold */
   int barycenter_anchors;  /* 1: a spring at every face barycenter too (the springs of
                               vertices and barycenters then share the stiffness half and
                               half); default 1 */
@@ -162,6 +165,13 @@ int ss_sim_ndof(const ss_sim *sim);
 int ss_sim_nanchors(const ss_sim *sim);
 const int *ss_sim_anchor_faces(const ss_sim *sim);  /* (nanchors) body face */
 const double *ss_sim_anchor_uv(const ss_sim *sim);  /* (nanchors x 2) */
+/* What the last ss_sim_step did to each anchor, summed over its substeps:
+ * pull, the distance |a* - a0| from the anchor to the candidate it was sent
+ * towards; path, the length walked on the body surface (0 unless the method
+ * is walk). (nanchors) each; zero for anchors that did not move. They let a
+ * caller tell an honest slide from a jump across a gap (a snag). */
+const double *ss_sim_anchor_pull(const ss_sim *sim);
+const double *ss_sim_anchor_path(const ss_sim *sim);
 /* World positions of the anchors in the current body pose into out
  * (nanchors x 3). */
 void ss_sim_anchor_positions(const ss_sim *sim, double *out);

@@ -49,7 +49,7 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.young = 50.0;
   s.poisson = 0.3;
   s.density = 1.0;
-  s.anchor_stiffness = 1e4;
+  s.anchor_stiffness = 1e3;
   s.barycenter_anchors = 1;
   s.bending = 0.0;
   s.damping = 0.0;
@@ -118,7 +118,7 @@ void ss_sim_destroy(ss_sim *sim) {
                     sim->anchor_pos, sim->mi,          sim->target,       sim->xd,          sim->gd,
                     sim->dir,       sim->xt,           sim->gt,           sim->xfull_t,     sim->h_const,
                     sim->lb_s,      sim->lb_y,         sim->lb_rho,       sim->lb_alpha,
-                    sim->body_rest,  sim->diag_const, sim->guess};
+                    sim->body_rest,  sim->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
   free(sim);
 }
@@ -204,6 +204,8 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   sim->anchor_face = alloc_n((size_t)sim->nanchor, sizeof(int));
   sim->anchor_uv = alloc_n(2 * (size_t)sim->nanchor, sizeof(double));
   sim->anchor_pos = alloc_n(3 * (size_t)sim->nanchor, sizeof(double));
+  sim->anchor_pull = alloc_n((size_t)sim->nanchor, sizeof(double));
+  sim->anchor_path = alloc_n((size_t)sim->nanchor, sizeof(double));
   sim->x = alloc_n(nv3, sizeof(double));
   sim->x_prev = alloc_n(nv3, sizeof(double));
   sim->v = alloc_n(nv3, sizeof(double));
@@ -214,6 +216,7 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   if (!sim->faces || !sim->rest || !sim->mask || !sim->dm_inv || !sim->rest_area || !sim->vert_area ||
       !sim->mass || !sim->k_vert || !sim->k_face || !sim->kind || !sim->dof || !sim->simface ||
       !sim->anchor_face0 || !sim->anchor_uv0 || !sim->anchor_face || !sim->anchor_uv || !sim->anchor_pos ||
+      !sim->anchor_pull || !sim->anchor_path ||
       !sim->x || !sim->x_prev || !sim->v || !sim->xfull_t || !sim->body_prev || !sim->body_sub ||
       !sim->body_rest) {
     status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
@@ -301,6 +304,10 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
     ss_walk_result res;
     ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
+    double pull2 = 0.0;
+    for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
+    sim->anchor_pull[a] += sqrt(pull2);
+    sim->anchor_path[a] += res.length;
     sim->anchor_face[a] = res.face;
     sim->anchor_uv[2 * a] = res.uv[0];
     sim->anchor_uv[2 * a + 1] = res.uv[1];
@@ -350,6 +357,8 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
         return ss_fail(err, err_sz, SS_E_NONFINITE, "body vertex %d has a non-finite coordinate", v);
   double t_start = ss_now_ms();
   sim->st = st;
+  memset(sim->anchor_pull, 0, (size_t)sim->nanchor * sizeof(double));
+  memset(sim->anchor_path, 0, (size_t)sim->nanchor * sizeof(double));
   int substeps = sim->set.substeps;
   double h = dt / substeps;
   size_t nv3 = 3 * (size_t)sim->nvert, nb3 = 3 * (size_t)sim->nbvert;
@@ -441,6 +450,8 @@ int ss_sim_body_nface(const ss_sim *sim) { return sim->nbface; }
 int ss_sim_nanchors(const ss_sim *sim) { return sim->nanchor; }
 const int *ss_sim_anchor_faces(const ss_sim *sim) { return sim->anchor_face; }
 const double *ss_sim_anchor_uv(const ss_sim *sim) { return sim->anchor_uv; }
+const double *ss_sim_anchor_pull(const ss_sim *sim) { return sim->anchor_pull; }
+const double *ss_sim_anchor_path(const ss_sim *sim) { return sim->anchor_path; }
 const ss_topo *ss_sim_body_topo(const ss_sim *sim) { return sim->btopo; }
 
 void ss_sim_anchor_positions(const ss_sim *sim, double *out) {

@@ -78,6 +78,8 @@ struct ss_sim {
   int *anchor_face;           /* (nanchor) */
   double *anchor_uv;          /* (nanchor x 2) */
   double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
+  double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
+  double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
   double *mi;                 /* (ndof) inertia weight: mass (1/h^2 + damping/h) */
   double *diag_const;         /* (ndof) diagonal of the scalar matrix without inertia */

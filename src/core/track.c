@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "skin_sim/ss_track.h"
+#include "snag.h"
 #include "ss_err.h"
 
 ss_track_settings ss_track_default_settings(void) {
@@ -59,26 +60,6 @@ static void seed_anchors(const ss_topo *topo, int *face, double *uv) {
   }
 }
 
-/* Length of a known path on the surface from anchor (face, uv) to a1 (on
- * face a1_face), or INFINITY: the walk's own path when the method walked
- * (walk_length >= 0), else a probe walk from the anchor straight towards a1
- * when it arrives there. Either is a path on the surface, hence an upper
- * bound of the geodesic distance that is much tighter than the edge-graph
- * estimate where that zig-zags; every method's result gets the same
- * benefit, so snag counts stay comparable. */
-static double surface_path(ss_walker *probe, const ss_topo *topo, const ss_frames *fr, int face,
-                           const double uv[2], int a1_face, const double a1[3],
-                           double walk_length, double edge) {
-  if (walk_length >= 0.0) return walk_length;
-  ss_walk_result r;
-  ss_walk(probe, topo, fr, face, uv, a1, 1 << 20, &r);
-  if (r.face != a1_face) return INFINITY;
-  double x[3], d2 = 0.0;
-  ss_anchor_position(fr, r.face, r.uv, x);
-  for (int c = 0; c < 3; c++) d2 += (x[c] - a1[c]) * (x[c] - a1[c]);
-  return d2 <= 1e-18 * edge * edge ? r.length : INFINITY;
-}
-
 static int anchor_ok(const ss_topo *topo, int face, const double uv[2], const double x[3]) {
   const double tol = 1e-9;
   if (face < 0 || face >= topo->nface) return 0;
@@ -102,14 +83,12 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
 
   ss_topo *topo = NULL;
   ss_mover *mover = NULL;
-  ss_geodesic *geo = NULL;
-  ss_walker *probe = NULL;
+  snag_judge judge = {0};
   int status = ss_topo_create(&topo, nvert, ss_scene_rest(scene), nface, ss_scene_faces(scene),
                               -1.0, err, err_sz);
   if (status) return status;
   status = ss_mover_create(&mover, topo, &settings->mover, err, err_sz);
-  if (!status) status = ss_geodesic_create(&geo, topo);
-  if (!status) status = ss_walker_create(&probe, nface);
+  if (!status) status = snag_judge_init(&judge, topo);
   const int nanchor = nvert + nface;
   double *pos = malloc(sizeof(double) * 3 * (size_t)nvert);
   int *anchor_face = malloc(sizeof(int) * (size_t)nanchor);
@@ -186,14 +165,10 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
         double pull = 0.0;
         for (int c = 0; c < 3; c++) pull += (target[3 * i + c] - a0[c]) * (target[3 * i + c] - a0[c]);
         double limit = settings->snag_factor * sqrt(pull) + edge;
-        double path = surface_path(probe, topo, fr, anchor_face[i], anchor_uv + 2 * i, new_face[i],
-                                   a1, settings->mover.method == SS_METHOD_WALK ? new_path[i] : -1.0,
-                                   edge);
-        double dist = path <= limit ? path
-                                    : ss_surface_distance(geo, topo, pos, anchor_face[i],
-                                                          anchor_uv + 2 * i, new_face[i],
-                                                          new_uv + 2 * i, limit);
-        if (!(dist <= limit)) stats->snags++;
+        if (snag_is(&judge, topo, fr, pos, anchor_face[i], anchor_uv + 2 * i, new_face[i],
+                    new_uv + 2 * i,
+                    settings->mover.method == SS_METHOD_WALK ? new_path[i] : -1.0, limit))
+          stats->snags++;
       }
       anchor_face[i] = new_face[i];
       anchor_uv[2 * i] = new_uv[2 * i];
@@ -219,8 +194,7 @@ done:
   free(new_stop);
   free(new_path);
   free(frame_ms);
-  ss_geodesic_destroy(geo);
-  ss_walker_destroy(probe);
+  snag_judge_free(&judge);
   ss_mover_destroy(mover);
   ss_topo_destroy(topo);
   return status;

@@ -5,12 +5,15 @@
 
 #include <stdio.h>
 
+#include "skin_sim/ss_run.h"
 #include "skin_sim/ss_track.h"
 
 int cmd_scenes(int argc, char **argv);
 int cmd_track(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_run(int argc, char **argv);
 
+void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run_stats *st);
 void track_json(FILE *f, const char *scene, const ss_track_settings *s, const ss_track_stats *st);
 
 #endif

@@ -19,6 +19,14 @@ static void usage(FILE *f) {
       "                              edge lengths off the surface, default 0.1) and moved there by\n"
       "                              the method; counts snags and failures\n"
       "  compare [--frames N]        every scene with every method: the table of where methods snag\n"
+      "  run --scene NAME [--tris N] [--frames N] [--method walk|project|nring] [--rings N]\n"
+      "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
+      "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
+      "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide R]\n"
+      "        [--json FILE|-] [--out DIR]\n"
+      "                              the dynamic skin over a scene: one step per frame; JSON\n"
+      "                              summary (speed, snags, failures, hugging, area ratios,\n"
+      "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply\n"
       "  help                        this text\n"
       "\n"
       "exit status: 0 ok, 1 the run failed, 2 bad usage or input\n",
@@ -38,6 +46,7 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "scenes") == 0) return cmd_scenes(argc - 1, argv + 1);
   if (strcmp(cmd, "track") == 0) return cmd_track(argc - 1, argv + 1);
   if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
+  if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
   cli_error("unknown command '%s' (try: skinsim help)", cmd);
   return EXIT_USAGE;
 }

@@ -1,0 +1,499 @@
+/* Avatars: a body mesh, its skin binding (bones, bind matrices, weights) and
+ * what drives it, a URDF robot (joint values -> FK) or an asset's animation.
+ * Posing is target poses -> bone matrices -> linear blend skinning, into the
+ * caller's array, without allocating.
+ *
+ * Binding a body to a URDF: the body at rest is taken to be the robot at
+ * zero joint values, so each link's bind matrix is the inverse of its rest
+ * pose (the file's own inverse bind matrices are not used: the file's bone
+ * frames need not be the URDF's link frames; only the weights are). */
+#include "skin_sim/ss_mesh.h"
+#include "skin_sim/ssa_avatar.h"
+#include "ssa_util.h"
+
+ssa_avatar_opts ssa_avatar_default_opts(void) {
+  ssa_avatar_opts o;
+  o.package_path = NULL;
+  o.asset = ssa_asset_default_opts();
+  o.weld_tol = -1.0;
+  o.force_auto_weights = 0;
+  o.autoweight = ssa_autoweight_default_opts();
+  return o;
+}
+
+void ssa_avatar_destroy(ssa_avatar *av) {
+  if (!av) return;
+  ssa_robot_destroy(av->robot);
+  ssa_asset_destroy(av->asset);
+  free(av->rest_pos);
+  free(av->faces);
+  free(av->vert_part);
+  free(av->vert_src);
+  free(av->vert_link);
+  free(av->bone_target);
+  free(av->bone_offset);
+  free(av->bind_pos);
+  free(av->w_start);
+  free(av->w_bone);
+  free(av->w_weight);
+  free(av->target_world);
+  free(av->bone_mat);
+  free(av);
+}
+
+/* Allocates the per-vertex and per-bone arrays (weights: nw entries). */
+static int alloc_body(ssa_avatar *av, int nvert, int nface, int nbone, int ntarget, int nw) {
+  av->nvert = nvert;
+  av->nface = nface;
+  av->nbone = nbone;
+  av->ntarget = ntarget;
+  av->rest_pos = malloc(sizeof(double) * 3 * (size_t)nvert);
+  av->bind_pos = malloc(sizeof(double) * 3 * (size_t)nvert);
+  av->faces = malloc(sizeof(int) * 3 * (size_t)nface);
+  av->vert_part = calloc((size_t)nvert, sizeof(int));
+  av->vert_src = calloc((size_t)nvert, sizeof(int));
+  av->vert_link = calloc((size_t)nvert, sizeof(int));
+  av->bone_target = calloc((size_t)(nbone > 0 ? nbone : 1), sizeof(int));
+  av->bone_offset = calloc((size_t)(nbone > 0 ? nbone : 1) * 16, sizeof(double));
+  av->bone_mat = calloc((size_t)(nbone > 0 ? nbone : 1) * 16, sizeof(double));
+  av->target_world = calloc((size_t)(ntarget > 0 ? ntarget : 1) * 16, sizeof(double));
+  av->w_start = calloc((size_t)nvert + 1, sizeof(int));
+  if (nw >= 0) {
+    av->w_bone = calloc((size_t)(nw > 0 ? nw : 1), sizeof(int));
+    av->w_weight = calloc((size_t)(nw > 0 ? nw : 1), sizeof(double));
+    if (!av->w_bone || !av->w_weight) return 0;
+  }
+  return av->rest_pos && av->bind_pos && av->faces && av->vert_part && av->vert_src &&
+         av->vert_link && av->bone_target && av->bone_offset && av->bone_mat &&
+         av->target_world && av->w_start;
+}
+
+/* vert_link: the target of each vertex's largest weight. */
+static void set_dominant(ssa_avatar *av) {
+  for (int v = 0; v < av->nvert; v++) {
+    double best = -1;
+    int bt = 0;
+    for (int k = av->w_start[v]; k < av->w_start[v + 1]; k++)
+      if (av->w_weight[k] > best) {
+        best = av->w_weight[k];
+        bt = av->bone_target[av->w_bone[k]];
+      }
+    av->vert_link[v] = bt;
+  }
+}
+
+int ssa_avatar_pose_joints_at(ssa_avatar *av, const double *root_pose, const double *q,
+                              double *out) {
+  if (!av || !out || av->kind != SSA_AVATAR_ROBOT || !av->robot) return SS_E_ARG;
+  if (root_pose)
+    for (int i = 0; i < 16; i++)
+      if (!isfinite(root_pose[i])) return SS_E_NONFINITE;
+  ssa_robot_fk(av->robot, q, av->target_world);
+  for (int b = 0; b < av->nbone; b++) {
+    const double *tw = av->target_world + 16 * av->bone_target[b];
+    if (root_pose) {
+      double m[16];
+      m4_mul(root_pose, tw, m);
+      m4_mul(m, av->bone_offset + 16 * b, av->bone_mat + 16 * b);
+    } else {
+      m4_mul(tw, av->bone_offset + 16 * b, av->bone_mat + 16 * b);
+    }
+  }
+  ssa_lbs(av->nvert, av->bind_pos, av->w_start, av->w_bone, av->w_weight, av->bone_mat, out);
+  return SS_OK;
+}
+
+int ssa_avatar_pose_joints(ssa_avatar *av, const double *q, double *out) {
+  return ssa_avatar_pose_joints_at(av, NULL, q, out);
+}
+
+int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out) {
+  if (!av || !out || av->kind != SSA_AVATAR_ASSET || !av->asset) return SS_E_ARG;
+  if (anim < -1 || anim >= av->asset->nanim || !isfinite(t)) return SS_E_ARG;
+  ssa_asset_node_world(av->asset, anim, t, av->target_world);
+  for (int b = 0; b < av->nbone; b++)
+    m4_mul(av->target_world + 16 * av->bone_target[b], av->bone_offset + 16 * b, av->bone_mat + 16 * b);
+  ssa_lbs(av->nvert, av->bind_pos, av->w_start, av->w_bone, av->w_weight, av->bone_mat, out);
+  return SS_OK;
+}
+
+/* ---------------------------------------------------------------- asset avatars */
+
+int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_avatar_opts *opts,
+                          char *err, int err_sz) {
+  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  *out = NULL;
+  ssa_avatar_opts o = opts ? *opts : ssa_avatar_default_opts();
+  ssa_asset *a = NULL;
+  int st = ssa_asset_load(&a, asset_path, &o.asset, err, err_sz);
+  if (st != SS_OK) return st;
+  ssa_avatar *av = calloc(1, sizeof *av);
+  int nw = a->w_start[a->nvert];
+  if (!av || !alloc_body(av, a->nvert, a->nface, a->nbone, a->nnode, nw)) {
+    ssa_avatar_destroy(av);
+    ssa_asset_destroy(a);
+    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for asset '%s'", asset_path);
+  }
+  av->kind = SSA_AVATAR_ASSET;
+  av->weight_source = SSA_WEIGHTS_FILE;
+  av->asset = a;
+  memcpy(av->rest_pos, a->rest_pos, sizeof(double) * 3 * (size_t)a->nvert);
+  memcpy(av->bind_pos, a->bind_pos, sizeof(double) * 3 * (size_t)a->nvert);
+  memcpy(av->faces, a->faces, sizeof(int) * 3 * (size_t)a->nface);
+  memcpy(av->vert_part, a->vert_part, sizeof(int) * (size_t)a->nvert);
+  memcpy(av->vert_src, a->vert_src, sizeof(int) * (size_t)a->nvert);
+  memcpy(av->bone_target, a->bone_node, sizeof(int) * (size_t)a->nbone);
+  memcpy(av->bone_offset, a->bone_offset, sizeof(double) * 16 * (size_t)a->nbone);
+  memcpy(av->w_start, a->w_start, sizeof(int) * ((size_t)a->nvert + 1));
+  memcpy(av->w_bone, a->w_bone, sizeof(int) * (size_t)nw);
+  memcpy(av->w_weight, a->w_weight, sizeof(double) * (size_t)nw);
+  set_dominant(av);
+  *out = av;
+  return SS_OK;
+}
+
+/* ---------------------------------------------------------------- robot avatars */
+
+/* Link segments for automatic weights (see ssa_avatar_load_urdf). */
+static int link_segments(const ssa_robot *r, const double *lw, double **seg, int **owner) {
+  int nseg = 0;
+  for (int l = 0; l < r->nlink; l++) {
+    int nchild = 0;
+    for (int c = 0; c < r->nlink; c++) nchild += r->link_parent[c] == l;
+    nseg += nchild > 0 ? nchild : 1;
+  }
+  *seg = malloc(sizeof(double) * 6 * (size_t)nseg);
+  *owner = malloc(sizeof(int) * (size_t)nseg);
+  if (!*seg || !*owner) return -1;
+  int k = 0;
+  for (int l = 0; l < r->nlink; l++) {
+    const double *o = lw + 16 * l;
+    double a[3] = {o[3], o[7], o[11]};
+    int nchild = 0;
+    for (int c = 0; c < r->nlink; c++) {
+      if (r->link_parent[c] != l) continue;
+      const double *oc = lw + 16 * c;
+      double *s = *seg + 6 * k;
+      s[0] = a[0], s[1] = a[1], s[2] = a[2];
+      s[3] = oc[3], s[4] = oc[7], s[5] = oc[11];
+      (*owner)[k++] = l;
+      nchild++;
+    }
+    if (nchild == 0) {
+      double *s = *seg + 6 * k;
+      s[0] = s[3] = a[0], s[1] = s[4] = a[1], s[2] = s[5] = a[2];
+      int p = r->link_parent[l];
+      if (p >= 0) {
+        const double *op = lw + 16 * p;
+        s[3] += a[0] - op[3];
+        s[4] += a[1] - op[7];
+        s[5] += a[2] - op[11];
+      }
+      (*owner)[k++] = l;
+    }
+  }
+  return nseg;
+}
+
+/* Bones: one per link, bind = inverse rest pose; weights from auto. */
+static int bind_links_auto(ssa_avatar *av, const ssa_avatar_opts *o, const char *what, char *err,
+                           int err_sz) {
+  const ssa_robot *r = av->robot;
+  double *seg = NULL;
+  int *owner = NULL;
+  int nseg = link_segments(r, av->target_world, &seg, &owner);
+  if (nseg < 0) {
+    free(seg);
+    free(owner);
+    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory binding %s", what);
+  }
+  free(av->w_start);
+  free(av->w_bone);
+  free(av->w_weight);
+  av->w_start = NULL;
+  av->w_bone = NULL;
+  av->w_weight = NULL;
+  char why[512] = "";
+  int st = ssa_auto_weights(av->nvert, av->rest_pos, av->nface, av->faces, o->weld_tol, nseg, seg,
+                            owner, r->nlink, &o->autoweight, &av->w_start, &av->w_bone,
+                            &av->w_weight, NULL, why, sizeof why);
+  free(seg);
+  free(owner);
+  if (st != SS_OK) return ssa_fail(err, err_sz, st, "%s: automatic weights failed: %s", what, why);
+  av->weight_source = SSA_WEIGHTS_AUTO;
+  return SS_OK;
+}
+
+static int setup_link_bones(ssa_avatar *av) {
+  const ssa_robot *r = av->robot;
+  for (int l = 0; l < r->nlink; l++) {
+    av->bone_target[l] = l;
+    if (!m4_affine_inverse(av->target_world + 16 * l, av->bone_offset + 16 * l)) return 0;
+  }
+  memcpy(av->bind_pos, av->rest_pos, sizeof(double) * 3 * (size_t)av->nvert);
+  return 1;
+}
+
+/* Try the file's bones: each binds to the link named like its node or the
+ * nearest ancestor node that is a link. Returns 1 if every vertex got weight. */
+static int bind_links_from_file(ssa_avatar *av) {
+  const ssa_robot *r = av->robot;
+  const ssa_asset *a = av->asset;
+  int *bone_link = malloc(sizeof(int) * (size_t)(a->nbone > 0 ? a->nbone : 1));
+  double *acc = calloc((size_t)r->nlink, sizeof(double));
+  int nw_max = a->w_start[a->nvert];
+  int *wb = malloc(sizeof(int) * (size_t)(nw_max > 0 ? nw_max : 1));
+  double *ww = malloc(sizeof(double) * (size_t)(nw_max > 0 ? nw_max : 1));
+  int *ws = calloc((size_t)a->nvert + 1, sizeof(int));
+  int ok = bone_link && acc && wb && ww && ws && a->nbone_file > 0;
+  int matched_file_bone = 0;
+  for (int b = 0; ok && b < a->nbone; b++) {
+    int n = a->bone_node[b], l = -1;
+    while (n >= 0 && l < 0) {
+      l = ssa_robot_link_index(r, a->node_name[n]);
+      n = a->node_parent[n];
+    }
+    bone_link[b] = l;
+    if (l >= 0 && b < a->nbone_file) matched_file_bone = 1;
+  }
+  ok = ok && matched_file_bone;
+  int nw = 0;
+  for (int v = 0; ok && v < a->nvert; v++) {
+    for (int k = a->w_start[v]; k < a->w_start[v + 1]; k++) {
+      int l = bone_link[a->w_bone[k]];
+      if (l >= 0) acc[l] += a->w_weight[k];
+    }
+    double sum = 0;
+    int first = nw;
+    for (int l = 0; l < r->nlink; l++)
+      if (acc[l] > 0) {
+        wb[nw] = l;
+        ww[nw] = acc[l];
+        sum += acc[l];
+        nw++;
+        acc[l] = 0;
+      }
+    if (!(sum > 0)) ok = 0;
+    for (int k = first; k < nw; k++) ww[k] /= sum;
+    ws[v + 1] = nw;
+  }
+  if (ok) {
+    free(av->w_start);
+    free(av->w_bone);
+    free(av->w_weight);
+    av->w_start = ws;
+    av->w_bone = wb;
+    av->w_weight = ww;
+    av->weight_source = SSA_WEIGHTS_FILE;
+  } else {
+    free(ws);
+    free(wb);
+    free(ww);
+  }
+  free(bone_link);
+  free(acc);
+  return ok;
+}
+
+static int finish_mesh_body(ssa_avatar *av, const ssa_avatar_opts *o, const char *what,
+                            int try_file, char *err, int err_sz) {
+  if (!setup_link_bones(av))
+    return ssa_fail(err, err_sz, SS_E_ARG, "%s: a link pose is singular", what);
+  if (!(try_file && !o->force_auto_weights && bind_links_from_file(av))) {
+    int st = bind_links_auto(av, o, what, err, err_sz);
+    if (st != SS_OK) return st;
+  }
+  set_dominant(av);
+  return SS_OK;
+}
+
+static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err, int err_sz) {
+  const ssa_robot *r = av->robot;
+  const char *urdf = r->path && r->path[0] ? r->path : "(URDF text)";
+  ssa_asset_opts ao = o->asset;
+  ao.scale = 1.0;
+  ao.z_up = 0;
+  ao.ignore_up_axis = 1;
+  ssa_asset **parts = calloc((size_t)(r->nvisual > 0 ? r->nvisual : 1), sizeof *parts);
+  if (!parts) return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
+  int st = SS_OK, nv = 0, nf = 0, nb = 0;
+  char base[4096];
+  snprintf(base, sizeof base, "%s", r->path ? r->path : "");
+  char *slash = strrchr(base, '/');
+  if (slash) *slash = '\0'; else snprintf(base, sizeof base, ".");
+  for (int i = 0; i < r->nvisual && st == SS_OK; i++) {
+    if (!r->visual_is_mesh[i]) continue;
+    if (!r->visual_path[i]) {
+      char path[4096], why[1024] = "";
+      ssa_resolve_uri(r->visual_uri[i], base, o->package_path, path, sizeof path, why, sizeof why);
+      st = ssa_fail(err, err_sz, SS_E_IO, "URDF '%s', link '%s': %s", urdf,
+                    r->link_name[r->visual_link[i]], why);
+      break;
+    }
+    char why[1024] = "";
+    st = ssa_asset_load(&parts[i], r->visual_path[i], &ao, why, sizeof why);
+    if (st != SS_OK) {
+      ssa_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, r->link_name[r->visual_link[i]],
+               why);
+      break;
+    }
+    nv += parts[i]->nvert;
+    nf += parts[i]->nface;
+    nb++;
+  }
+  if (st == SS_OK && nf == 0)
+    st = ssa_fail(err, err_sz, SS_E_MESH, "URDF '%s' has no visual meshes to make a body of", urdf);
+  if (st == SS_OK && !alloc_body(av, nv, nf, nb, r->nlink, nv))
+    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
+  if (st == SS_OK) {
+    int v0 = 0, f0 = 0, b = 0;
+    for (int i = 0; i < r->nvisual; i++) {
+      const ssa_asset *p = parts[i];
+      if (!p) continue;
+      double sc[16];
+      m4_identity(sc);
+      sc[0] = r->visual_scale[3 * i];
+      sc[5] = r->visual_scale[3 * i + 1];
+      sc[10] = r->visual_scale[3 * i + 2];
+      av->bone_target[b] = r->visual_link[i];
+      m4_mul(r->visual_origin + 16 * i, sc, av->bone_offset + 16 * b);
+      memcpy(av->bind_pos + 3 * v0, p->rest_pos, sizeof(double) * 3 * (size_t)p->nvert);
+      for (int v = 0; v < p->nvert; v++) {
+        av->vert_part[v0 + v] = i;
+        av->vert_src[v0 + v] = v;
+        av->w_start[v0 + v + 1] = v0 + v + 1;
+        av->w_bone[v0 + v] = b;
+        av->w_weight[v0 + v] = 1.0;
+      }
+      for (int f = 0; f < 3 * p->nface; f++) av->faces[3 * f0 + f] = p->faces[f] + v0;
+      v0 += p->nvert;
+      f0 += p->nface;
+      b++;
+    }
+    av->weight_source = SSA_WEIGHTS_RIGID;
+    ssa_avatar_pose_joints(av, NULL, av->rest_pos);
+    set_dominant(av);
+  }
+  for (int i = 0; i < r->nvisual; i++) ssa_asset_destroy(parts[i]);
+  free(parts);
+  return st;
+}
+
+int ssa_avatar_from_robot(ssa_avatar **out, ssa_robot *robot, const char *mesh_path,
+                          const ssa_avatar_opts *opts, char *err, int err_sz) {
+  if (!out) {
+    ssa_robot_destroy(robot);
+    return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  }
+  *out = NULL;
+  if (!robot) return ssa_fail(err, err_sz, SS_E_ARG, "no robot given");
+  ssa_avatar_opts o = opts ? *opts : ssa_avatar_default_opts();
+  ssa_avatar *av = calloc(1, sizeof *av);
+  if (!av) {
+    ssa_robot_destroy(robot);
+    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  }
+  av->kind = SSA_AVATAR_ROBOT;
+  av->robot = robot;
+  int st;
+  if (!mesh_path) {
+    st = body_from_visuals(av, &o, err, err_sz);
+  } else {
+    st = ssa_asset_load(&av->asset, mesh_path, &o.asset, err, err_sz);
+    if (st == SS_OK) {
+      const ssa_asset *a = av->asset;
+      if (!alloc_body(av, a->nvert, a->nface, robot->nlink, robot->nlink, -1)) {
+        st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", mesh_path);
+      } else {
+        memcpy(av->rest_pos, a->rest_pos, sizeof(double) * 3 * (size_t)a->nvert);
+        memcpy(av->faces, a->faces, sizeof(int) * 3 * (size_t)a->nface);
+        memcpy(av->vert_part, a->vert_part, sizeof(int) * (size_t)a->nvert);
+        memcpy(av->vert_src, a->vert_src, sizeof(int) * (size_t)a->nvert);
+        ssa_robot_fk(robot, NULL, av->target_world);
+        char what[4200];
+        snprintf(what, sizeof what, "mesh file '%s'", mesh_path);
+        st = finish_mesh_body(av, &o, what, 1, err, err_sz);
+      }
+    }
+  }
+  if (st != SS_OK) {
+    ssa_avatar_destroy(av);
+    return st;
+  }
+  *out = av;
+  return SS_OK;
+}
+
+int ssa_avatar_from_robot_mesh(ssa_avatar **out, ssa_robot *robot, int nvert, const double *pos,
+                               int nface, const int *faces, const ssa_avatar_opts *opts,
+                               char *err, int err_sz) {
+  if (!out) {
+    ssa_robot_destroy(robot);
+    return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  }
+  *out = NULL;
+  if (!robot) return ssa_fail(err, err_sz, SS_E_ARG, "no robot given");
+  char why[512] = "";
+  int st = ss_mesh_check(nvert, pos, nface, faces, why, sizeof why);
+  if (st != SS_OK) {
+    ssa_robot_destroy(robot);
+    return ssa_fail(err, err_sz, st, "body mesh: %s", why);
+  }
+  ssa_avatar_opts o = opts ? *opts : ssa_avatar_default_opts();
+  ssa_avatar *av = calloc(1, sizeof *av);
+  if (!av || !alloc_body(av, nvert, nface, robot->nlink, robot->nlink, -1)) {
+    if (av) av->robot = robot; else ssa_robot_destroy(robot);
+    ssa_avatar_destroy(av);
+    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for the body mesh");
+  }
+  av->kind = SSA_AVATAR_ROBOT;
+  av->robot = robot;
+  memcpy(av->rest_pos, pos, sizeof(double) * 3 * (size_t)nvert);
+  memcpy(av->faces, faces, sizeof(int) * 3 * (size_t)nface);
+  for (int v = 0; v < nvert; v++) av->vert_src[v] = v;
+  ssa_robot_fk(robot, NULL, av->target_world);
+  st = finish_mesh_body(av, &o, "body mesh", 0, err, err_sz);
+  if (st != SS_OK) {
+    ssa_avatar_destroy(av);
+    return st;
+  }
+  *out = av;
+  return SS_OK;
+}
+
+int ssa_avatar_load_urdf(ssa_avatar **out, const char *urdf_path, const char *mesh_path,
+                         const ssa_avatar_opts *opts, char *err, int err_sz) {
+  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  *out = NULL;
+  ssa_robot *r = NULL;
+  int st = ssa_robot_load(&r, urdf_path, opts ? opts->package_path : NULL, err, err_sz);
+  if (st != SS_OK) return st;
+  return ssa_avatar_from_robot(out, r, mesh_path, opts, err, err_sz);
+}
+
+int ssa_avatar_region_mask(const ssa_avatar *av, int n, const char *const *names,
+                           unsigned char *mask, char *err, int err_sz) {
+  if (!av || !mask || n < 0 || (n > 0 && !names))
+    return ssa_fail(err, err_sz, SS_E_ARG, "region: missing arguments");
+  memset(mask, 0, (size_t)av->nvert);
+  unsigned char *pick = calloc((size_t)(av->ntarget > 0 ? av->ntarget : 1), 1);
+  if (!pick) return ssa_fail(err, err_sz, SS_E_NOMEM, "region: out of memory");
+  for (int i = 0; i < n; i++) {
+    int t = av->kind == SSA_AVATAR_ROBOT ? ssa_robot_link_index(av->robot, names[i])
+                                         : ssa_asset_node_index(av->asset, names[i]);
+    if (t < 0) {
+      free(pick);
+      return ssa_fail(err, err_sz, SS_E_ARG, "region: '%s' is no %s of this avatar",
+                      names[i] ? names[i] : "(null)",
+                      av->kind == SSA_AVATAR_ROBOT ? "link" : "node");
+    }
+    pick[t] = 1;
+  }
+  int count = 0;
+  for (int v = 0; v < av->nvert; v++) {
+    mask[v] = pick[av->vert_link[v]];
+    count += mask[v];
+  }
+  free(pick);
+  return count;
+}

@@ -1,0 +1,229 @@
+/* skinsim run: the dynamic skin over a built-in scene, with its JSON summary
+ * and, with --out, a PLY file of the skin (and of the body) at every frame. */
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "skin_sim/ss_run.h"
+
+/* Binary little-endian PLY of float positions and int triangles. */
+static int write_ply(const char *path, int nvert, const double *pos, int nface, const int *faces) {
+  FILE *f = fopen(path, "wb");
+  if (!f) return -1;
+  fprintf(f,
+          "ply\nformat binary_little_endian 1.0\ncomment skin_sim\nelement vertex %d\n"
+          "property float x\nproperty float y\nproperty float z\nelement face %d\n"
+          "property list uchar int vertex_indices\nend_header\n",
+          nvert, nface);
+  for (int v = 0; v < nvert; v++) {
+    float p[3] = {(float)pos[3 * v], (float)pos[3 * v + 1], (float)pos[3 * v + 2]};
+    fwrite(p, sizeof p, 1, f);
+  }
+  for (int t = 0; t < nface; t++) {
+    unsigned char three = 3;
+    fwrite(&three, 1, 1, f);
+    fwrite(faces + 3 * t, sizeof(int), 3, f);
+  }
+  int bad = ferror(f);
+  return (fclose(f) != 0 || bad) ? -1 : 0;
+}
+
+typedef struct frame_writer {
+  const char *dir;
+  const ss_scene *scene;
+  char error[4400];
+} frame_writer;
+
+static int write_frame(void *user, int frame, const ss_sim *sim, const double *body_pos) {
+  frame_writer *w = user;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/skin_%04d.ply", w->dir, frame);
+  if (write_ply(path, ss_sim_skin_nvert(sim), ss_sim_skin_positions(sim), ss_sim_skin_nface(sim),
+                ss_sim_skin_faces(sim))) {
+    snprintf(w->error, sizeof w->error, "cannot write '%s': %s", path, strerror(errno));
+    return 1;
+  }
+  snprintf(path, sizeof path, "%s/body_%04d.ply", w->dir, frame);
+  if (write_ply(path, ss_scene_nvert(w->scene), body_pos, ss_scene_nface(w->scene),
+                ss_scene_faces(w->scene))) {
+    snprintf(w->error, sizeof w->error, "cannot write '%s': %s", path, strerror(errno));
+    return 1;
+  }
+  return 0;
+}
+
+void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run_stats *st) {
+  json_out j;
+  json_begin(&j, f);
+  json_str(&j, "scene", scene);
+  json_str(&j, "method", ss_method_name(s->sim.mover.method));
+  if (s->sim.mover.method == SS_METHOD_NRING) json_int(&j, "nring_rings", s->sim.mover.nring_rings);
+  json_str(&j, "solver", ss_solver_name(s->sim.solver));
+  json_int(&j, "triangles", st->triangles);
+  json_int(&j, "vertices", st->vertices);
+  json_int(&j, "anchors", st->anchors);
+  json_int(&j, "dof", st->dof);
+  json_int(&j, "frames", st->frames);
+  json_num(&j, "dt", 1.0 / 30.0);
+  json_int(&j, "substeps", s->sim.substeps);
+  json_int(&j, "iterations", s->sim.iterations);
+  json_num(&j, "tol", s->sim.tol);
+  json_num(&j, "ms_per_frame_median", st->ms_per_frame_median);
+  json_num(&j, "walk_ms_per_frame_median", st->walk_ms_per_frame_median);
+  json_num(&j, "walk_share", st->walk_share);
+  json_num(&j, "assemble_ms_per_frame_median", st->assemble_ms_per_frame_median);
+  json_num(&j, "factor_ms_per_frame_median", st->factor_ms_per_frame_median);
+  json_num(&j, "solve_ms_per_frame_median", st->solve_ms_per_frame_median);
+  json_num(&j, "iterations_mean", st->iterations_mean);
+  json_int(&j, "snags", st->snags);
+  json_int(&j, "failures", st->failures);
+  json_int(&j, "stalled", st->stalled);
+  json_int(&j, "unconverged_frames", st->unconverged);
+  json_int(&j, "anchors_at_boundary", st->anchors_at_boundary);
+  json_int(&j, "anchors_at_crease", st->anchors_at_crease);
+  json_int(&j, "anchors_at_step_limit", st->anchors_at_step_limit);
+  json_num(&j, "min_area_ratio", st->min_area_ratio);
+  json_num(&j, "max_area_ratio", st->max_area_ratio);
+  json_num(&j, "hug_rms", st->hug_rms);
+  json_num(&j, "hug_max", st->hug_max);
+  json_num(&j, "mean_edge_length", st->mean_edge_length);
+  json_num(&j, "young", s->sim.young);
+  json_num(&j, "poisson", s->sim.poisson);
+  json_num(&j, "anchor_stiffness", s->sim.anchor_stiffness);
+  json_int(&j, "barycenter_anchors", s->sim.barycenter_anchors);
+  json_num(&j, "bending", s->sim.bending);
+  json_num(&j, "slide", s->sim.slide);
+  json_hex(&j, "final_hash", st->final_hash);
+  json_end(&j);
+}
+
+int cmd_run(int argc, char **argv) {
+  const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL;
+  int tris = 0;
+  ss_run_settings s = ss_run_default_settings();
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = NULL;
+    if (strcmp(a, "--scene") == 0) {
+      if (!(scene_name = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--method") == 0) {
+      if (!(v = cli_value(argc, argv, &i))) return EXIT_USAGE;
+      s.sim.mover.method = ss_method_parse(v);
+      if (s.sim.mover.method < 0) {
+        cli_error("--method expects walk, project or nring, got '%s'", v);
+        return EXIT_USAGE;
+      }
+    } else if (strcmp(a, "--solver") == 0) {
+      if (!(v = cli_value(argc, argv, &i))) return EXIT_USAGE;
+      s.sim.solver = ss_solver_parse(v);
+      if (s.sim.solver < 0) {
+        cli_error("--solver expects newton or quasi-newton, got '%s'", v);
+        return EXIT_USAGE;
+      }
+    } else if (strcmp(a, "--rings") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 64, &s.sim.mover.nring_rings))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--max-steps") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) ||
+          cli_int(a, v, 1, 1000000, &s.sim.mover.walk_max_steps))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--tris") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 5000000, &tris)) return EXIT_USAGE;
+    } else if (strcmp(a, "--frames") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000000, &s.frames))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--dt") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-6, 10.0, &s.sim.dt))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--substeps") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000, &s.sim.substeps))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--iterations") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 100000, &s.sim.iterations))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--tol") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tol))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--bending") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.bending))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--slide") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1.0, &s.sim.slide))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--young") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.young))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--poisson") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 0.499, &s.sim.poisson))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--stiffness") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) ||
+          cli_double(a, v, 0.0, 1e12, &s.sim.anchor_stiffness))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--damping") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.damping))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--gravity") == 0) {
+      double g = 0.0;
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, -1e4, 1e4, &g)) return EXIT_USAGE;
+      s.sim.gravity[0] = s.sim.gravity[1] = 0.0;
+      s.sim.gravity[2] = -g;
+    } else if (strcmp(a, "--no-barycenters") == 0) {
+      s.sim.barycenter_anchors = 0;
+    } else if (strcmp(a, "--json") == 0) {
+      if (!(json_path = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--out") == 0) {
+      if (!(out_dir = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else {
+      cli_error("run: unknown option '%s' (see skinsim help)", a);
+      return EXIT_USAGE;
+    }
+  }
+  if (!scene_name) {
+    cli_error("run needs --scene NAME (skinsim scenes lists them)");
+    return EXIT_USAGE;
+  }
+  if (out_dir && mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
+    cli_error("cannot create output folder '%s': %s", out_dir, strerror(errno));
+    return EXIT_USAGE;
+  }
+  char err[256] = "";
+  ss_scene *scene = NULL;
+  if (ss_scene_create(&scene, scene_name, tris, err, sizeof err)) {
+    cli_error("%s", err);
+    return EXIT_USAGE;
+  }
+  frame_writer writer = {out_dir, scene, ""};
+  progress bar;
+  progress_begin(&bar, scene_name);
+  ss_run_stats st;
+  int status = ss_run_scene(scene, &s, out_dir ? write_frame : NULL, &writer, progress_update,
+                            &bar, &st, err, sizeof err);
+  progress_end(&bar);
+  ss_scene_destroy(scene);
+  if (status) {
+    cli_error("run failed: %s", err);
+    return status == SS_E_ARG ? EXIT_USAGE : EXIT_RUN_FAILED;
+  }
+  if (writer.error[0]) {
+    cli_error("%s", writer.error);
+    return EXIT_RUN_FAILED;
+  }
+  if (json_path) {
+    FILE *f = cli_open_json(json_path);
+    if (!f) return EXIT_RUN_FAILED;
+    run_json(f, scene_name, &s, &st);
+    cli_close_json(f);
+  }
+  if (!json_path || strcmp(json_path, "-") != 0)
+    printf("%s/%s/%s: %d triangles, %d frames: %.2f ms/frame (median; walk %.3f ms, %.1f%%), "
+           "%.1f iterations/frame, %lld snags, %lld failures, hug rms %.3f max %.3f edges, "
+           "area ratio [%.3f, %.3f], hash %016llx\n",
+           scene_name, ss_method_name(s.sim.mover.method), ss_solver_name(s.sim.solver),
+           st.triangles, st.frames, st.ms_per_frame_median, st.walk_ms_per_frame_median,
+           100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
+           st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
+  return 0;
+}

@@ -1,0 +1,208 @@
+/* Bad input never crashes: each case returns an error code and one sentence
+ * naming the file and the problem. Files are written by the test into a
+ * temporary folder. Run it under AddressSanitizer and UBSan too. */
+#include <string.h>
+#include <unistd.h>
+
+#include "skin_sim/ssa_avatar.h"
+#include "ss_test.h"
+
+static char dir[] = "/tmp/ssa_bad_XXXXXX";
+
+static const char *put(const char *name, const void *data, size_t n) {
+  static char paths[16][256];
+  static int k = 0;
+  char *p = paths[k++ % 16];
+  snprintf(p, 256, "%s/%s", dir, name);
+  FILE *f = fopen(p, "wb");
+  if (f) {
+    fwrite(data, 1, n, f);
+    fclose(f);
+  }
+  return p;
+}
+
+static const char *put_text(const char *name, const char *text) {
+  return put(name, text, strlen(text));
+}
+
+/* status as expected, the message non-empty and containing each of the needles */
+#define EXPECT(call, status, ...)                                                        \
+  do {                                                                                   \
+    char err_[1024] = "";                                                                \
+    int st_ = (call);                                                                    \
+    (void)err_;                                                                          \
+    CHECK_MSG(st_ == (status), "%s returned %d (%s), expected %d", #call, st_, err, status); \
+    const char *needles_[] = {__VA_ARGS__, NULL};                                        \
+    for (int i_ = 0; needles_[i_]; i_++)                                                 \
+      CHECK_MSG(strstr(err, needles_[i_]) != NULL, "'%s' not in: %s", needles_[i_], err); \
+    CHECK(strchr(err, '\n') == NULL);                                                    \
+    printf("%-28s -> %s\n", ss_status_string(st_), err);                                 \
+    err[0] = '\0';                                                                       \
+  } while (0)
+
+static const char *robot_with_mesh =
+    "<robot name='r'><link name='a'><visual><geometry><mesh filename='%s'/></geometry>"
+    "</visual></link></robot>";
+
+int main(void) {
+  if (!mkdtemp(dir)) return 1;
+  char err[1024] = "", buf[2048];
+  ssa_robot *r = NULL;
+  ssa_avatar *av = NULL;
+  ssa_asset *as = NULL;
+  ssa_motion *mo = NULL;
+
+  /* URDF: missing file, not XML, XML but not a robot, joint to an unknown link, bad mimic */
+  EXPECT(ssa_robot_load(&r, "/nonexistent/robot.urdf", NULL, err, sizeof err), SS_E_IO,
+         "/nonexistent/robot.urdf", "cannot be opened");
+  const char *p = put_text("garbage.urdf", "this is <not xml");
+  EXPECT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_E_IO, "garbage.urdf", "not a valid URDF");
+  p = put_text("norobot.urdf", "<?xml version='1.0'?><world name='w'/>");
+  EXPECT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_E_IO, "norobot.urdf");
+  p = put_text("badjoint.urdf",
+               "<robot name='r'><link name='a'/><joint name='j' type='revolute'><parent link='a'/>"
+               "<child link='ghost'/><limit lower='0' upper='1' effort='1' velocity='1'/>"
+               "</joint></robot>");
+  EXPECT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_E_IO, "badjoint.urdf");
+  p = put_text("badmimic.urdf",
+               "<robot name='r'><link name='a'/><link name='b'/><joint name='j' type='continuous'>"
+               "<parent link='a'/><child link='b'/><mimic joint='nobody'/></joint></robot>");
+  EXPECT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_E_ARG, "badmimic.urdf", "nobody");
+  p = put_text("badtype.urdf",
+               "<robot name='r'><link name='a'/><link name='b'/><joint name='j' type='wobbly'>"
+               "<parent link='a'/><child link='b'/></joint></robot>");
+  EXPECT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_E_IO, "badtype.urdf");
+  CHECK(r == NULL);
+  EXPECT(ssa_robot_load_string(&r, "", NULL, NULL, err, sizeof err), SS_E_IO, "URDF text");
+
+  /* meshes: missing, unknown format, no triangles, NaN, empty */
+  EXPECT(ssa_asset_load(&as, "/nonexistent/body.dae", NULL, err, sizeof err), SS_E_IO,
+         "/nonexistent/body.dae");
+  p = put("junk.stl", "garbage\x01\x02", 9);
+  EXPECT(ssa_asset_load(&as, p, NULL, err, sizeof err), SS_E_IO, "junk.stl");
+  p = put_text("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
+  CHECK(ssa_asset_load(&as, p, NULL, err, sizeof err) < 0 && strstr(err, "lines.obj"));
+  printf("%-28s -> %s\n", "(no triangles)", err);
+  unsigned char stl[80 + 4 + 50];
+  memset(stl, 'x', 80);
+  unsigned n1 = 1;
+  memcpy(stl + 80, &n1, 4);
+  float tri[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, NAN, 1, 0};
+  memcpy(stl + 84, tri, sizeof tri);
+  memset(stl + 84 + 48, 0, 2);
+  p = put("nan.stl", stl, sizeof stl);
+  EXPECT(ssa_asset_load(&as, p, NULL, err, sizeof err), SS_E_NONFINITE, "nan.stl", "not finite");
+  n1 = 0;
+  memcpy(stl + 80, &n1, 4);
+  p = put("empty.stl", stl, 84);
+  CHECK(ssa_asset_load(&as, p, NULL, err, sizeof err) < 0 && strstr(err, "empty.stl"));
+  CHECK(as == NULL);
+
+  /* a URDF whose visual mesh is missing, or whose package cannot be resolved */
+  snprintf(buf, sizeof buf, robot_with_mesh, "file:///nonexistent/part.stl");
+  p = put_text("missingmesh.urdf", buf);
+  EXPECT(ssa_avatar_load_urdf(&av, p, NULL, NULL, err, sizeof err), SS_E_IO, "missingmesh.urdf",
+         "/nonexistent/part.stl");
+  snprintf(buf, sizeof buf, robot_with_mesh, "package://no_such_pkg/meshes/part.stl");
+  p = put_text("nopkg.urdf", buf);
+  EXPECT(ssa_avatar_load_urdf(&av, p, NULL, NULL, err, sizeof err), SS_E_IO, "nopkg.urdf",
+         "no_such_pkg", "cannot be resolved");
+  snprintf(buf, sizeof buf, robot_with_mesh, "http://example.com/part.stl");
+  p = put_text("http.urdf", buf);
+  EXPECT(ssa_avatar_load_urdf(&av, p, NULL, NULL, err, sizeof err), SS_E_IO, "http.urdf",
+         "unsupported scheme");
+  /* a URDF whose visual is a NaN mesh */
+  p = put("nanpart.stl", stl, sizeof stl);
+  n1 = 1;
+  memcpy(stl + 80, &n1, 4);
+  p = put("nanpart.stl", stl, sizeof stl);
+  snprintf(buf, sizeof buf, robot_with_mesh, "nanpart.stl"); /* relative to the URDF */
+  p = put_text("nanpart.urdf", buf);
+  EXPECT(ssa_avatar_load_urdf(&av, p, NULL, NULL, err, sizeof err), SS_E_NONFINITE,
+         "nanpart.urdf", "nanpart.stl");
+  /* a URDF without any visual mesh, as a body */
+  p = put_text("novisual.urdf", "<robot name='r'><link name='a'/></robot>");
+  EXPECT(ssa_avatar_load_urdf(&av, p, NULL, NULL, err, sizeof err), SS_E_MESH, "novisual.urdf");
+  /* a body mesh that is missing */
+  EXPECT(ssa_avatar_load_urdf(&av, p, "/nonexistent/body.glb", NULL, err, sizeof err), SS_E_IO,
+         "/nonexistent/body.glb");
+  CHECK(av == NULL);
+
+  /* a body given as arrays: NaN, no triangles, an index out of range */
+  CHECK_EQ_INT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_OK);
+  double pos[9] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
+  int tri3[3] = {0, 1, 2};
+  EXPECT(ssa_avatar_from_robot_mesh(&av, r, 3, pos, 1, tri3, NULL, err, sizeof err),
+         SS_E_NONFINITE, "body mesh");
+  CHECK_EQ_INT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_OK);
+  pos[7] = 1;
+  EXPECT(ssa_avatar_from_robot_mesh(&av, r, 3, pos, 0, tri3, NULL, err, sizeof err), SS_E_MESH,
+         "body mesh");
+  CHECK_EQ_INT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_OK);
+  tri3[2] = 7;
+  EXPECT(ssa_avatar_from_robot_mesh(&av, r, 3, pos, 1, tri3, NULL, err, sizeof err), SS_E_MESH,
+         "body mesh");
+
+  /* unknown joint names, in values and in a motion */
+  CHECK_EQ_INT(ssa_robot_load_string(&r, ssa_mannequin_urdf(), NULL, NULL, err, sizeof err), SS_OK);
+  double q[32] = {0};
+  const char *names[2] = {"l_elbow", "l_wrist"};
+  double vals[2] = {1, 1};
+  EXPECT(ssa_robot_set_joints(r, q, 2, names, vals, err, sizeof err), SS_E_ARG, "l_wrist",
+         "mannequin");
+  p = put_text("unknown.csv", "time,l_elbow,tail_wag\n0,0,0\n1,1,1\n");
+  CHECK_EQ_INT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_OK);
+  int map[2];
+  EXPECT(ssa_motion_bind(mo, r, map, err, sizeof err), SS_E_ARG, "tail_wag");
+  ssa_motion_destroy(mo);
+  mo = NULL;
+  ssa_robot_destroy(r);
+  r = NULL;
+
+  /* CSV motions: wrong column counts, not numbers, time not increasing, empty */
+  p = put_text("short.csv", "time,a,b\n0,1,2\n1,1\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "short.csv", "line 3",
+         "2 columns where the header has 3");
+  p = put_text("long.csv", "# a comment\ntime,a\n0,1\n\n1,2,3\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "long.csv", "line 5");
+  p = put_text("word.csv", "time,a\n0,one\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "word.csv", "'one'");
+  p = put_text("nan.csv", "time,a\n0,nan\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "nan.csv");
+  p = put_text("back.csv", "time,a\n0,0\n1,0\n0.5,0\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "back.csv", "does not increase");
+  p = put_text("header.csv", "time\n0\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "header.csv");
+  p = put_text("norows.csv", "time,a\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "norows.csv", "no rows");
+  p = put_text("emptyname.csv", "time,,b\n0,1,2\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "emptyname.csv", "column 2");
+  EXPECT(ssa_motion_read_csv(&mo, "/nonexistent/m.csv", err, sizeof err), SS_E_IO,
+         "/nonexistent/m.csv");
+  CHECK(mo == NULL);
+  /* a CSV with spaces and CRLF is fine */
+  p = put_text("ok.csv", "t , a\r\n 0 , 1.5 \r\n2,2.5\r\n");
+  CHECK_EQ_INT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_OK);
+  if (mo) {
+    CHECK(mo->njoint == 1 && mo->nframe == 2 && strcmp(mo->joint_name[0], "a") == 0);
+    CHECK(mo->value[1] == 2.5);
+  }
+  ssa_motion_destroy(mo);
+
+  /* NULL everywhere does not crash */
+  CHECK(ssa_robot_load(NULL, NULL, NULL, NULL, 0) == SS_E_ARG);
+  CHECK(ssa_asset_load(&as, NULL, NULL, NULL, 0) == SS_E_ARG);
+  CHECK(ssa_avatar_pose_joints(NULL, NULL, NULL) == SS_E_ARG);
+  CHECK(ssa_avatar_pose_anim(NULL, 0, 0, NULL) == SS_E_ARG);
+  CHECK(ssa_motion_read_csv(NULL, "x", NULL, 0) == SS_E_ARG);
+  ssa_robot_fk(NULL, NULL, NULL);
+  ssa_avatar_destroy(NULL);
+  ssa_asset_destroy(NULL);
+  ssa_motion_destroy(NULL);
+
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  return ss_test_finish("test_bad_input");
+}
