@@ -52,7 +52,7 @@ int main(int argc, char **argv) {
   double *t_asm = malloc((size_t)frames * sizeof(double)), *t_fac = malloc((size_t)frames * sizeof(double));
   double *t_sol = malloc((size_t)frames * sizeof(double));
   double *t_pose = malloc((size_t)frames * sizeof(double));
-  double it_sum = 0.0, amin = 1e300, amax = 0.0;
+  double it_sum = 0.0, amin = 1e300, amax = 0.0, res_sum = 0.0, rms_sum = 0.0;
   int failures = 0, stalls = 0, unconverged = 0;
   double dt = 1.0 / ss_scene_fps(scene);
   for (int f = 0; f < frames; f++) {
@@ -65,6 +65,8 @@ int main(int argc, char **argv) {
     t_total[f] = st.total_ms, t_walk[f] = st.walk_ms, t_asm[f] = st.assemble_ms;
     t_fac[f] = st.factor_ms, t_sol[f] = st.solve_ms, t_pose[f] = st.pose_ms;
     it_sum += st.iterations;
+    res_sum += st.residual;
+    rms_sum += st.residual_rms;
     failures += st.failures;
     stalls += st.stalled;
     unconverged += !st.converged;
@@ -76,10 +78,10 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < 3 * (size_t)nv * sizeof(double); i++) hash = (hash ^ bytes[i]) * 1099511628211ULL;
   printf("scene %s tris %d verts %d dofs %d solver %s method %s substeps %d frames %d: "
          "ms/frame total %.2f pose %.2f walk %.2f assemble %.2f factor %.2f solve %.2f (medians); "
-         "iterations %.2f/frame, unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
+         "iterations %.2f/frame, residual mean %.2g (rms %.2g), unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
          scene_name, nf, nv, ss_sim_ndof(sim), solver, ss_method_name(set.mover.method), set.substeps, frames,
          median(t_total, frames), median(t_pose, frames), median(t_walk, frames), median(t_asm, frames), median(t_fac, frames),
-         median(t_sol, frames), it_sum / frames, unconverged, stalls, failures, amin, amax, hash);
+         median(t_sol, frames), it_sum / frames, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
   ss_sim_destroy(sim);
   ss_scene_destroy(scene);
   free(pose), free(t_total), free(t_walk), free(t_asm), free(t_fac), free(t_sol), free(t_pose);

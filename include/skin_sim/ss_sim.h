@@ -46,8 +46,9 @@ typedef struct ss_sim_settings {
   int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
                             linearly in between); default 1 */
   int iterations;        /* max solver iterations per substep; default 8, the real-time
-                            budget of quasi-Newton (~30 ms at 19k triangles on 2 cores);
-                            raise it (e.g. 50-500) for Newton or tight tolerances */
+                            budget of quasi-Newton (an iteration costs 2-4 ms at 19k
+                            triangles on a 2-core machine); raise it (e.g. 50-500) for
+                            Newton or tight tolerances */
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
                             lengths; default 1e-4 */
@@ -123,7 +124,9 @@ typedef struct ss_sim_stats {
   int substeps;
   int iterations;      /* solver iterations, all substeps */
   int factorizations;
-  double residual;     /* final convergence measure of the last substep (see tol) */
+  double residual;     /* final convergence measure of the last substep (see tol): the
+                          worst vertex */
+  double residual_rms; /* the same measure, root mean square over the free vertices */
   double energy;       /* final incremental energy E(x) of the last substep */
   int converged;       /* 1 if every substep reached tol */
   int stalled;         /* substeps that stopped because no step decreased the energy */

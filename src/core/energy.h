@@ -55,9 +55,9 @@ void ss_project_psd(double *m, int n);
 void ss_sym_eigen(const double *m, int n, double *evals, double *evecs);
 
 /* As ss_membrane_eval, but the Hessian is the exact second derivative, NOT
- * projected (it may be indefinite). For tests and diagnostics only; it needs a
- * non-degenerate current triangle (J > 0): the exact Hessian of J = |f0 x f1|
- * grows like 1/J. */
+ * projected (it may be indefinite): Newton's first choice (projection on
+ * demand) and the tests' reference. It needs a non-degenerate current
+ * triangle (J > 0): the exact Hessian of J = |f0 x f1| grows like 1/J. */
 double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double rest_area,
                             double mu, double lam, double *grad, double *hess);
 

@@ -125,15 +125,16 @@ void ss_sim_destroy(ss_sim *sim) {
 
 static void *alloc_n(size_t count, size_t size) { return calloc(count ? count : 1, size); }
 
-/* Anchor positions in the pose the mover holds. An anchor without a face
- * (an isolated skin vertex) stays at the skin's rest position. */
-static void update_anchor_positions(ss_sim *sim) {
+/* Anchor positions in the body pose `pose`, which the mover holds. An anchor
+ * without a face (a vertex in no face of a skin copied from the body) follows
+ * its body vertex. */
+static void update_anchor_positions(ss_sim *sim, const double *pose) {
   const ss_frames *fr = ss_mover_frames(sim->mover);
   for (int a = 0; a < sim->nanchor; a++) {
     if (sim->anchor_face[a] >= 0)
       ss_anchor_position(fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, sim->anchor_pos + 3 * a);
     else if (a < sim->nvert)
-      memcpy(sim->anchor_pos + 3 * a, sim->rest + 3 * a, 3 * sizeof(double));
+      memcpy(sim->anchor_pos + 3 * a, pose + 3 * a, 3 * sizeof(double));
   }
 }
 
@@ -149,7 +150,7 @@ void ss_sim_reset(ss_sim *sim) {
   memcpy(sim->body_prev, sim->body_rest, 3 * (size_t)sim->nbvert * sizeof(double));
   if (sim->mover) {
     ss_mover_set_pose(sim->mover, sim->body_rest);
-    update_anchor_positions(sim);
+    update_anchor_positions(sim, sim->body_rest);
   }
 }
 
@@ -381,7 +382,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
         memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
     }
     ss_mover_set_pose(sim->mover, sim->body_sub);
-    update_anchor_positions(sim);
+    update_anchor_positions(sim, sim->body_sub);
     st->pose_ms += ss_now_ms() - t0;
     memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));
     for (int v = 0; v < sim->nvert; v++)
@@ -401,6 +402,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
       status = sim->set.solver == SS_SOLVER_NEWTON
                    ? ss_solver_newton_solve(sim, sim->xd, &converged, &stalled, &nonfinite)
                    : ss_solver_qn_solve(sim, sim->xd, &converged, &stalled, &nonfinite);
+      if (status == SS_OK && nonfinite != 1) st->residual_rms = ss_sim_residual_rms(sim, sim->gd);
       if (status != SS_OK || nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->ndof)) {
         /* Keep the last good state of the free vertices, at rest. */
         for (int k = 0; k < sim->ndof; k++) {

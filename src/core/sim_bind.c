@@ -13,9 +13,11 @@
  * barycenter anchors on, both halve, so that the total stiffness of a patch
  * stays k times its area. Masses are lumped the same way: density A_v.
  *
- * Hinges (bending on): each interior skin edge shared by two simulated faces
- * of opposite orientation along it; weight = k |e|^2 / (A_0 + A_1) at rest and
- * theta0 the rest dihedral angle, so a curved rest shape has no bending stress. */
+ * Hinges (bending on): each interior skin edge shared by two faces of
+ * opposite orientation along it, at least one of them simulated and a free
+ * vertex among the four (so the border of a masked region is clamped to the
+ * body, not hinged); weight = k |e|^2 / (A_0 + A_1) at rest and theta0 the
+ * rest dihedral angle, so a curved rest shape has no bending stress. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,7 +87,7 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
   if (!he) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
   int nhe = 0;
   for (int f = 0; f < nf; f++) {
-    if (!sim->mask[f] || sim->rest_area[f] <= 0.0) continue;
+    if (sim->rest_area[f] <= 0.0) continue;
     for (int c = 0; c < 3; c++) {
       int a = sim->faces[3 * f + c], b = sim->faces[3 * f + (c + 1) % 3];
       if (a == b) continue;
@@ -111,7 +113,8 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
         int opposite = f1[h1->corner] == e1 && f1[(h1->corner + 1) % 3] == e0;
         int o1 = f1[(h1->corner + 2) % 3];
         int any_free = sim->dof[e0] >= 0 || sim->dof[e1] >= 0 || sim->dof[o0] >= 0 || sim->dof[o1] >= 0;
-        if (opposite && any_free && o0 != o1) {
+        int simulated = sim->mask[h0->face] || sim->mask[h1->face];
+        if (opposite && any_free && simulated && o0 != o1) {
           if (pass == 1) {
             int *hv = sim->hinge_vert + 4 * e;
             hv[0] = e0, hv[1] = e1, hv[2] = o0, hv[3] = o1;
@@ -194,8 +197,11 @@ int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
   for (int f = 0; f < nf; f++) {
     const int *fv = sim->faces + 3 * f;
     int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
-    sim->k_face[f] = set->barycenter_anchors && any_free ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
-    if (any_free && sim->rest_area[f] > 0.0) sim->simface[sim->nsimface++] = f;
+    int has_area = sim->rest_area[f] > 0.0;
+    /* A zero-area face represents no skin: no spring. */
+    sim->k_face[f] = set->barycenter_anchors && any_free && has_area
+                         ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
+    if (any_free && has_area) sim->simface[sim->nsimface++] = f;
   }
   for (int v = 0; v < nv; v++)
     sim->k_vert[v] = sim->dof[v] >= 0 ? share * set->anchor_stiffness * sim->vert_area[v] : 0.0;

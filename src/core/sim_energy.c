@@ -115,6 +115,16 @@ double ss_sim_residual(const ss_sim *sim, const double *g) {
   return worst;
 }
 
+double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
+  double sum = 0.0;
+  for (int k = 0; k < sim->ndof; k++) {
+    double gn2 = g[3 * k] * g[3 * k] + g[3 * k + 1] * g[3 * k + 1] + g[3 * k + 2] * g[3 * k + 2];
+    double scale = (sim->mi[k] + sim->diag_const[k]) * sim->edge_len;
+    sum += gn2 / (scale * scale);
+  }
+  return sim->ndof ? sqrt(sum / sim->ndof) : 0.0;
+}
+
 /* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
  * triangle of the 3n matrix through its ranks. */
 static void scatter_element(const ss_sim *sim, const int *verts, int n, const int *rank,

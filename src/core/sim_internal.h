@@ -134,6 +134,8 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g);
  * (inertia + springs + rest membrane stiffness): the size of a Jacobi step,
  * in edge lengths (see settings tol). */
 double ss_sim_residual(const ss_sim *sim, const double *g);
+/* The same measure as a root mean square over free vertices. */
+double ss_sim_residual_rms(const ss_sim *sim, const double *g);
 /* Adds the Hessian of membrane and hinges at xfull to the values vals of the
  * 3n x 3n upper-triangular matrix H: each element's projected to PSD, or with
  * exact != 0 the membrane's exact (possibly indefinite) Hessian except on

@@ -3,12 +3,14 @@
  *
  * Each iteration assembles H = (inertia + springs, constant per h) + the
  * elastic Hessian and factors it. It first tries the exact membrane Hessian;
- * if CHOLMOD finds that H is not positive definite, it assembles the sum of
- * per-element Hessians each projected to PSD (membrane: closed-form
- * eigensystem; hinge: Gauss-Newton), positive definite with the mass, so that
- * -H^-1 g is a descent direction (Teran et al. 2005 "Robust quasistatic
- * finite elements"; Smith et al. 2018), and tries the exact one again after
- * an exponentially growing wait. H is a 3n x 3n symmetric matrix with its
+ * if CHOLMOD finds that H is not positive definite, or its step does not
+ * decrease E, it assembles the sum of per-element Hessians each projected to
+ * PSD (membrane: closed-form eigensystem; hinge: Gauss-Newton), positive
+ * definite with the mass, so that -H^-1 g is a descent direction (Teran et al.
+ * 2005 "Robust quasistatic finite elements"; Smith et al. 2018), and tries the
+ * exact one again after an exponentially growing wait (projection on demand;
+ * Longva et al. 2023, "Pitfalls of projection"). If even that step finds no
+ * decrease, a Jacobi-scaled gradient step is taken. H is a 3n x 3n symmetric matrix with its
  * upper triangle stored in compressed columns; its pattern and the map from
  * element entries to slots are built once (sim_pattern.c), cholmod_analyze
  * (fill-reducing ordering, symbolic factor) runs once at create, then

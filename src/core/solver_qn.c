@@ -137,22 +137,56 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
     if (it >= sim->set.iterations) break;
     st->iterations++;
     double t1 = ss_now_ms();
-    /* Two-loop recursion: dir = -H g. */
+    /* Two-loop recursion: dir = -H g. Each pass over the vectors applies
+     * one pair's update and already forms the next pair's dot product (the
+     * same operations in the same order as two separate loops: same bits,
+     * half the memory traffic). */
+    int count = sim->lb_count;
+    double next = 0.0;
     for (int i = 0; i < n3; i++) dir[i] = g[i];
-    for (int c = 0; c < sim->lb_count; c++) {
+    if (count > 0) {
+      int slot = (sim->lb_head - 1 + m) % m;
+      next = sim->lb_rho[slot] * dot(sim->lb_s + (size_t)slot * n3, dir, n3);
+    }
+    for (int c = 0; c < count; c++) {
       int slot = (sim->lb_head - 1 - c + m) % m;
-      const double *s = sim->lb_s + (size_t)slot * n3, *y = sim->lb_y + (size_t)slot * n3;
-      double a = sim->lb_rho[slot] * dot(s, dir, n3);
+      const double *y = sim->lb_y + (size_t)slot * n3;
+      double a = next;
       sim->lb_alpha[slot] = a;
-      for (int i = 0; i < n3; i++) dir[i] -= a * y[i];
+      if (c + 1 < count) {
+        int nslot = (sim->lb_head - 2 - c + m) % m;
+        const double *sn = sim->lb_s + (size_t)nslot * n3;
+        double acc = 0.0;
+        for (int i = 0; i < n3; i++) {
+          dir[i] -= a * y[i];
+          acc += sn[i] * dir[i];
+        }
+        next = sim->lb_rho[nslot] * acc;
+      } else {
+        for (int i = 0; i < n3; i++) dir[i] -= a * y[i];
+      }
     }
     if (apply_inverse(sim, dir, dir) != SS_OK) return SS_E_SOLVER;
-    for (int c = sim->lb_count - 1; c >= 0; c--) {
+    if (count > 0) {
+      int slot = (sim->lb_head - count + m) % m;
+      next = sim->lb_rho[slot] * dot(sim->lb_y + (size_t)slot * n3, dir, n3);
+    }
+    for (int c = count - 1; c >= 0; c--) {
       int slot = (sim->lb_head - 1 - c + m) % m;
-      const double *s = sim->lb_s + (size_t)slot * n3, *y = sim->lb_y + (size_t)slot * n3;
-      double b = sim->lb_rho[slot] * dot(y, dir, n3);
-      double a = sim->lb_alpha[slot];
-      for (int i = 0; i < n3; i++) dir[i] += (a - b) * s[i];
+      const double *sv = sim->lb_s + (size_t)slot * n3;
+      double coef = sim->lb_alpha[slot] - next;
+      if (c > 0) {
+        int nslot = (sim->lb_head - c + m) % m;
+        const double *yn = sim->lb_y + (size_t)nslot * n3;
+        double acc = 0.0;
+        for (int i = 0; i < n3; i++) {
+          dir[i] += coef * sv[i];
+          acc += yn[i] * dir[i];
+        }
+        next = sim->lb_rho[nslot] * acc;
+      } else {
+        for (int i = 0; i < n3; i++) dir[i] += coef * sv[i];
+      }
     }
     for (int i = 0; i < n3; i++) dir[i] = -dir[i];
     if (!(dot(dir, g, n3) < 0.0) && sim->lb_count > 0) {

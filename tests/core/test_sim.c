@@ -334,6 +334,43 @@ static void test_slide(void) {
   fx_free(&g);
 }
 
+/* Bending resists bending: a cantilever strip (root pinned through the face
+ * mask, no anchors) under gravity droops less with hinge bending on, and
+ * less again with a stiffer hinge; the membrane alone hardly resists. */
+static void test_bending_cantilever(void) {
+  fx_mesh g = fx_grid(21, 4, 1.0, 0.15, 0.0);
+  unsigned char *mask = malloc((size_t)g.nface);
+  for (int f = 0; f < g.nface; f++) mask[f] = (f / 2) % 20 >= 2; /* two root columns follow the body */
+  double tip[3];
+  const double ks[3] = {0.0, 0.1, 1.0};
+  for (int k = 0; k < 3; k++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.solver = SS_SOLVER_NEWTON;
+    set.anchor_stiffness = 0.0;
+    set.bending = ks[k];
+    set.gravity[2] = -9.81;
+    set.face_mask = mask;
+    set.dt = 10.0; /* quasi-static */
+    set.iterations = 200;
+    set.tol = 1e-9;
+    ss_sim *sim = make_sim(&g, &set);
+    if (!sim) return;
+    ss_sim_stats st;
+    for (int f = 0; f < 5; f++) ss_sim_step(sim, g.pos, 0.0, &st, NULL, 0);
+    CHECK_EQ_INT(st.failures, 0);
+    const double *p = ss_sim_skin_positions(sim);
+    tip[k] = 0.0;
+    for (int j = 0; j < 4; j++) tip[k] += p[3 * (j * 21 + 20) + 2] / 4.0;
+    ss_sim_destroy(sim);
+  }
+  printf("cantilever tip z: %g (no bending), %g (k 0.1), %g (k 1)\n", tip[0], tip[1], tip[2]);
+  CHECK_MSG(tip[0] < -0.5, "membrane only: tip at z = %g, expected to hang down", tip[0]);
+  CHECK_MSG(tip[1] > tip[0] + 0.01 && tip[2] > tip[1] + 0.01, "tip z: %g (k 0), %g (k 0.1), %g (k 1)",
+            tip[0], tip[1], tip[2]);
+  free(mask);
+  fx_free(&g);
+}
+
 /* A skin coarser than the body (every other grid line), bound by closest
  * point: it follows the moving body, its vertices near their anchors. */
 static void test_coarse_skin(void) {
@@ -419,6 +456,45 @@ static void test_bad_input(void) {
   fx_free(&g);
 }
 
+/* Small and odd meshes: one triangle; a body with a vertex in no face (its
+ * skin copy follows it) and a zero-area face. */
+static void test_small_meshes(void) {
+  double p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, q[9] = {0, 0, 0.1, 1, 0, 0.1, 0, 1, 0.1};
+  int f[3] = {0, 1, 2};
+  char err[256];
+  for (int solver = 0; solver < 2; solver++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.solver = solver;
+    set.bending = 1.0;
+    ss_sim *sim = NULL;
+    CHECK_EQ_INT(ss_sim_create(&sim, 3, p, 1, f, NULL, &set, err, sizeof err), SS_OK);
+    if (!sim) continue;
+    CHECK_EQ_INT(ss_sim_ndof(sim), 3);
+    for (int i = 0; i < 30; i++) CHECK_EQ_INT(ss_sim_step(sim, q, 0.0, NULL, NULL, 0), SS_OK);
+    CHECK(max_dist(ss_sim_skin_positions(sim), q, 3) < 1e-3);
+    ss_sim_destroy(sim);
+  }
+  double p2[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 5, 2, 0, 0}, q2[15];
+  int f2[6] = {0, 1, 2, 0, 1, 4}; /* vertex 3 in no face; face 1 has zero area */
+  for (int i = 0; i < 15; i++) q2[i] = p2[i] + 0.1;
+  ss_sim *sim = NULL;
+  CHECK_EQ_INT(ss_sim_create(&sim, 5, p2, 2, f2, NULL, NULL, err, sizeof err), SS_OK);
+  if (sim) {
+    ss_sim_stats st;
+    CHECK_EQ_INT(ss_sim_step(sim, q2, 0.0, &st, NULL, 0), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 15));
+    CHECK(max_dist(ss_sim_skin_positions(sim) + 9, q2 + 9, 1) < 1e-15);
+    CHECK_EQ_INT(st.failures, 0);
+    ss_sim_destroy(sim);
+  }
+  /* A skin without area is refused. */
+  double line[9] = {0, 0, 0, 0.5, 0, 0, 1, 0, 0};
+  ss_sim_mesh m = {3, line, 1, f};
+  err[0] = 0;
+  CHECK_EQ_INT(ss_sim_create(&sim, 3, p, 1, f, &m, NULL, err, sizeof err), SS_E_MESH);
+  CHECK(sim == NULL && strlen(err) > 0);
+}
+
 /* Violent motion (teleports, huge stretch): finite, areas positive. */
 static void test_violent_motion(void) {
   fx_mesh g = fx_grid(8, 8, 1.0, 1.0, 0.1);
@@ -493,8 +569,10 @@ int main(void) {
   test_face_mask();
   test_gravity_sag();
   test_coarse_skin();
+  test_bending_cantilever();
   test_slide();
   test_bad_input();
+  test_small_meshes();
   test_violent_motion();
   test_determinism();
   return ss_test_finish("test_sim");
