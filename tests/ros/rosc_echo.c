@@ -80,12 +80,13 @@ static int run_relay(int argc, char **argv)
   memset(&r, 0, sizeof r);
   rosc_sub *subs[5] = {NULL};
   int ok = 1;
-  ok &= rosc_pub_create(&r.mesh, ROSC_MSG_SKIN_MESH, "mesh_out", 20, 0) == ROSC_OK;
+  /* the mesh queues hold a whole ping burst (see run_ping) */
+  ok &= rosc_pub_create(&r.mesh, ROSC_MSG_SKIN_MESH, "mesh_out", 128, 0) == ROSC_OK;
   ok &= rosc_pub_create(&r.stats, ROSC_MSG_SKIN_STATS, "stats_out", 20, 0) == ROSC_OK;
   ok &= rosc_pub_create(&r.joints, ROSC_MSG_JOINT_STATE, "joints_out", 20, 0) == ROSC_OK;
   ok &= rosc_pub_create(&r.marker, ROSC_MSG_MARKER, "marker_out", 20, 0) == ROSC_OK;
   ok &= rosc_pub_create(&r.string, ROSC_MSG_STRING, "string_out", 20, 0) == ROSC_OK;
-  ok &= rosc_sub_skin_mesh(&subs[0], "mesh_in", 20, relay_mesh, &r) == ROSC_OK;
+  ok &= rosc_sub_skin_mesh(&subs[0], "mesh_in", 128, relay_mesh, &r) == ROSC_OK;
   ok &= rosc_sub_skin_stats(&subs[1], "stats_in", 20, relay_stats, &r) == ROSC_OK;
   ok &= rosc_sub_joint_state(&subs[2], "joints_in", 20, relay_joints, &r) == ROSC_OK;
   ok &= rosc_sub_marker(&subs[3], "marker_in", 20, relay_marker, &r) == ROSC_OK;
@@ -883,8 +884,12 @@ static int run_ping(int argc, char **argv)
   for (size_t k = 0; k < 6 * nv; ++k) tri[k] = (uint32_t)((k * 7919u) % nv);
   rosc_pub *pub = NULL;
   rosc_sub *sub = NULL;
-  if (rosc_pub_create(&pub, ROSC_MSG_SKIN_MESH, "mesh_a", 2, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "mesh_b", 2, ping_back, &ps) != ROSC_OK)
+  /* Queues hold every message: what is checked is that the transport
+   * delivers all of them intact and in order, also on a loaded machine
+   * (sanitizer builds, parallel tests); the latencies are reported, never
+   * asserted. */
+  if (rosc_pub_create(&pub, ROSC_MSG_SKIN_MESH, "mesh_a", (unsigned)n, 0) != ROSC_OK ||
+      rosc_sub_skin_mesh(&sub, "mesh_b", (unsigned)n, ping_back, &ps) != ROSC_OK)
     return 1;
   double t0 = 0, t = 0;
   unsigned np = 0, ns = 0;
@@ -913,7 +918,7 @@ static int run_ping(int argc, char **argv)
     while (rosc_wall_now_s(&t) == ROSC_OK && t < next) rosc_spin_once(next - t);
   }
   rosc_wall_now_s(&t0);
-  while (ps.received < n && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < 5.0) rosc_spin_once(0.02);
+  while (ps.received < n && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < 60.0) rosc_spin_once(0.02);
   int k = ps.received < 1024 ? ps.received : 1024;
   qsort(ps.lat, (size_t)k, sizeof(double), cmp_double);
   printf("ping: %d/%d SkinMesh of %zu vertices + %zu triangles (%.2f MB) at %.0f Hz came back, "
