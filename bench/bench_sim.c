@@ -1,6 +1,6 @@
 /* bench_sim: times ss_sim on a built-in scene (a benchmark, not a test).
  *
- *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method]
+ *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads]
  *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings)
  *
  * Prints one line of medians per frame (ms): total, pose (body frames, anchor
@@ -34,6 +34,7 @@ int main(int argc, char **argv) {
   if (argc > 6) set.iterations = atoi(argv[6]);
   if (argc > 7) set.tol = atof(argv[7]);
   if (argc > 8) set.mover.method = ss_method_parse(argv[8]);
+  if (argc > 9) set.threads = atoi(argv[9]);
   char err[256];
   ss_scene *scene = NULL;
   if (ss_scene_create(&scene, scene_name, tris, err, sizeof err) != SS_OK) {

@@ -132,6 +132,14 @@ const ss_frames *ss_mover_frames(const ss_mover *mover);
 void ss_mover_move(ss_mover *mover, int face, const double uv[2], const double target[3],
                    ss_walk_result *res);
 
+/* As ss_mover_move with the caller's walk scratch, so that several threads
+ * can move anchors at once over the same pose (one walker each): the frames
+ * and the BVH are only read. For SS_METHOD_NRING, which needs the mover's own
+ * scratch, call ss_mover_move from one thread. */
+void ss_mover_walk_with(const ss_mover *mover, ss_walker *walker, int face, const double uv[2],
+                        const double target[3], ss_walk_result *res);
+int ss_mover_method(const ss_mover *mover);
+
 /* ---- surface distance (for snag detection) -------------------------------- */
 
 /* Scratch for surface distances on one topology. */

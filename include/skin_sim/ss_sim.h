@@ -71,6 +71,10 @@ typedef struct ss_sim_settings {
                             1 frictionless sliding, 0 glued to the body; default 0.5. Per
                             substep, so the sliding resistance depends on the step size. */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
+  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 1..64;
+                            default 1. The results are the same bits for any count; 2 pays
+                            on an idle 2-core machine, and costs where the cores are busy
+                            (e.g. tests running in parallel) */
   const unsigned char *face_mask; /* (skin nface) non-zero: simulate this face; NULL = all.
                                      Copied at create. Vertices of no simulated face follow
                                      the body; vertices on the region's border are pinned. */

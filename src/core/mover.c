@@ -89,3 +89,18 @@ void ss_mover_move(ss_mover *m, int face, const double uv[2], const double targe
     ss_nring_closest(m->nring, m->topo, m->pos, face, m->settings.nring_rings, target, &res->face,
                      res->uv);
 }
+
+int ss_mover_method(const ss_mover *m) { return m->settings.method; }
+
+void ss_mover_walk_with(const ss_mover *m, ss_walker *walker, int face, const double uv[2],
+                        const double target[3], ss_walk_result *res) {
+  if (m->settings.method == SS_METHOD_WALK || !m->pos ||
+      !(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) {
+    ss_walk(walker, m->topo, m->frames, face, uv, target, m->settings.walk_max_steps, res);
+    return;
+  }
+  res->stop = SS_STOP_INSIDE;
+  res->steps = 0;
+  res->length = 0.0;
+  ss_bvh_closest(m->bvh, m->pos, target, &res->face, res->uv); /* project: read-only */
+}

@@ -19,7 +19,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "sim_internal.h"
+#ifdef _OPENMP
+static void openmp_warm_up(int nthread);
+#endif
 #include "ss_err.h"
 #include "skin_sim/ss_track.h"
 
@@ -55,6 +62,7 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.damping = 0.0;
   s.slide = 0.5;
   s.mover = ss_mover_default_settings();
+  s.threads = 1;
   s.face_mask = NULL;
   return s;
 }
@@ -85,6 +93,8 @@ static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
     return ss_fail(err, err_sz, SS_E_ARG, "slide must be in [0, 1] (got %g)", s->slide);
   for (int i = 0; i < 3; i++)
     if (!isfinite(s->gravity[i])) return ss_fail(err, err_sz, SS_E_ARG, "gravity must be finite");
+  if (s->threads < 1 || s->threads > 64)
+    return ss_fail(err, err_sz, SS_E_ARG, "threads must be in [1, 64] (got %d)", s->threads);
   if (s->mover.method < SS_METHOD_WALK || s->mover.method > SS_METHOD_NRING)
     return ss_fail(err, err_sz, SS_E_ARG, "unknown anchor method %d", s->mover.method);
   return SS_OK;
@@ -108,6 +118,9 @@ void ss_sim_destroy(ss_sim *sim) {
     cholmod_finish(&sim->cc);
   }
   ss_mover_destroy(sim->mover);
+  if (sim->walkers)
+    for (int t = 0; t < sim->nthread; t++) ss_walker_destroy(sim->walkers[t]);
+  free(sim->walkers);
   ss_topo_destroy(sim->btopo);
   void *arrays[] = {sim->faces,     sim->rest,         sim->mask,         sim->dm_inv,      sim->rest_area,
                     sim->vert_area, sim->mass,         sim->k_vert,       sim->k_face,      sim->kind,
@@ -118,7 +131,8 @@ void ss_sim_destroy(ss_sim *sim) {
                     sim->anchor_pos, sim->mi,          sim->target,       sim->xd,          sim->gd,
                     sim->dir,       sim->xt,           sim->gt,           sim->xfull_t,     sim->h_const,
                     sim->lb_s,      sim->lb_y,         sim->lb_rho,       sim->lb_alpha,
-                    sim->body_rest,  sim->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path};
+                    sim->body_rest,  sim->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path,
+                    sim->face_energy, sim->face_grad};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
   free(sim);
 }
@@ -186,6 +200,21 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   if (status != SS_OK) goto fail;
   status = ss_mover_create(&sim->mover, sim->btopo, &set->mover, err, err_sz);
   if (status != SS_OK) goto fail;
+  /* one walker per thread; the team is started here, so that stepping
+   * allocates nothing (the OpenMP runtime keeps its threads) */
+  sim->nthread = 1;
+#ifdef _OPENMP
+  sim->nthread = set->threads;
+  openmp_warm_up(sim->nthread);
+#endif
+  sim->walkers = calloc((size_t)sim->nthread, sizeof *sim->walkers);
+  if (!sim->walkers) status = SS_E_NOMEM;
+  for (int t = 0; t < sim->nthread && !status; t++)
+    status = ss_walker_create(&sim->walkers[t], sim->btopo->nface);
+  if (status != SS_OK) {
+    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+    goto fail;
+  }
 
   sim->faces = alloc_n(3 * (size_t)nf, sizeof(int));
   sim->rest = alloc_n(nv3, sizeof(double));
@@ -204,6 +233,8 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   sim->anchor_face = alloc_n((size_t)sim->nanchor, sizeof(int));
   sim->anchor_uv = alloc_n(2 * (size_t)sim->nanchor, sizeof(double));
   sim->anchor_pos = alloc_n(3 * (size_t)sim->nanchor, sizeof(double));
+  sim->face_energy = alloc_n((size_t)nf, sizeof(double));
+  sim->face_grad = alloc_n(9 * (size_t)nf, sizeof(double));
   sim->anchor_pull = alloc_n((size_t)sim->nanchor, sizeof(double));
   sim->anchor_path = alloc_n((size_t)sim->nanchor, sizeof(double));
   sim->x = alloc_n(nv3, sizeof(double));
@@ -216,7 +247,7 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   if (!sim->faces || !sim->rest || !sim->mask || !sim->dm_inv || !sim->rest_area || !sim->vert_area ||
       !sim->mass || !sim->k_vert || !sim->k_face || !sim->kind || !sim->dof || !sim->simface ||
       !sim->anchor_face0 || !sim->anchor_uv0 || !sim->anchor_face || !sim->anchor_uv || !sim->anchor_pos ||
-      !sim->anchor_pull || !sim->anchor_path ||
+      !sim->anchor_pull || !sim->anchor_path || !sim->face_energy || !sim->face_grad ||
       !sim->x || !sim->x_prev || !sim->v || !sim->xfull_t || !sim->body_prev || !sim->body_sub ||
       !sim->body_rest) {
     status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
@@ -280,43 +311,100 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
   return SS_OK;
 }
 
-/* Moves the anchors of free points (vertices, barycenters with a spring)
- * towards the skin points they hold. */
-static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
-  double slide = sim->set.slide;
-  if (slide <= 0.0) return;
-  int nv = sim->nvert;
-  for (int a = 0; a < sim->nanchor; a++) {
-    double p[3];
-    if (a < nv) {
-      if (sim->dof[a] < 0 || sim->k_vert[a] == 0.0) continue;
-      memcpy(p, sim->x + 3 * a, sizeof p);
-    } else {
-      int f = a - nv;
-      if (sim->k_face[f] == 0.0) continue;
-      const int *fv = sim->faces + 3 * f;
-      for (int i = 0; i < 3; i++)
-        p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) / 3.0;
-    }
-    if (sim->anchor_face[a] < 0) continue;
-    const double *a0 = sim->anchor_pos + 3 * a;
-    double target[3];
-    for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    ss_walk_result res;
-    ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
-    double pull2 = 0.0;
-    for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
-    sim->anchor_pull[a] += sqrt(pull2);
-    sim->anchor_path[a] += res.length;
-    sim->anchor_face[a] = res.face;
-    sim->anchor_uv[2 * a] = res.uv[0];
-    sim->anchor_uv[2 * a + 1] = res.uv[1];
-    st->anchors_moved++;
-    st->walk_steps += res.steps;
-    if (res.stop == SS_STOP_BOUNDARY) st->anchors_boundary++;
-    if (res.stop == SS_STOP_CREASE) st->anchors_crease++;
-    if (res.stop == SS_STOP_STEP_LIMIT) st->anchors_step_limit++;
+#ifdef _OPENMP
+/* Runs the kinds of parallel loops stepping uses, so that the OpenMP runtime
+ * has made its team and work-share records before the first step: stepping
+ * then allocates nothing. */
+static void openmp_warm_up(int nthread) {
+  if (nthread <= 1) return;
+  for (int round = 0; round < 3; round++) {
+    long long sum = 0;
+#pragma omp parallel for schedule(static) num_threads(nthread) reduction(+ : sum)
+    for (int i = 0; i < 64 * nthread; i++) sum += i;
+    double sink[64];
+#pragma omp parallel for schedule(static) num_threads(nthread)
+    for (int i = 0; i < 64; i++) sink[i] = (double)(i + sum);
+    __asm__ volatile("" : : "r"(sink) : "memory"); /* keep the stores */
   }
+}
+#endif
+
+typedef struct anchor_counts {
+  long long moved, steps, boundary, crease, step_limit;
+} anchor_counts;
+
+/* Moves anchor a (if it holds a free point) with walker (NULL: the mover's
+ * own scratch). */
+static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_counts *c) {
+  const int nv = sim->nvert;
+  double p[3];
+  if (a < nv) {
+    if (sim->dof[a] < 0 || sim->k_vert[a] == 0.0) return;
+    memcpy(p, sim->x + 3 * a, sizeof p);
+  } else {
+    int f = a - nv;
+    if (sim->k_face[f] == 0.0) return;
+    const int *fv = sim->faces + 3 * f;
+    for (int i = 0; i < 3; i++)
+      p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) / 3.0;
+  }
+  if (sim->anchor_face[a] < 0) return;
+  const double slide = sim->set.slide;
+  const double *a0 = sim->anchor_pos + 3 * a;
+  double target[3];
+  for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
+  ss_walk_result res;
+  if (walker)
+    ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
+                       &res);
+  else
+    ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
+  double pull2 = 0.0;
+  for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
+  sim->anchor_pull[a] += sqrt(pull2);
+  sim->anchor_path[a] += res.length;
+  sim->anchor_face[a] = res.face;
+  sim->anchor_uv[2 * a] = res.uv[0];
+  sim->anchor_uv[2 * a + 1] = res.uv[1];
+  c->moved++;
+  c->steps += res.steps;
+  c->boundary += res.stop == SS_STOP_BOUNDARY;
+  c->crease += res.stop == SS_STOP_CREASE;
+  c->step_limit += res.stop == SS_STOP_STEP_LIMIT;
+}
+
+/* Moves the anchors of free points (vertices, barycenters with a spring)
+ * towards the skin points they hold. Each anchor's move is independent of
+ * the others', so with threads the walks (and projections) share the
+ * anchors, each thread with its own walker: the same bits whatever the
+ * thread count. */
+static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
+  if (sim->set.slide <= 0.0) return;
+  const int nanchor = sim->nanchor;
+  anchor_counts c = {0, 0, 0, 0, 0};
+#ifdef _OPENMP
+  if (sim->nthread > 1 && ss_mover_method(sim->mover) != SS_METHOD_NRING) {
+    long long moved = 0, steps = 0, boundary = 0, crease = 0, step_limit = 0;
+#pragma omp parallel for schedule(static) num_threads(sim->nthread) \
+    reduction(+ : moved, steps, boundary, crease, step_limit)
+    for (int a = 0; a < nanchor; a++) {
+      anchor_counts ct = {0, 0, 0, 0, 0};
+      move_anchor(sim, a, sim->walkers[omp_get_thread_num()], &ct);
+      moved += ct.moved, steps += ct.steps, boundary += ct.boundary;
+      crease += ct.crease, step_limit += ct.step_limit;
+    }
+    c.moved = moved, c.steps = steps, c.boundary = boundary;
+    c.crease = crease, c.step_limit = step_limit;
+  } else
+#endif
+  {
+    for (int a = 0; a < nanchor; a++) move_anchor(sim, a, NULL, &c);
+  }
+  st->anchors_moved += (int)c.moved;
+  st->walk_steps += (int)c.steps;
+  st->anchors_boundary += (int)c.boundary;
+  st->anchors_crease += (int)c.crease;
+  st->anchors_step_limit += (int)c.step_limit;
 }
 
 static void area_ratios(const ss_sim *sim, ss_sim_stats *st) {

@@ -50,6 +50,17 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
   g[3 * k + 2] += gv[2];
 }
 
+/* Energy (and gradient into fg + 9 q, if fg) of the membrane of simulated face q. */
+static inline void membrane_face(const ss_sim *sim, int q, const double *xfull, double *fe,
+                                 double *fg) {
+  const int f = sim->simface[q];
+  const int *fv = sim->faces + 3 * f;
+  double x9[9];
+  for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
+  fe[q] = ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam,
+                           fg ? fg + 9 * q : NULL, NULL);
+}
+
 double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   double e = 0.0;
   int n = sim->ndof;
@@ -82,16 +93,26 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
       }
     }
   }
-  /* Membrane. */
-  for (int q = 0; q < sim->nsimface; q++) {
-    int f = sim->simface[q];
-    const int *fv = sim->faces + 3 * f;
-    double x9[9], g9[9];
-    for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
-    e += ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam,
-                          g ? g9 : NULL, NULL);
-    if (g)
-      for (int c = 0; c < 3; c++) add_grad(sim, g, fv[c], g9 + 3 * c);
+  /* Membrane: every face on its own (on all threads), then summed and
+   * scattered in face order on one, so the bits do not depend on the thread
+   * count. */
+  const int nsim = sim->nsimface;
+  double *fe = sim->face_energy, *fg = g ? sim->face_grad : NULL;
+#ifdef _OPENMP
+  if (sim->nthread > 1 && nsim > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int q = 0; q < nsim; q++) membrane_face(sim, q, xfull, fe, fg);
+  } else
+#endif
+  {
+    for (int q = 0; q < nsim; q++) membrane_face(sim, q, xfull, fe, fg);
+  }
+  for (int q = 0; q < nsim; q++) {
+    e += fe[q];
+    if (g) {
+      const int *fv = sim->faces + 3 * sim->simface[q];
+      for (int c = 0; c < 3; c++) add_grad(sim, g, fv[c], fg + 9 * q + 3 * c);
+    }
   }
   /* Bending. */
   for (int q = 0; q < sim->nhinge; q++) {

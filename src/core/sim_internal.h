@@ -78,6 +78,10 @@ struct ss_sim {
   int *anchor_face;           /* (nanchor) */
   double *anchor_uv;          /* (nanchor x 2) */
   double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
+  int nthread;                /* threads stepping uses (OpenMP; 1 without it) */
+  ss_walker **walkers;        /* (nthread) walk scratch, one per thread */
+  double *face_energy;        /* (nsimface) membrane energies of one evaluation */
+  double *face_grad;          /* (nsimface x 9) and their gradients */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */

@@ -70,6 +70,7 @@ void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run
   json_int(&j, "frames", st->frames);
   json_num(&j, "dt", 1.0 / 30.0);
   json_int(&j, "substeps", s->sim.substeps);
+  json_int(&j, "threads", s->sim.threads);
   json_int(&j, "iterations", s->sim.iterations);
   json_num(&j, "tol", s->sim.tol);
   json_num(&j, "ms_per_frame_median", st->ms_per_frame_median);
@@ -172,6 +173,9 @@ int cmd_run(int argc, char **argv) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, -1e4, 1e4, &g)) return EXIT_USAGE;
       s.sim.gravity[0] = s.sim.gravity[1] = 0.0;
       s.sim.gravity[2] = -g;
+    } else if (strcmp(a, "--threads") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 64, &s.sim.threads))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--no-barycenters") == 0) {
       s.sim.barycenter_anchors = 0;
     } else if (strcmp(a, "--avatar") == 0) {

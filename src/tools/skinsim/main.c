@@ -23,7 +23,7 @@ static void usage(FILE *f) {
       "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
       "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
       "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide R]\n"
-      "        [--json FILE|-] [--out DIR]\n"
+      "        [--threads N] [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
       "                              summary (speed, snags, failures, hugging, area ratios,\n"
       "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply\n"      "        BODY is a built-in scene: --scene NAME [--tris N]\n"
