@@ -139,6 +139,12 @@ void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
   }
 }
 
+/* World point of canonical uv on face f (the walk's hot path: inlined). */
+static inline void face_point(const ss_frames *fr, int f, const double uv[2], double out[3]) {
+  const double *o = fr->origin + 3 * f, *e = fr->edge + 6 * f;
+  for (int i = 0; i < 3; i++) out[i] = o[i] + uv[0] * e[i] + uv[1] * e[3 + i];
+}
+
 void ss_anchor_position(const ss_frames *fr, int face, const double uv[2], double out[3]) {
   const double *o = fr->origin + 3 * face, *e = fr->edge + 6 * face;
   for (int i = 0; i < 3; i++) out[i] = o[i] + uv[0] * e[i] + uv[1] * e[3 + i];
@@ -222,8 +228,8 @@ static double edge_dist2(const ss_frames *fr, int f, int k, const double x[3], d
   double a[3], b[3], ca[2], cb[2];
   edge_point(k, 0.0, ca);
   edge_point(k, 1.0, cb);
-  ss_anchor_position(fr, f, ca, a);
-  ss_anchor_position(fr, f, cb, b);
+  face_point(fr, f, ca, a);
+  face_point(fr, f, cb, b);
   double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   double ax[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
   double l2 = dot3(ab, ab), s = l2 > 0.0 ? dot3(ax, ab) / l2 : 0.0;
@@ -267,7 +273,7 @@ static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const
   const double *e = fr->edge + 6 * f;
   const double size2 = dot3(e, e) + dot3(e + 3, e + 3);
   double x[3];
-  ss_anchor_position(fr, f, p, x);
+  face_point(fr, f, p, x);
   int best_k = -1;
   double best_d2 = 1e-18 * size2;
   for (int k = 0; k < 3; k++) {
@@ -285,12 +291,11 @@ static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const
   return best_k;
 }
 
-/* Distance from world point from to canonical point p of face f. */
-static double segment_length(const ss_frames *fr, int f, const double p[2], const double from[3]) {
-  double x[3];
-  ss_anchor_position(fr, f, p, x);
-  double dx = x[0] - from[0], dy = x[1] - from[1], dz = x[2] - from[2];
-  return sqrt(dx * dx + dy * dy + dz * dz);
+/* World length of the canonical displacement (du, dv) on face f: |Dm (du, dv)|. */
+static inline double canonical_length(const ss_frames *fr, int f, double du, double dv) {
+  const double *e = fr->edge + 6 * f;
+  double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
+  return sqrt(x * x + y * y + z * z);
 }
 
 void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
@@ -314,7 +319,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   for (;;) {
     /* direction towards a* in f's canonical space */
     double here[3], d[3];
-    ss_anchor_position(fr, f, p, here);
+    face_point(fr, f, p, here);
     for (int i = 0; i < 3; i++) d[i] = target[i] - here[i];
     const double *t = fr->to_canon + 6 * f;
     const double du = dot3(t, d), dv = dot3(t + 3, d);
@@ -335,18 +340,19 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       double te = -p[0] / du;
       if (te < t_exit) t_exit = te, k_exit = 2;
     }
+    const double p0u = p[0], p0v = p[1];
     if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
       p[0] += du;
       p[1] += dv;
       clamp_uv(p);
-      res->length += segment_length(fr, f, p, here);
+      res->length += canonical_length(fr, f, p[0] - p0u, p[1] - p0v);
       break;
     }
     if (t_exit < 0.0) t_exit = 0.0;
     double h[2] = {p[0] + t_exit * du, p[1] + t_exit * dv};
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
-    res->length += segment_length(fr, f, p, here);
+    res->length += canonical_length(fr, f, p[0] - p0u, p[1] - p0v);
     int stop = cross_edge(walker, topo, &f, k_exit, s, p, max_steps, res);
     while (stop == SS_STOP_INSIDE && fr->degenerate[f]) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
