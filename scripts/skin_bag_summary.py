@@ -43,10 +43,14 @@ def main():
                 total.append(msg.total_ms)
                 last = msg
     kin_set = set(kin)
-    matched = sum(1 for s in skin if s in kin_set)
+    # the recorder may subscribe after the first meshes went by: judge from the first
+    # recorded kinematic_mesh on
+    since = [s for s in skin if kin and s >= min(kin)]
+    matched = sum(1 for s in since if s in kin_set)
     print("bag:              %s" % path)
     print("frames in:        %d kinematic_mesh" % len(kin))
-    print("frames out:       %d skin_mesh (%d with the stamp of a kinematic_mesh)" % (len(skin), matched))
+    print("frames out:       %d skin_mesh (%d of the %d since the first recorded kinematic_mesh carry "
+          "the stamp of one)" % (len(skin), matched, len(since)))
     print("ms per frame:     median %.2f, 95th percentile %.2f (skin_stats total_ms, %d steps)"
           % (pct(total, 50), pct(total, 95), len(total)))
     print("latency:          median %.1f ms, 95th percentile %.1f ms (joint state stamp to skin_mesh at the recorder)"

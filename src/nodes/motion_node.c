@@ -69,6 +69,7 @@ int main(int argc, char **argv)
             ssa_motion_builtin_period(mi) / speed, n, rate);
   rosc_time start;
   rosc_now(&start);
+  rosc_rate_reset(loop); /* cycles from now: stamp i is published at about its own time */
   int64_t base_ns = rosc_time_to_ns(start), period_ns = (int64_t)(1e9 / rate + 0.5);
   unsigned long i = 0, sent = 0;
   double t_motion0 = 0.0;

@@ -11,10 +11,11 @@
  * looping) or the stamps jump forward by more than ~max_gap. The step length
  * comes from the stamps, never from the wall clock, so a replayed bag gives
  * the same output bit for bit. Bad messages (see ss_input.h) are rejected
- * with a throttled log line and counted; the last good state is kept. When a
- * new mesh arrives before the previous one was processed, the older one is
- * dropped (counted): the input is a one-slot mailbox and roscpp's own queue is
- * ~queue_size messages, so nothing queues without bound.
+ * with a throttled log line and counted; the last good state is kept. Received
+ * meshes wait in a ring of ~queue_size slots (default 1: only the newest);
+ * when it is full the oldest is dropped (counted), so nothing queues without
+ * bound. roscpp's own queue holds ~queue_size + 8 (it only fills during one
+ * step: the node spins between steps).
  *
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
 #include "rosc/rosc.h"
@@ -41,7 +42,6 @@ typedef struct params {
 } params;
 
 typedef struct mailbox {
-  int full;
   rosc_header header;
   uint32_t topology_id;
   float *pos;
@@ -50,9 +50,17 @@ typedef struct mailbox {
   size_t ntri, cap_tri;
 } mailbox;
 
+/* Received meshes waiting to be stepped: a ring of ~queue_size slots; when it is
+ * full the oldest is dropped (counted). Slots keep their buffers, so a steady
+ * stream does not allocate. */
+typedef struct inbox {
+  mailbox *slot;
+  int cap, head, count;
+} inbox;
+
 typedef struct node {
   params p;
-  mailbox box;
+  inbox in;
   rosc_pub *pub_mesh, *pub_stats, *pub_marker;
   /* simulation and its topology */
   ss_sim *sim;
@@ -127,8 +135,9 @@ static int get_params(params *p)
   rosc_param_get_int("~max_split", &p->max_split, 8, NULL);
   rosc_param_get_double("~marker_rate", &p->marker_rate, 10.0, NULL);
   rosc_param_get_double("~slide_scale", &p->slide_scale, 0.02, NULL);
-  rosc_param_get_int("~queue_size", &p->queue_size, 4, NULL);
+  rosc_param_get_int("~queue_size", &p->queue_size, 1, NULL);
   if (p->queue_size < 1) p->queue_size = 1;
+  if (p->queue_size > 1000) p->queue_size = 1000;
   if (p->max_split < 1) p->max_split = 1;
   if (!(p->max_gap > 0.0)) {
     ROSC_ERROR("~max_gap must be > 0 s");
@@ -164,10 +173,14 @@ static int grow(void **buf, size_t *cap, size_t n, size_t elem)
 static void on_mesh(const rosc_skin_mesh *m, void *user)
 {
   node *nd = user;
-  mailbox *b = &nd->box;
+  inbox *q = &nd->in;
   nd->frames_in++;
-  if (b->full) nd->dropped++; /* the older one was never processed */
-  b->full = 0;
+  if (q->count == q->cap) { /* full: the oldest was never stepped */
+    q->head = (q->head + 1) % q->cap;
+    q->count--;
+    nd->dropped++;
+  }
+  mailbox *b = &q->slot[(q->head + q->count) % q->cap];
   if (!grow((void **)&b->pos, &b->cap_pos, m->n_positions, sizeof(float)) ||
       !grow((void **)&b->tri, &b->cap_tri, m->n_triangles, sizeof(uint32_t))) {
     ROSC_ERROR_THROTTLE(2.0, "out of memory for a mesh of %zu values", m->n_positions);
@@ -180,14 +193,16 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   b->ntri = m->n_triangles;
   b->header = m->header;
   b->topology_id = m->topology_id;
-  b->full = 1;
+  q->count++;
 }
 
-static void reject(node *nd, const char *why)
+/* Counts a rejected message and logs why, at most once a second per kind of
+ * problem (key), so that different problems each show. */
+static void reject(node *nd, const char *key, const char *why)
 {
   nd->rejected++;
-  ROSC_WARN_THROTTLE(1.0, "rejected kinematic_mesh: %s (%u rejected so far)", why,
-                     (unsigned)nd->rejected);
+  rosc_log_at(ROSC_LOG_WARN, __FILE__, __LINE__, __func__, 1.0, key,
+              "rejected kinematic_mesh: %s (%u rejected so far)", why, (unsigned)nd->rejected);
 }
 
 /* ------------------------------------------------------------------ simulation */
@@ -206,9 +221,8 @@ static void free_sim(node *nd)
 }
 
 /* Creates the simulation with the mailbox's mesh as rest shape. 1 on success. */
-static int create_sim(node *nd)
+static int create_sim(node *nd, const mailbox *b)
 {
-  const mailbox *b = &nd->box;
   free_sim(nd);
   int nv = (int)(b->npos / 3), nf = (int)(b->ntri / 3);
   size_t n3 = 3 * (size_t)nv, f3 = 3 * (size_t)nf;
@@ -258,7 +272,7 @@ static int create_sim(node *nd)
     char why[ERR_SZ + 64];
     snprintf(why, sizeof why, "cannot simulate it: %s", err);
     free_sim(nd);
-    reject(nd, why);
+    reject(nd, "skin_sim.create", why);
     return 0;
   }
   nd->nvert = nv;
@@ -349,13 +363,12 @@ static void publish(node *nd, const rosc_header *hdr, const ss_sim_stats *acc, d
   rosc_publish_marker(nd->pub_marker, &mk);
 }
 
-static void process(node *nd)
+static void process(node *nd, const mailbox *b)
 {
-  mailbox *b = &nd->box;
-  b->full = 0;
   char err[ERR_SZ] = "";
-  if (ss_input_mesh_check(b->npos, b->pos, b->ntri, b->tri, err, sizeof err) != SS_OK) {
-    reject(nd, err);
+  int chk = ss_input_mesh_check(b->npos, b->pos, b->ntri, b->tri, err, sizeof err);
+  if (chk != SS_OK) {
+    reject(nd, chk == SS_E_NONFINITE ? "skin_sim.nonfinite" : "skin_sim.malformed", err);
     return;
   }
   int64_t now_ns = rosc_time_to_ns(b->header.stamp);
@@ -364,7 +377,7 @@ static void process(node *nd)
                               sizeof err)) {
     char why[ERR_SZ + 64];
     snprintf(why, sizeof why, "topology changed without a new topology_id (%s)", err);
-    reject(nd, why);
+    reject(nd, "skin_sim.topology", why);
     return;
   }
   double dt = 0.0;
@@ -385,7 +398,7 @@ static void process(node *nd)
                          kind == SS_TIME_GAP ? "jumped forward" : "went backwards",
                          1e-9 * (double)now_ns, 1e-9 * (double)nd->prev_ns, (unsigned)nd->resets);
     }
-    if (!create_sim(nd)) return;
+    if (!create_sim(nd, b)) return;
   } else if (kind == SS_TIME_STEP) {
     size_t n3 = 3 * (size_t)nd->nvert;
     for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
@@ -407,7 +420,7 @@ static void process(node *nd)
         }
         /* input the core refused: the state is untouched */
         memcpy(nd->body, nd->body_prev, n3 * sizeof(double));
-        reject(nd, err);
+        reject(nd, "skin_sim.step", err);
         return;
       }
       acc.pose_ms += st.pose_ms; acc.walk_ms += st.walk_ms; acc.assemble_ms += st.assemble_ms;
@@ -443,11 +456,14 @@ int main(int argc, char **argv)
     rosc_shutdown();
     return 2;
   }
+  nd->in.cap = nd->p.queue_size;
+  nd->in.slot = calloc((size_t)nd->in.cap, sizeof *nd->in.slot);
+  if (!nd->in.slot) return 1;
   rosc_sub *sub = NULL;
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size, on_mesh, nd) !=
+      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 8, on_mesh, nd) !=
           ROSC_OK) {
     ROSC_ERROR("cannot advertise or subscribe");
     rosc_shutdown();
@@ -458,8 +474,13 @@ int main(int argc, char **argv)
             ss_method_name(nd->p.set.mover.method), nd->p.set.anchor_stiffness, nd->p.set.young,
             nd->p.set.slide, nd->p.set.substeps, nd->p.set.iterations, nd->p.marker_rate);
   while (rosc_ok()) {
-    rosc_spin_once(0.1);
-    if (nd->box.full) process(nd);
+    /* callbacks only fill the inbox; one mesh is stepped between spins */
+    rosc_spin_once(nd->in.count ? 0.0 : 0.1);
+    if (nd->in.count) {
+      process(nd, &nd->in.slot[nd->in.head]);
+      nd->in.head = (nd->in.head + 1) % nd->in.cap;
+      nd->in.count--;
+    }
   }
   ROSC_INFO("skin_sim: %lu meshes in, %lu out, %u rejected, %u dropped, %u resets",
             nd->frames_in, nd->frames_out, (unsigned)nd->rejected, (unsigned)nd->dropped,
@@ -470,8 +491,11 @@ int main(int argc, char **argv)
   rosc_pub_destroy(nd->pub_marker);
   rosc_shutdown();
   free_sim(nd);
-  free(nd->box.pos);
-  free(nd->box.tri);
+  for (int i = 0; i < nd->in.cap; i++) {
+    free(nd->in.slot[i].pos);
+    free(nd->in.slot[i].tri);
+  }
+  free(nd->in.slot);
   free(nd);
   return 0;
 }
