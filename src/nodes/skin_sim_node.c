@@ -14,8 +14,9 @@
  * with a throttled log line and counted; the last good state is kept. Received
  * meshes wait in a ring of ~queue_size slots (default 1: only the newest);
  * when it is full the oldest is dropped (counted), so nothing queues without
- * bound. roscpp's own queue holds ~queue_size + 8 (it only fills during one
- * step: the node spins between steps).
+ * bound. roscpp's own queue holds ~queue_size + 32 (it only fills during one
+ * step, as the node spins between steps); meshes it drops silently show as gaps
+ * in header.seq and are counted too.
  *
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
 #include "rosc/rosc.h"
@@ -80,6 +81,8 @@ typedef struct node {
   int have_prev;
   /* counters */
   uint32_t rejected, dropped, resets;
+  uint32_t last_seq;
+  int have_seq;
   unsigned long frames_in, frames_out, steps;
   double last_marker_wall;
 } node;
@@ -134,7 +137,7 @@ static int get_params(params *p)
   rosc_param_get_double("~max_step", &p->max_step, 0.05, NULL);
   rosc_param_get_int("~max_split", &p->max_split, 8, NULL);
   rosc_param_get_double("~marker_rate", &p->marker_rate, 10.0, NULL);
-  rosc_param_get_double("~slide_scale", &p->slide_scale, 0.02, NULL);
+  rosc_param_get_double("~slide_scale", &p->slide_scale, 0.05, NULL);
   rosc_param_get_int("~queue_size", &p->queue_size, 1, NULL);
   if (p->queue_size < 1) p->queue_size = 1;
   if (p->queue_size > 1000) p->queue_size = 1000;
@@ -175,6 +178,14 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   node *nd = user;
   inbox *q = &nd->in;
   nd->frames_in++;
+  /* roscpp numbers the messages of a publisher (header.seq): a gap means meshes lost
+   * before they reached this callback (roscpp's queue overflowing during a stall, or
+   * the publisher's): counted as dropped too. A smaller seq is a new publisher. */
+  uint32_t seq = m->header.seq;
+  if (nd->have_seq && seq > nd->last_seq + 1 && seq - nd->last_seq <= 1000000u)
+    nd->dropped += seq - nd->last_seq - 1;
+  nd->last_seq = seq;
+  nd->have_seq = 1;
   if (q->count == q->cap) { /* full: the oldest was never stepped */
     q->head = (q->head + 1) % q->cap;
     q->count--;
@@ -463,7 +474,7 @@ int main(int argc, char **argv)
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 8, on_mesh, nd) !=
+      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 32, on_mesh, nd) !=
           ROSC_OK) {
     ROSC_ERROR("cannot advertise or subscribe");
     rosc_shutdown();

@@ -6,6 +6,10 @@
  *                            order, with the same stamp, frame and triangles; skin_stats
  *                            for each; skin_marker (TRIANGLE_LIST, a colour per point).
  *                            Prints the latency (publish to skin_mesh arrival).
+ *   skin_probe burst N       N meshes back to back: the newest is stepped last, and
+ *                            every mesh is either stepped or counted as dropped.
+ *   skin_probe await NS T    waits (T s at most) for the skin_stats stamped NS: a replay's
+ *                            last frame has been stepped.
  *   skin_probe bad           good meshes interleaved with every kind of bad one (sizes
  *                            disagree, index out of range, NaN, Inf, empty, topology
  *                            changed without a new id): every good one comes back, no bad
@@ -127,7 +131,7 @@ static int setup_skin(got *g, const char *name)
 
 static int connect_skin(got *g, int want_marker)
 {
-  if (rosc_pub_create(&g_pub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
+  if (rosc_pub_create(&g_pub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 64, 0) != ROSC_OK ||
       rosc_sub_skin_mesh(&g_sub_mesh, "skin_mesh", 100, on_skin, g) != ROSC_OK ||
       rosc_sub_skin_stats(&g_sub_stats, "skin_stats", 100, on_stats, g) != ROSC_OK ||
       (want_marker && rosc_sub_marker(&g_sub_marker, "skin_marker", 10, on_marker, g) != ROSC_OK))
@@ -145,6 +149,16 @@ static int connect_skin(got *g, int want_marker)
   }
   fprintf(stderr, "skin_probe: the skin node did not connect in 10 s\n");
   return 0;
+}
+
+static int finish(void)
+{
+  rosc_pub_destroy(g_pub);
+  rosc_sub_destroy(g_sub_mesh);
+  rosc_sub_destroy(g_sub_stats);
+  rosc_sub_destroy(g_sub_marker);
+  rosc_shutdown();
+  return ss_test_finish("skin_probe");
 }
 
 static void send_mesh(int64_t stamp_ns, uint32_t topo, const float *pos, size_t npos,
@@ -251,8 +265,44 @@ static int run_stream(int n, double hz)
            g.last_stats.total_ms);
   printf("stream: %d in, %d skin_mesh, %d skin_stats, %d skin_marker\n", n, g.n, g.nstats,
          g.nmarker);
-  rosc_shutdown();
-  return ss_test_finish("skin_probe");
+  return finish();
+}
+
+/* ---------------------------------------------------------------- burst */
+/* n meshes published back to back: the node steps what it can, drops the oldest
+ * of the rest (counted) and always ends on the newest. */
+static int run_burst(int n)
+{
+  static got g;
+  static float out_pos[3 * NV];
+  g.last_out_pos = out_pos;
+  make_sheet(0.0);
+  g.tri = g_tri;
+  g.ntri = 3 * NT;
+  if (n > 60) n = 60;
+  if (!setup_skin(&g, "skin_probe_burst") || !connect_skin(&g, 0)) return 1;
+  int64_t period = 33333333;
+  send_mesh(T0, 7, g_pos, 3 * NV, g_tri, 3 * NT); /* creates the skin */
+  wait_for(&g, 1, 10.0);
+  for (int i = 1; i <= n; i++) {
+    make_sheet(i / 30.0);
+    send_mesh(T0 + i * period, 7, g_pos, 3 * NV, g_tri, 3 * NT);
+  }
+  int64_t last = T0 + n * period;
+  for (double t = 0; t < 20.0 && !(g.n > 0 && g.stamp_ns[g.n - 1] == last); t += 0.05)
+    rosc_spin_for(0.05);
+  rosc_spin_for(0.3);
+  CHECK_MSG(g.n > 0 && g.stamp_ns[g.n - 1] == last, "the newest mesh is stepped last");
+  uint32_t dropped = g.last_stats.inputs_dropped;
+  CHECK_MSG((uint32_t)g.n + dropped == (uint32_t)n + 1,
+            "every mesh is either stepped (%d) or counted as dropped (%u), of %d", g.n, dropped,
+            n + 1);
+  int in_order = 1;
+  for (int i = 1; i < g.n; i++) in_order &= g.stamp_ns[i] > g.stamp_ns[i - 1];
+  CHECK_MSG(in_order, "what is stepped comes out in order");
+  printf("burst: %d meshes back to back; %d stepped, %u dropped (oldest first)\n", n + 1, g.n,
+         dropped);
+  return finish();
 }
 
 /* ---------------------------------------------------------------- bad input */
@@ -328,8 +378,7 @@ static int run_bad(void)
             g.last_stats.inputs_rejected);
   printf("bad: %d good in, %d out; %d bad in, %u rejected\n", ngood + 1, g.n, nbad,
          g.last_stats.inputs_rejected);
-  rosc_shutdown();
-  return ss_test_finish("skin_probe");
+  return finish();
 }
 
 /* ---------------------------------------------------------------- time jumps */
@@ -376,8 +425,7 @@ static int run_jump(void)
   CHECK_MSG(g.last_stats.inputs_rejected == 0, "nothing rejected (%u)",
             g.last_stats.inputs_rejected);
   printf("jump: %d in, %d out, %u resets\n", n, g.n, g.last_stats.resets);
-  rosc_shutdown();
-  return ss_test_finish("skin_probe");
+  return finish();
 }
 
 /* ---------------------------------------------------------------- joint_states */
@@ -470,8 +518,32 @@ static int run_joints(void)
             g.last.inputs_dropped);
   printf("joints: %d good, %d bad sent; %d kinematic_mesh back; %u rejected, %u names ignored\n",
          ngood, nbad, g.n, g.last.inputs_rejected, g.last.inputs_dropped);
+  rosc_pub_destroy(pub);
+  rosc_sub_destroy(s1);
+  rosc_sub_destroy(s2);
   rosc_shutdown();
   return ss_test_finish("skin_probe");
+}
+
+/* ---------------------------------------------------------------- await */
+/* Exits 0 once a skin_stats with stamp STAMP_NS arrives (a replay has been stepped to
+ * its end), 1 after TIMEOUT_S. */
+static int run_await(long long stamp_ns, double timeout_s)
+{
+  static got g;
+  if (!setup_skin(&g, "skin_probe_await")) return 1;
+  if (rosc_sub_skin_stats(&g_sub_stats, "skin_stats", 1000, on_stats, &g) != ROSC_OK) return 1;
+  int seen = 0;
+  for (double t = 0; t < timeout_s && !seen; t += 0.05) {
+    rosc_spin_for(0.05);
+    for (int i = 0; i < g.nstats && i < MAX_MSG && !seen; i++) seen = g.stats_stamp_ns[i] == stamp_ns;
+    if (g.nstats >= MAX_MSG) { g.nstats = 0; }
+  }
+  printf("await: %d skin_stats, stamp %lld %s; inputs_dropped %u\n", g.nstats, stamp_ns,
+         seen ? "seen" : "NOT seen", g.last_stats.inputs_dropped);
+  rosc_sub_destroy(g_sub_stats);
+  rosc_shutdown();
+  return seen ? 0 : 1;
 }
 
 int main(int argc, char **argv)
@@ -479,9 +551,11 @@ int main(int argc, char **argv)
   g_argc = argc;
   g_argv = argv;
   if (argc >= 4 && strcmp(argv[1], "stream") == 0) return run_stream(atoi(argv[2]), atof(argv[3]));
+  if (argc >= 4 && strcmp(argv[1], "await") == 0) return run_await(atoll(argv[2]), atof(argv[3]));
+  if (argc >= 3 && strcmp(argv[1], "burst") == 0) return run_burst(atoi(argv[2]));
   if (argc >= 2 && strcmp(argv[1], "bad") == 0) return run_bad();
   if (argc >= 2 && strcmp(argv[1], "jump") == 0) return run_jump();
   if (argc >= 2 && strcmp(argv[1], "joints") == 0) return run_joints();
-  fprintf(stderr, "usage: skin_probe stream N HZ | bad | jump | joints\n");
+  fprintf(stderr, "usage: skin_probe stream N HZ | burst N | bad | jump | joints\n");
   return 2;
 }
