@@ -36,6 +36,61 @@ if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$l"; then
   check "no sanitizer report from the avatar node" false
 fi
 
-# a robot_description that is not the mannequin: the URDF's own frame and joints
+# robot_description (the mannequin's URDF, as demo.launch loads it) with a body mesh
+# of its own, given as a package:// URI resolved through ~package_path: a torso-sized
+# ellipsoid (OBJ) bound to the links by automatic weights
+pkg="$ROS_ENV_DIR/pkgs/probe_meshes"
+mkdir -p "$pkg/meshes"
+echo "<package format=\"2\"><name>probe_meshes</name></package>" > "$pkg/package.xml"
+/usr/bin/python3 - "$pkg/meshes/torso.obj" <<'PY'
+import math, sys
+nu, nv = 24, 16
+lines, idx = [], {}
+verts = [(0.0, 0.0, 0.35 + 0.35)]
+for j in range(1, nv):
+    th = math.pi * j / nv
+    for i in range(nu):
+        ph = 2 * math.pi * i / nu
+        verts.append((0.15 * math.sin(th) * math.cos(ph), 0.15 * math.sin(th) * math.sin(ph),
+                      0.35 + 0.35 * math.cos(th)))
+verts.append((0.0, 0.0, 0.0))
+ring = lambda j, i: 1 + (j - 1) * nu + (i % nu)
+faces = []
+for i in range(nu):
+    faces.append((0, ring(1, i), ring(1, i + 1)))
+for j in range(1, nv - 1):
+    for i in range(nu):
+        a, b, c, d = ring(j, i), ring(j, i + 1), ring(j + 1, i), ring(j + 1, i + 1)
+        faces += [(a, c, d), (a, d, b)]
+last = len(verts) - 1
+for i in range(nu):
+    faces.append((ring(nv - 1, i), last, ring(nv - 1, i + 1)))
+with open(sys.argv[1], "w") as f:
+    for v in verts:
+        f.write("v %.6f %.6f %.6f\n" % v)
+    for t in faces:
+        f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+PY
+/usr/bin/python3 -c 'import sys, xmlrpc.client
+xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", open(sys.argv[2]).read())' \
+  "$ROS_MASTER_URI" "$src/urdf/mannequin.urdf"
+# (other node names: the first node's private parameters stay on the master)
+ros_env_bg avatar_mesh "$exe" __name:=avatar_mesh _mesh:=package://probe_meshes/meshes/torso.obj \
+  _package_path:="$ROS_ENV_DIR/pkgs"
+mpid=$ROS_ENV_LAST_PID
+check "avatar node with robot_description and a package:// mesh starts" "ros_env_wait_node /avatar_mesh 30 $mpid"
+"$probe" joints > "$ROS_ENV_DIR/probe_mesh.log" 2>&1
+rc=$?
+cat "$ROS_ENV_DIR/probe_mesh.log"
+check "it poses that mesh for joint_states, frame pelvis (exit $rc)" "[ $rc -eq 0 ]"
+check "it says which body it uses (the ellipsoid's 362 vertices)" "grep -q \"avatar 'mannequin': 362 vertices\" '$ROS_ENV_DIR/avatar_mesh.log'"
+ros_env_stop "$mpid"
+# a mesh that does not exist: one clear error, exit 1
+timeout 60 "$exe" __name:=avatar_missing _mesh:=package://probe_meshes/meshes/missing.obj \
+  _package_path:="$ROS_ENV_DIR/pkgs" \
+  > "$ROS_ENV_DIR/avatar_missing.log" 2>&1
+mrc=$?
+check "a missing ~mesh ends the node with exit 1 and says so (exit $mrc)" \
+  "[ $mrc -eq 1 ] && grep -q 'missing.obj' '$ROS_ENV_DIR/avatar_missing.log'"
 echo "test_avatar_node: $(($(ros_env_now_ms) - t0)) ms after the master was up"
 exit $fail
