@@ -16,7 +16,9 @@ fail=0
 check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 t0=$(ros_env_now_ms)
 
-ros_env_bg avatar "$exe" _avatar:=mannequin _tris:=3000
+# (a long joint_states queue: this test is about rejections, not about keeping up
+# on a loaded machine)
+ros_env_bg avatar "$exe" _avatar:=mannequin _tris:=3000 _queue_size:=50
 apid=$ROS_ENV_LAST_PID
 check "avatar node starts" "ros_env_wait_node /avatar 30 $apid"
 "$probe" joints > "$ROS_ENV_DIR/probe.log" 2>&1
@@ -76,7 +78,7 @@ xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", o
   "$ROS_MASTER_URI" "$src/urdf/mannequin.urdf"
 # (other node names: the first node's private parameters stay on the master)
 ros_env_bg avatar_mesh "$exe" __name:=avatar_mesh _mesh:=package://probe_meshes/meshes/torso.obj \
-  _package_path:="$ROS_ENV_DIR/pkgs"
+  _package_path:="$ROS_ENV_DIR/pkgs" _queue_size:=50
 mpid=$ROS_ENV_LAST_PID
 check "avatar node with robot_description and a package:// mesh starts" "ros_env_wait_node /avatar_mesh 30 $mpid"
 "$probe" joints > "$ROS_ENV_DIR/probe_mesh.log" 2>&1

@@ -20,18 +20,26 @@ ros_env_bg demo roslaunch "$src/launch/demo.launch" rviz:=false tris:=3000 marke
 dpid=$ROS_ENV_LAST_PID
 check "demo.launch starts" "ros_env_wait_node /skin_sim 30 $dpid"
 shot="$D/shot.png"
+# pixels whose channels differ by more than 80 in the 3D view: the marker's colours (grid,
+# background and panels are grey)
+count_cmd="convert '$shot' -crop 760x700+264+40 +repage -fx '(max(r,max(g,b))-min(r,min(g,b)))>0.31' -format '%[fx:round(mean*w*h)]' info:"
+# screenshots every 5 s (up to 40 s: rviz starts slowly on a loaded machine) until the
+# skin shows
 ros_env_bg rviz xvfb-run -a -s "-screen 0 1024x768x24" bash -c \
-  "rviz -d '$src/rviz/skin_sim.rviz' & p=\$!; sleep \${RVIZ_SHOT_WAIT:-10}; import -window root '$shot'; kill \$p; wait \$p"
+  "rviz -d '$src/rviz/skin_sim.rviz' & p=\$!
+   for i in 1 2 3 4 5 6 7 8; do
+     sleep 5; import -window root '$shot'; n=\$($count_cmd 2> /dev/null || echo 0)
+     echo \"shot \$i: \$n coloured pixels\"; [ \"\${n:-0}\" -gt 3000 ] && break
+   done
+   kill \$p; wait \$p"
 rpid=$ROS_ENV_LAST_PID
-for _ in $(seq 400); do kill -0 "$rpid" 2> /dev/null || break; sleep 0.1; done
+for _ in $(seq 600); do kill -0 "$rpid" 2> /dev/null || break; sleep 0.1; done
 wait "$rpid" 2> /dev/null
+grep "^shot" "$D/rviz.log"
 check "a screenshot was taken" "[ -s '$shot' ]"
 if [ -s "$shot" ]; then
   cp "$shot" "$bld/rviz_skin.png"
-  # pixels whose channels differ by more than 80: the marker's colours (grid, background
-  # and panels are grey)
-  n=$(convert "$shot" -crop 760x700+264+40 +repage -fx "(max(r,max(g,b))-min(r,min(g,b)))>0.31" \
-        -format "%[fx:round(mean*w*h)]" info: 2> /dev/null || echo 0)
+  n=$(eval "$count_cmd" 2> /dev/null || echo 0)
   echo "coloured pixels in the 3D view: $n (screenshot: $bld/rviz_skin.png)"
   check "the skin marker covers a visible part of the view ($n pixels)" "[ ${n:-0} -gt 3000 ]"
 fi
