@@ -1,0 +1,156 @@
+/* skin_sim core: checks of meshes and stamps arriving from outside (ss_input.h).
+ *
+ * Plain loops over flat arrays; nothing allocates. Written for the ROS skin
+ * node, which rejects a bad SkinMesh before it reaches ss_sim, and for any
+ * other caller receiving meshes as float arrays. */
+#include "skin_sim/ss_input.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+
+#define SS_INPUT_ERR(...) \
+  do { if (err && err_sz > 0) snprintf(err, (size_t)err_sz, __VA_ARGS__); } while (0)
+
+int ss_input_mesh_check(size_t npos, const float *pos, size_t ntri, const uint32_t *tri,
+                        char *err, int err_sz)
+{
+  if (npos == 0 || ntri == 0) {
+    SS_INPUT_ERR("empty mesh (%zu position values, %zu triangle indices)", npos, ntri);
+    return SS_E_MESH;
+  }
+  if (npos % 3 != 0) {
+    SS_INPUT_ERR("%zu position values is not a multiple of 3 (xyz per vertex)", npos);
+    return SS_E_MESH;
+  }
+  if (ntri % 3 != 0) {
+    SS_INPUT_ERR("%zu triangle indices is not a multiple of 3", ntri);
+    return SS_E_MESH;
+  }
+  if (!pos || !tri) {
+    SS_INPUT_ERR("missing arrays");
+    return SS_E_MESH;
+  }
+  size_t nvert = npos / 3;
+  if (nvert > (size_t)INT_MAX || ntri / 3 > (size_t)INT_MAX) {
+    SS_INPUT_ERR("mesh too large (%zu vertices, %zu triangles)", nvert, ntri / 3);
+    return SS_E_MESH;
+  }
+  for (size_t i = 0; i < ntri; i++) {
+    if ((size_t)tri[i] >= nvert) {
+      SS_INPUT_ERR("triangle %zu uses vertex %u but there are only %zu vertices", i / 3,
+                   (unsigned)tri[i], nvert);
+      return SS_E_MESH;
+    }
+  }
+  for (size_t i = 0; i < npos; i++) {
+    if (!isfinite(pos[i])) {
+      SS_INPUT_ERR("vertex %zu has a non-finite coordinate (%g)", i / 3, (double)pos[i]);
+      return SS_E_NONFINITE;
+    }
+  }
+  return SS_OK;
+}
+
+int ss_input_same_topology(size_t npos, size_t ntri, const uint32_t *tri, int nvert, int nface,
+                           const int *faces, char *err, int err_sz)
+{
+  if (npos != 3 * (size_t)nvert) {
+    SS_INPUT_ERR("%zu vertices where the topology has %d", npos / 3, nvert);
+    return 0;
+  }
+  if (ntri != 3 * (size_t)nface) {
+    SS_INPUT_ERR("%zu triangles where the topology has %d", ntri / 3, nface);
+    return 0;
+  }
+  for (size_t i = 0; i < ntri; i++) {
+    if (faces[i] < 0 || (uint32_t)faces[i] != tri[i]) {
+      SS_INPUT_ERR("triangle %zu differs from the topology's", i / 3);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+const char *ss_input_time_name(int kind)
+{
+  switch (kind) {
+  case SS_TIME_FIRST: return "first";
+  case SS_TIME_STEP: return "step";
+  case SS_TIME_SAME: return "same";
+  case SS_TIME_BACKWARDS: return "backwards";
+  case SS_TIME_GAP: return "gap";
+  default: return "?";
+  }
+}
+
+int ss_input_classify_time(int have_prev, int64_t prev_ns, int64_t now_ns, double max_gap_s,
+                           double *dt)
+{
+  if (dt) *dt = 0.0;
+  if (!have_prev) return SS_TIME_FIRST;
+  if (now_ns < prev_ns) return SS_TIME_BACKWARDS;
+  if (now_ns == prev_ns) return SS_TIME_SAME;
+  int64_t d_ns = now_ns - prev_ns;
+  double d = 1e-9 * (double)d_ns;
+  if (d > max_gap_s) return SS_TIME_GAP;
+  int64_t us = (d_ns + 500) / 1000;
+  if (us <= 0) return SS_TIME_SAME; /* under half a microsecond: nothing to step */
+  if (dt) *dt = 1e-6 * (double)us;
+  return SS_TIME_STEP;
+}
+
+int ss_input_split_steps(double dt, double max_step, int max_count)
+{
+  if (max_count < 1) max_count = 1;
+  if (!(max_step > 0.0) || !(dt > max_step)) return 1;
+  double k = ceil(dt / max_step - 1e-9);
+  if (!(k < (double)max_count)) return max_count;
+  return k < 1.0 ? 1 : (int)k;
+}
+
+static void anchor_point(const double *pos, int nvert, const int *faces, int nface, int f,
+                         const double uv[2], double out[3])
+{
+  out[0] = out[1] = out[2] = 0.0;
+  if (f < 0 || f >= nface) return;
+  const int *c = faces + 3 * (size_t)f;
+  if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= nvert || c[1] >= nvert || c[2] >= nvert) return;
+  const double *a = pos + 3 * (size_t)c[0], *b = pos + 3 * (size_t)c[1], *d = pos + 3 * (size_t)c[2];
+  for (int k = 0; k < 3; k++) out[k] = a[k] + uv[0] * (b[k] - a[k]) + uv[1] * (d[k] - a[k]);
+}
+
+double ss_input_slide(int n, const int *face, const double *uv, const int *face0,
+                      const double *uv0, const double *body_pos, int body_nvert,
+                      const int *body_faces, int body_nface, double *out)
+{
+  double worst = 0.0;
+  for (int i = 0; i < n; i++) {
+    double p[3], q[3], s = 0.0;
+    if (face[i] >= 0 && face[i] < body_nface && face0[i] >= 0 && face0[i] < body_nface) {
+      anchor_point(body_pos, body_nvert, body_faces, body_nface, face[i], uv + 2 * (size_t)i, p);
+      anchor_point(body_pos, body_nvert, body_faces, body_nface, face0[i], uv0 + 2 * (size_t)i, q);
+      s = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+               (p[2] - q[2]) * (p[2] - q[2]));
+      if (!isfinite(s)) s = 0.0;
+    }
+    if (out) out[i] = s;
+    if (s > worst) worst = s;
+  }
+  return worst;
+}
+
+void ss_input_slide_color(double d, double scale, float rgba[4])
+{
+  double t = (scale > 0.0 && isfinite(d)) ? d / scale : 0.0;
+  if (t < 0.0) t = 0.0;
+  if (t > 1.0) t = 1.0;
+  /* blue -> green -> red; a little grey keeps the skin's shading readable */
+  double r, g, b;
+  if (t < 0.5) { r = 0.0; g = 2.0 * t; b = 1.0 - 2.0 * t; }
+  else { r = 2.0 * t - 1.0; g = 2.0 - 2.0 * t; b = 0.0; }
+  rgba[0] = (float)(0.15 + 0.85 * r);
+  rgba[1] = (float)(0.15 + 0.85 * g);
+  rgba[2] = (float)(0.15 + 0.85 * b);
+  rgba[3] = 1.0f;
+}

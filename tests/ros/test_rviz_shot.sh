@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# rviz shows the skin: the headless demo (demo.launch rviz:=false) runs, rviz is started
+# under Xvfb with the shipped config rviz/skin_sim.rviz, a screenshot is taken with
+# ImageMagick's `import`, and the skin marker's colours (saturated blue/green/red on a
+# grey background) must cover a visible part of it. The screenshot is kept as
+# BUILD_DIR/rviz_skin.png. Skipped (77) when xvfb-run, import or rviz is missing.
+# Usage: test_rviz_shot.sh BUILD_DIR [SOURCE_DIR].
+set -u
+bld="$1"
+src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
+for c in xvfb-run import rviz convert; do
+  command -v "$c" > /dev/null 2>&1 || { echo "skipped: $c not installed (apt: xvfb imagemagick rviz)"; exit 77; }
+done
+. "$src/tests/ros/ros_env.sh"
+ros_env_setup "$bld" || exit $?
+fail=0
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+D="$ROS_ENV_DIR"
+ros_env_bg demo roslaunch "$src/launch/demo.launch" rviz:=false tris:=3000 marker_rate:=10
+dpid=$ROS_ENV_LAST_PID
+check "demo.launch starts" "ros_env_wait_node /skin_sim 30 $dpid"
+shot="$D/shot.png"
+# pixels whose channels differ by more than 80 in the 3D view: the marker's colours (grid,
+# background and panels are grey)
+count_cmd="convert '$shot' -crop 760x700+264+40 +repage -fx '(max(r,max(g,b))-min(r,min(g,b)))>0.31' -format '%[fx:round(mean*w*h)]' info:"
+# screenshots every 5 s (up to 40 s: rviz starts slowly on a loaded machine) until the
+# skin shows
+ros_env_bg rviz xvfb-run -a -s "-screen 0 1024x768x24" bash -c \
+  "rviz -d '$src/rviz/skin_sim.rviz' & p=\$!
+   for i in 1 2 3 4 5 6 7 8; do
+     sleep 5; import -window root '$shot'; n=\$($count_cmd 2> /dev/null || echo 0)
+     echo \"shot \$i: \$n coloured pixels\"; [ \"\${n:-0}\" -gt 3000 ] && break
+   done
+   kill \$p; wait \$p"
+rpid=$ROS_ENV_LAST_PID
+for _ in $(seq 600); do kill -0 "$rpid" 2> /dev/null || break; sleep 0.1; done
+wait "$rpid" 2> /dev/null
+grep "^shot" "$D/rviz.log"
+check "a screenshot was taken" "[ -s '$shot' ]"
+if [ -s "$shot" ]; then
+  cp "$shot" "$bld/rviz_skin.png"
+  n=$(eval "$count_cmd" 2> /dev/null || echo 0)
+  echo "coloured pixels in the 3D view: $n (screenshot: $bld/rviz_skin.png)"
+  check "the skin marker covers a visible part of the view ($n pixels)" "[ ${n:-0} -gt 3000 ]"
+fi
+exit $fail

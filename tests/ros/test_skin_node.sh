@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# skin_sim_node through a real master, started from launch/skin.launch (no mocks), driven
+# by tests/ros/skin_probe.c:
+#  - stream: 90 kinematic meshes at 30 Hz; a skin_mesh with the same stamp, frame and
+#    triangles for every one, skin_stats for each, skin_marker rate-limited; latency printed;
+#  - bad: every kind of bad SkinMesh is rejected and counted while the good ones around
+#    it come through; a new topology_id makes a new skin;
+#  - burst: 41 meshes back to back into the default queue of 1: the newest is stepped
+#    last, every other is stepped or counted as dropped;
+#  - jump: time going backwards and a gap over ~max_gap each reset the skin (counted).
+# Each part gets a fresh skin node. Usage: test_skin_node.sh BUILD_DIR [SOURCE_DIR].
+set -u
+bld="$1"
+src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
+. "$src/tests/ros/ros_env.sh"
+ros_env_setup "$bld" || exit $?
+probe="$bld/tests/ros/skin_probe"
+[ -x "$probe" ] || { echo "FAIL: $probe not built"; exit 1; }
+fail=0
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+t0=$(ros_env_now_ms)
+
+# run_part NAME QUEUE PROBE_ARGS...: a fresh skin node (skin.launch queue_size:=QUEUE)
+run_part() {
+  local part="$1" queue="$2"; shift 2
+  ros_env_bg "launch_$part" roslaunch "$src/launch/skin.launch" output:=screen queue_size:="$queue"
+  local lpid=$ROS_ENV_LAST_PID
+  if ! ros_env_wait_node /skin_sim 20 "$lpid"; then
+    check "$part: skin node starts from skin.launch" false
+    return
+  fi
+  "$probe" "$@" > "$ROS_ENV_DIR/probe_$part.log" 2>&1
+  local rc=$?
+  cat "$ROS_ENV_DIR/probe_$part.log"
+  check "$part: skin_probe $* passes (exit $rc)" "[ $rc -eq 0 ]"
+  ros_env_stop "$lpid"
+  if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/launch_$part.log"; then
+    grep -E -A5 "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/launch_$part.log" | head -30
+    check "$part: no sanitizer report from the skin node" false
+  fi
+}
+
+# a queue long enough for the whole stream: every mesh is stepped even where the skin
+# is slower than 30 Hz (sanitizer builds); the latency printed says how it kept up
+run_part stream 120 stream 90 30
+# the default queue of 1 under a burst: the newest is stepped, the others counted as dropped
+run_part burst 1 burst 40
+run_part bad 120 bad
+l="$ROS_ENV_DIR/launch_bad.log"
+check "bad: rejections are logged, one line each (throttled), saying why" \
+  "grep -q 'rejected kinematic_mesh: .*multiple of 3' '$l' && [ \$(grep -c 'rejected kinematic_mesh' '$l') -le 9 ]"
+check "bad: each kind of problem is named (sizes, non-finite, topology)" "grep -q 'non-finite' '$l' && grep -q 'without a new topology_id' '$l'"
+run_part jump 120 jump
+check "jump: the resets are logged" "grep -q 'skin reset' '$ROS_ENV_DIR/launch_jump.log'"
+
+echo "test_skin_node: $(($(ros_env_now_ms) - t0)) ms after the master was up"
+exit $fail
