@@ -10,7 +10,7 @@ PKGS=(
   ros-std-msgs ros-sensor-msgs ros-geometry-msgs ros-visualization-msgs
   libsuitesparse-dev libopenblas0-pthread liburdfdom-dev libassimp-dev
   assimp-testmodels python3-matplotlib python3-numpy
-  ros-robot-state-publisher rviz xvfb xauth imagemagick
+  ros-robot-state-publisher rviz xvfb xauth imagemagick joint-state-publisher-gui
 )
 missing=()
 for p in "${PKGS[@]}"; do
