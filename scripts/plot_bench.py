@@ -41,8 +41,7 @@ def load(path):
 
 
 def save(fig, out, name):
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, name), dpi=DPI)
+    fig.savefig(os.path.join(out, name), dpi=DPI, bbox_inches="tight")
     plt.close(fig)
 
 
@@ -190,8 +189,8 @@ def plot_scaling(rows, out):
                 label="%s: ms ~ tris^%.2f" % (what, k))
         summary.append("%s: exponent %.2f" % (what, k))
     ax.axhline(33.0, color="gray", ls="--", lw=1)
-    ax.text(ax.get_xlim()[0] if ax.get_xlim()[0] > 0 else 1, 34, " 33 ms budget (30 Hz)",
-            fontsize=7, color="gray")
+    ax.text(0.01, 35, "33 ms budget (30 Hz)", fontsize=7, color="gray",
+            transform=ax.get_yaxis_transform())
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("body triangles (quadruped)")

@@ -50,6 +50,7 @@ typedef struct ss_run_stats {
   double walk_share;               /* total walk time / total step time */
   double assemble_ms_per_frame_median, factor_ms_per_frame_median, solve_ms_per_frame_median;
   double iterations_mean;          /* solver iterations per frame */
+  double walk_steps_per_update;    /* edges crossed per anchor update (walk; 0 otherwise) */
   long long snags;
   long long failures;              /* frames */
   long long stalled;               /* substeps where no step decreased the energy */

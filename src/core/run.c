@@ -172,7 +172,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   }
 
   double hug_sum2 = 0.0;
-  long long hug_count = 0, iterations = 0;
+  long long hug_count = 0, iterations = 0, walk_steps = 0, anchor_updates = 0;
   double walk_total = 0.0, step_total = 0.0;
   int done_frames = 0;
   for (int frame = 1; frame <= frames; frame++) {
@@ -196,6 +196,8 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
     walk_total += st.walk_ms;
     step_total += st.total_ms;
     iterations += st.iterations;
+    walk_steps += st.walk_steps;
+    anchor_updates += st.anchors_moved;
     stats->stalled += st.stalled;
     stats->unconverged += !st.converged;
     stats->anchors_at_boundary += st.anchors_boundary;
@@ -253,6 +255,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
 
   stats->frames = done_frames;
   stats->iterations_mean = done_frames ? (double)iterations / done_frames : 0.0;
+  stats->walk_steps_per_update = anchor_updates ? (double)walk_steps / anchor_updates : 0.0;
   stats->walk_share = step_total > 0.0 ? walk_total / step_total : 0.0;
   stats->ms_per_frame_median = median(ms_total, done_frames);
   stats->walk_ms_per_frame_median = median(ms_walk, done_frames);

@@ -80,8 +80,8 @@ static bench_case base_case(const char *sweep, const char *body, int avatar, int
 
 /* Builds the sweep. Returns 0 or -1 (out of memory). */
 static int build_sweep(case_list *l, int quick, int have_asset) {
-  const int scene_tris = quick ? 300 : 1000, frames = quick ? 10 : 45;
-  const int demo_tris = 3000, avatar_frames = quick ? 2 : 20;
+  const int scene_tris = quick ? 300 : 1000, frames = quick ? 6 : 40;
+  const int demo_tris = 3000, avatar_frames = quick ? 1 : 15;
   int bad = 0;
   /* methods: every body */
   const int nscene = ss_scene_count();
@@ -139,7 +139,7 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
   const int nsizes = quick ? 3 : 6;
   for (int i = 0; i < nsizes; i++) {
     for (int m = 0; m < 2; m++) {
-      bench_case c = base_case("scaling", "quadruped", 0, sizes[i], quick ? 6 : 30);
+      bench_case c = base_case("scaling", "quadruped", 0, sizes[i], quick ? 6 : 20);
       c.method = m ? SS_METHOD_PROJECT : SS_METHOD_WALK;
       c.reference = 0;
       c.variant = m ? "project" : "walk";

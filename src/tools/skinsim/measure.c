@@ -120,6 +120,7 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "ms_per_frame_median", st->ms_per_frame_median);
   json_num(j, "walk_ms_per_frame_median", st->walk_ms_per_frame_median);
   json_num(j, "walk_share", st->walk_share);
+  json_num(j, "walk_steps_per_update", st->walk_steps_per_update);
   json_num(j, "assemble_ms_per_frame_median", st->assemble_ms_per_frame_median);
   json_num(j, "factor_ms_per_frame_median", st->factor_ms_per_frame_median);
   json_num(j, "solve_ms_per_frame_median", st->solve_ms_per_frame_median);
