@@ -65,6 +65,7 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
                 ss_progress_fn progress_fn, void *progress_user, measure_result *res, char *err,
                 int err_sz) {
   memset(res, 0, sizeof *res);
+  res->fps = body->fps;
   if (!cache_dir)
     return ss_run_body(body, s, on_frame, frame_user, progress_fn, progress_user, &res->st, err,
                        err_sz);
@@ -113,7 +114,7 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_int(j, "anchors", st->anchors);
   json_int(j, "dof", st->dof);
   json_int(j, "frames", st->frames);
-  json_num(j, "dt", 1.0 / 30.0);
+  json_num(j, "dt", r->fps > 0.0 ? 1.0 / r->fps : 0.0); /* frame time step */
   json_int(j, "substeps", s->sim.substeps);
   json_int(j, "iterations", s->sim.iterations);
   json_num(j, "tol", s->sim.tol);

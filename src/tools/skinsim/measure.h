@@ -10,6 +10,7 @@
 
 typedef struct measure_result {
   ss_run_stats st;
+  double fps;                /* the body's frame rate */
   int has_reference;
   double error_vs_reference; /* mean edge lengths */
   int reference_cache_hit, reference_cache_rejected;
