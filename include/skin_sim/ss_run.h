@@ -36,17 +36,21 @@ typedef struct ss_run_settings {
   ss_sim_settings sim; /* ss_sim_default_settings() */
   int frames;          /* 0: the scene's default */
   double snag_factor;  /* default 3 */
+  const ss_sim_mesh *skin; /* a skin mesh of its own (e.g. coarser than the body), placed
+                              on the body at rest; NULL (default): a welded copy of the body */
 } ss_run_settings;
 ss_run_settings ss_run_default_settings(void);
 
 typedef struct ss_run_stats {
-  int triangles, vertices, anchors, frames, dof;
+  int triangles, vertices, anchors, frames, dof; /* triangles: the body's; vertices: the skin's */
+  int skin_triangles;
   int region_faces;                /* simulated skin faces (all without a face mask) */
   double ms_per_frame_median;      /* whole ss_sim_step */
   double walk_ms_per_frame_median; /* anchor updates */
   double walk_share;               /* total walk time / total step time */
   double assemble_ms_per_frame_median, factor_ms_per_frame_median, solve_ms_per_frame_median;
   double iterations_mean;          /* solver iterations per frame */
+  double walk_steps_per_update;    /* edges crossed per anchor update (walk; 0 otherwise) */
   long long snags;
   long long failures;              /* frames */
   long long stalled;               /* substeps where no step decreased the energy */
@@ -78,9 +82,9 @@ ss_body ss_body_of_scene(const ss_scene *scene);
  * non-zero stops the run. */
 typedef int (*ss_frame_fn)(void *user, int frame, const ss_sim *sim, const double *body_pos);
 
-/* Runs the skin over a body. The skin is a copy of the body at rest, its
- * coincident vertices (UV seams of a mesh file) welded so that it is one
- * sheet, bound to the body by closest point. on_frame and progress may be
+/* Runs the skin over a body. The skin is settings->skin, or else a copy of
+ * the body at rest, its coincident vertices (UV seams of a mesh file) welded
+ * so that it is one sheet; either is bound to the body by closest point. on_frame and progress may be
  * NULL. Returns SS_OK (failures are counted, not returned) or an error with
  * a message (a pose that fails stops the run with its error). */
 int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,

@@ -19,6 +19,7 @@ ss_run_settings ss_run_default_settings(void) {
   s.sim = ss_sim_default_settings();
   s.frames = 0;
   s.snag_factor = 3.0;
+  s.skin = NULL;
   return s;
 }
 
@@ -96,25 +97,31 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   const int frames = settings->frames > 0 ? settings->frames : (body->frames > 0 ? body->frames : 1);
   const double dt = 1.0 / body->fps;
 
-  /* welded skin (a no-op copy where the body has no seams) */
-  ss_topo *weld_topo = NULL;
-  double *weld_pos = NULL;
-  int *weld_faces = NULL;
-  int status = ss_topo_create(&weld_topo, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
-  if (status) return status;
-  status = weld_skin(weld_topo, body->rest, &weld_pos, &weld_faces);
-  ss_sim_mesh skin = {weld_topo->nweld, weld_pos, nface, weld_faces};
-  ss_topo_destroy(weld_topo);
-  if (status) {
+  ss_sim *sim = NULL;
+  int status;
+  if (settings->skin) {
+    status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, settings->skin,
+                           &settings->sim, err, err_sz);
+  } else {
+    /* welded skin (a no-op copy where the body has no seams) */
+    ss_topo *weld_topo = NULL;
+    double *weld_pos = NULL;
+    int *weld_faces = NULL;
+    status = ss_topo_create(&weld_topo, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
+    if (status) return status;
+    status = weld_skin(weld_topo, body->rest, &weld_pos, &weld_faces);
+    ss_sim_mesh skin = {weld_topo->nweld, weld_pos, nface, weld_faces};
+    ss_topo_destroy(weld_topo);
+    if (status) {
+      free(weld_pos);
+      free(weld_faces);
+      return ss_fail(err, err_sz, status, "run: out of memory for the skin");
+    }
+    status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, &skin, &settings->sim,
+                           err, err_sz);
     free(weld_pos);
     free(weld_faces);
-    return ss_fail(err, err_sz, status, "run: out of memory for the skin");
   }
-  ss_sim *sim = NULL;
-  status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, &skin, &settings->sim, err,
-                         err_sz);
-  free(weld_pos);
-  free(weld_faces);
   if (status) return status;
   const ss_topo *topo = ss_sim_body_topo(sim);
   const int nanchor = ss_sim_nanchors(sim), skin_nvert = ss_sim_skin_nvert(sim);
@@ -140,6 +147,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
          *ms_factor = ms + 3 * frames, *ms_solve = ms + 4 * frames;
 
   stats->triangles = nface;
+  stats->skin_triangles = skin_nface;
   stats->vertices = skin_nvert;
   stats->anchors = nanchor;
   stats->dof = ss_sim_ndof(sim);
@@ -164,7 +172,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   }
 
   double hug_sum2 = 0.0;
-  long long hug_count = 0, iterations = 0;
+  long long hug_count = 0, iterations = 0, walk_steps = 0, anchor_updates = 0;
   double walk_total = 0.0, step_total = 0.0;
   int done_frames = 0;
   for (int frame = 1; frame <= frames; frame++) {
@@ -188,6 +196,8 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
     walk_total += st.walk_ms;
     step_total += st.total_ms;
     iterations += st.iterations;
+    walk_steps += st.walk_steps;
+    anchor_updates += st.anchors_moved;
     stats->stalled += st.stalled;
     stats->unconverged += !st.converged;
     stats->anchors_at_boundary += st.anchors_boundary;
@@ -245,6 +255,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
 
   stats->frames = done_frames;
   stats->iterations_mean = done_frames ? (double)iterations / done_frames : 0.0;
+  stats->walk_steps_per_update = anchor_updates ? (double)walk_steps / anchor_updates : 0.0;
   stats->walk_share = step_total > 0.0 ? walk_total / step_total : 0.0;
   stats->ms_per_frame_median = median(ms_total, done_frames);
   stats->walk_ms_per_frame_median = median(ms_walk, done_frames);

@@ -52,21 +52,39 @@ const char *cli_value(int argc, char **argv, int *i) {
   return argv[++*i];
 }
 
-static void json_key(json_out *j, const char *key) {
-  fprintf(j->f, "%s\n  \"%s\": ", j->count++ ? "," : "", key);
+/* Writes the key (JSON, CSV header) and returns 1 if the value follows. */
+static int json_key(json_out *j, const char *key) {
+  if (j->mode == JSON_OBJECT) {
+    fprintf(j->f, "%s\n  \"%s\": ", j->count++ ? "," : "", key);
+    return 1;
+  }
+  if (j->count++) fputc(',', j->f);
+  if (j->mode == CSV_HEADER) fputs(key, j->f);
+  return j->mode == CSV_ROW;
 }
 
 void json_begin(json_out *j, FILE *f) {
   j->f = f;
   j->count = 0;
+  j->mode = JSON_OBJECT;
   fputc('{', f);
 }
 
+void csv_begin(json_out *j, FILE *f, int mode) {
+  j->f = f;
+  j->count = 0;
+  j->mode = mode;
+}
+
 void json_str(json_out *j, const char *key, const char *value) {
-  json_key(j, key);
+  if (!json_key(j, key)) return;
   fputc('"', j->f);
   for (const char *c = value; c && *c; c++) {
-    if (*c == '"' || *c == '\\') fprintf(j->f, "\\%c", *c);
+    if (j->mode == CSV_ROW) { /* RFC 4180: quotes doubled */
+      if (*c == '"') fputs("\"\"", j->f);
+      else if ((unsigned char)*c < 0x20) fputc(' ', j->f);
+      else fputc(*c, j->f);
+    } else if (*c == '"' || *c == '\\') fprintf(j->f, "\\%c", *c);
     else if ((unsigned char)*c < 0x20) fprintf(j->f, "\\u%04x", (unsigned char)*c);
     else fputc(*c, j->f);
   }
@@ -74,23 +92,25 @@ void json_str(json_out *j, const char *key, const char *value) {
 }
 
 void json_int(json_out *j, const char *key, long long value) {
-  json_key(j, key);
-  fprintf(j->f, "%lld", value);
+  if (json_key(j, key)) fprintf(j->f, "%lld", value);
 }
 
 void json_num(json_out *j, const char *key, double value) {
-  json_key(j, key);
+  if (!json_key(j, key)) return;
   if (isfinite(value)) fprintf(j->f, "%.6g", value);
-  else fputs("null", j->f);
+  else if (j->mode == JSON_OBJECT) fputs("null", j->f);
+}
+
+void json_null(json_out *j, const char *key) {
+  if (json_key(j, key) && j->mode == JSON_OBJECT) fputs("null", j->f);
 }
 
 void json_hex(json_out *j, const char *key, unsigned long long value) {
-  json_key(j, key);
-  fprintf(j->f, "\"%016llx\"", value);
+  if (json_key(j, key)) fprintf(j->f, "\"%016llx\"", value);
 }
 
 void json_end(json_out *j) {
-  fputs("\n}\n", j->f);
+  fputs(j->mode == JSON_OBJECT ? "\n}\n" : "\n", j->f);
   fflush(j->f);
 }
 

@@ -18,15 +18,20 @@ int cli_double(const char *opt, const char *text, double min, double max, double
 /* Returns the value after argv[*i] (advancing *i), or NULL with a message. */
 const char *cli_value(int argc, char **argv, int *i);
 
-/* A flat JSON object written as it goes. */
+/* A flat JSON object written as it goes; the same calls write one CSV line
+ * instead (csv_begin: the keys as a header line, or the values as a row). */
+enum { JSON_OBJECT = 0, CSV_HEADER = 1, CSV_ROW = 2 };
 typedef struct json_out {
   FILE *f;
   int count;
+  int mode;
 } json_out;
 void json_begin(json_out *j, FILE *f);
+void csv_begin(json_out *j, FILE *f, int mode); /* CSV_HEADER or CSV_ROW; json_end ends the line */
 void json_str(json_out *j, const char *key, const char *value);
 void json_int(json_out *j, const char *key, long long value);
-void json_num(json_out *j, const char *key, double value); /* non-finite -> null */
+void json_num(json_out *j, const char *key, double value); /* non-finite -> null (CSV: empty) */
+void json_null(json_out *j, const char *key);
 void json_hex(json_out *j, const char *key, unsigned long long value);
 void json_end(json_out *j);
 

@@ -7,6 +7,7 @@
 
 #include "avatar_body.h"
 #include "cli.h"
+#include "measure.h"
 #include "commands.h"
 #include "skin_sim/ss_run.h"
 
@@ -55,56 +56,9 @@ static int write_frame(void *user, int frame, const ss_sim *sim, const double *b
   return 0;
 }
 
-void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run_stats *st) {
-  json_out j;
-  json_begin(&j, f);
-  json_str(&j, "scene", scene);
-  json_int(&j, "region_faces", st->region_faces);
-  json_str(&j, "method", ss_method_name(s->sim.mover.method));
-  if (s->sim.mover.method == SS_METHOD_NRING) json_int(&j, "nring_rings", s->sim.mover.nring_rings);
-  json_str(&j, "solver", ss_solver_name(s->sim.solver));
-  json_int(&j, "triangles", st->triangles);
-  json_int(&j, "vertices", st->vertices);
-  json_int(&j, "anchors", st->anchors);
-  json_int(&j, "dof", st->dof);
-  json_int(&j, "frames", st->frames);
-  json_num(&j, "dt", 1.0 / 30.0);
-  json_int(&j, "substeps", s->sim.substeps);
-  json_int(&j, "threads", s->sim.threads);
-  json_int(&j, "iterations", s->sim.iterations);
-  json_num(&j, "tol", s->sim.tol);
-  json_num(&j, "ms_per_frame_median", st->ms_per_frame_median);
-  json_num(&j, "walk_ms_per_frame_median", st->walk_ms_per_frame_median);
-  json_num(&j, "walk_share", st->walk_share);
-  json_num(&j, "assemble_ms_per_frame_median", st->assemble_ms_per_frame_median);
-  json_num(&j, "factor_ms_per_frame_median", st->factor_ms_per_frame_median);
-  json_num(&j, "solve_ms_per_frame_median", st->solve_ms_per_frame_median);
-  json_num(&j, "iterations_mean", st->iterations_mean);
-  json_int(&j, "snags", st->snags);
-  json_int(&j, "failures", st->failures);
-  json_int(&j, "stalled", st->stalled);
-  json_int(&j, "unconverged_frames", st->unconverged);
-  json_int(&j, "anchors_at_boundary", st->anchors_at_boundary);
-  json_int(&j, "anchors_at_crease", st->anchors_at_crease);
-  json_int(&j, "anchors_at_step_limit", st->anchors_at_step_limit);
-  json_num(&j, "min_area_ratio", st->min_area_ratio);
-  json_num(&j, "max_area_ratio", st->max_area_ratio);
-  json_num(&j, "hug_rms", st->hug_rms);
-  json_num(&j, "hug_max", st->hug_max);
-  json_num(&j, "mean_edge_length", st->mean_edge_length);
-  json_num(&j, "young", s->sim.young);
-  json_num(&j, "poisson", s->sim.poisson);
-  json_num(&j, "anchor_stiffness", s->sim.anchor_stiffness);
-  json_int(&j, "barycenter_anchors", s->sim.barycenter_anchors);
-  json_num(&j, "bending", s->sim.bending);
-  json_num(&j, "slide", s->sim.slide);
-  json_hex(&j, "final_hash", st->final_hash);
-  json_end(&j);
-}
-
 int cmd_run(int argc, char **argv) {
-  const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL;
-  int tris = 0;
+  const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL, *cache_opt = NULL;
+  int tris = 0, reference = 0;
   avatar_args av = {0};
   ss_run_settings s = ss_run_default_settings();
   for (int i = 1; i < argc; i++) {
@@ -200,6 +154,10 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--asset-scale") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-9, 1e9, &av.asset_scale))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--reference") == 0) {
+      reference = 1;
+    } else if (strcmp(a, "--cache") == 0) {
+      if (!(cache_opt = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--json") == 0) {
       if (!(json_path = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--out") == 0) {
@@ -223,6 +181,8 @@ int cmd_run(int argc, char **argv) {
     cli_error("cannot create output folder '%s': %s", out_dir, strerror(errno));
     return EXIT_USAGE;
   }
+  char cache_dir[4096] = "";
+  if (reference && measure_cache_dir(cache_opt, cache_dir, sizeof cache_dir)) return EXIT_USAGE;
   char err[512] = "";
   ss_scene *scene = NULL;
   avatar_body *ab = NULL;
@@ -245,9 +205,10 @@ int cmd_run(int argc, char **argv) {
   frame_writer writer = {out_dir, &body, ""};
   progress bar;
   progress_begin(&bar, scene_name ? scene_name : "avatar");
-  ss_run_stats st;
-  int status = ss_run_body(&body, &s, out_dir ? write_frame : NULL, &writer, progress_update, &bar,
-                           &st, err, sizeof err);
+  measure_result res;
+  int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, out_dir ? write_frame : NULL,
+                           &writer, progress_update, &bar, &res, err, sizeof err);
+  const ss_run_stats st = res.st;
   progress_end(&bar);
   ss_scene_destroy(scene);
   if (status) {
@@ -263,7 +224,10 @@ int cmd_run(int argc, char **argv) {
   if (json_path) {
     FILE *f = cli_open_json(json_path);
     if (!f) return EXIT_RUN_FAILED;
-    run_json(f, label, &s, &st);
+    json_out j;
+    json_begin(&j, f);
+    measure_fields(&j, label, &s, &res);
+    json_end(&j);
     cli_close_json(f);
   }
   if (!json_path || strcmp(json_path, "-") != 0)
@@ -274,6 +238,10 @@ int cmd_run(int argc, char **argv) {
            st.triangles, st.frames, st.ms_per_frame_median, st.walk_ms_per_frame_median,
            100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
            st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
+  if (reference && (!json_path || strcmp(json_path, "-") != 0))
+    printf("error vs reference %.4g mean edge lengths (reference %016llx, %s, %.0f ms)\n",
+           res.error_vs_reference, res.reference_key,
+           res.reference_cache_hit ? "from the cache" : "computed", res.reference_ms);
   avatar_body_close(ab);
   return 0;
 }

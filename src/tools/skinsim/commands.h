@@ -12,8 +12,8 @@ int cmd_scenes(int argc, char **argv);
 int cmd_track(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_run(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
 
-void run_json(FILE *f, const char *scene, const ss_run_settings *s, const ss_run_stats *st);
 void track_json(FILE *f, const char *scene, const ss_track_settings *s, const ss_track_stats *st);
 
 #endif

@@ -23,10 +23,14 @@ static void usage(FILE *f) {
       "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
       "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
       "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide R]\n"
-      "        [--threads N] [--json FILE|-] [--out DIR]\n"
+      "        [--threads N] [--reference [--cache DIR]] [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
       "                              summary (speed, snags, failures, hugging, area ratios,\n"
-      "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply\n"      "        BODY is a built-in scene: --scene NAME [--tris N]\n"
+      "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply;\n"
+      "                              --reference adds error_vs_reference: RMS distance to a\n"
+      "                              reference run (16 substeps, Newton to tol 1e-6), cached in\n"
+      "                              --cache DIR (default $XDG_CACHE_HOME/skin_sim or\n"
+      "                              ~/.cache/skin_sim), divided by the mean edge length\n"      "        BODY is a built-in scene: --scene NAME [--tris N]\n"
 #ifdef SS_HAVE_AVATAR
       "        or an avatar:  --avatar demo [--avatar-tris N] [--motion arms|elbows|twist|all|CSV]\n"
       "                       --urdf FILE [--mesh FILE] --motion CSV|NAME [--package-path NAME=DIR,...]\n"
@@ -34,6 +38,12 @@ static void usage(FILE *f) {
       "                       [--region LINK,...]  simulate only the skin of these links\n"
 #endif
 
+      "  bench --out DIR [--quick] [--cache DIR] [--no-plot] [--plot-script FILE] [--python EXE]\n"
+      "                              speed against accuracy: a sweep of methods, solvers,\n"
+      "                              iterations, substeps, sizes and options over the scenes\n"
+      "                              and avatars; DIR/results.csv and charts (pareto, stability,\n"
+      "                              scaling, breakdown, options .png; stability.md, options.md).\n"
+      "                              --quick: small sizes, a few minutes; full: under 30 minutes\n"
       "  help                        this text\n"
       "\n"
       "exit status: 0 ok, 1 the run failed, 2 bad usage or input\n",
@@ -54,6 +64,7 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "track") == 0) return cmd_track(argc - 1, argv + 1);
   if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
   if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
+  if (strcmp(cmd, "bench") == 0) return cmd_bench(argc - 1, argv + 1);
   cli_error("unknown command '%s' (try: skinsim help)", cmd);
   return EXIT_USAGE;
 }

@@ -1,0 +1,90 @@
+/* skin_sim core: reference runs and the error of a run against its reference
+ * (DESIGN.md, "Accuracy").
+ *
+ * The reference of a run configuration is the same body, skin model and
+ * anchor method stepped with a much smaller time step (SS_REFERENCE_SUBSTEPS
+ * implicit Euler steps per frame, or the run's own substeps if more) by
+ * Newton converged tightly (SS_REFERENCE_TOL within SS_REFERENCE_ITERATIONS
+ * iterations). `slide` acts per substep (ss_sim.h), so the reference slides
+ * with the per-substep fraction that leaves an anchor the same share of its
+ * way per frame: 1 - (1 - slide)^(substeps / reference substeps). A run
+ * configured like its reference gets exactly its settings, hence error 0.
+ *
+ * Its skin positions at every frame are cached in a folder, one file per
+ * reference named by a 64-bit key: the hash of a text describing everything
+ * that determines them (the code version SS_REFERENCE_VERSION, the body's
+ * rest mesh and its pose at every frame, the frame count and rate, every
+ * setting of the reference's ss_sim_settings, the face mask). A file is
+ * trusted only if its header (magic, version, key, sizes), its exact size and
+ * the checksum of its contents all match; anything else is recomputed and the
+ * file rewritten (through a temporary file and a rename).
+ *
+ * error_vs_reference = sqrt(mean over frames and skin vertices of
+ * |x - x_ref|^2) / mean rest edge length of the body. A run whose skin is a
+ * mesh of its own (settings->skin, e.g. coarser) is compared through points
+ * of the reference skin: each of its vertices is bound at rest to the
+ * closest point of the reference skin (face, barycentric) and that point is
+ * followed through the reference frames. */
+#ifndef SKIN_SIM_SS_REFERENCE_H
+#define SKIN_SIM_SS_REFERENCE_H
+
+#include "ss_run.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SS_REFERENCE_VERSION 1      /* bump when the simulation's results change */
+#define SS_REFERENCE_SUBSTEPS 16
+#define SS_REFERENCE_ITERATIONS 100
+#define SS_REFERENCE_TOL 1e-6
+
+/* The settings of the reference of run (skin NULL: the body's own welded skin). */
+ss_run_settings ss_reference_settings(const ss_run_settings *run);
+
+typedef struct ss_reference {
+  int frames;            /* frames 1..frames */
+  int nvert, nface;      /* the reference skin */
+  double *rest;          /* (nvert x 3) skin at rest */
+  int *faces;            /* (nface x 3) */
+  double *pos;           /* (frames x nvert x 3) skin after frame f at pos + (f-1) nvert 3 */
+  double mean_edge_length; /* the body at rest */
+  unsigned long long key;
+  int cache_hit;         /* 1 if read from a valid cache file */
+  int cache_rejected;    /* 1 if a cache file existed but was invalid (then recomputed) */
+  double ms;             /* time to compute or read it */
+  ss_run_stats stats;    /* of the reference run (zero when read from the cache) */
+} ss_reference;
+
+/* The cache key of the reference of run over body. SS_OK or an error (a
+ * pose that fails). */
+int ss_reference_key(const ss_body *body, const ss_run_settings *run, unsigned long long *key,
+                     char *err, int err_sz);
+
+/* The reference of run over body: read from cache_dir (an existing folder;
+ * NULL: never cached) if a valid file is there, else computed and written
+ * there. progress (may be NULL) reports the reference run's frames.
+ * Returns SS_OK, or an error with a message (SS_E_IO: the file could not be
+ * written; the computation's own errors). *out is NULL on error. */
+int ss_reference_get(ss_reference **out, const ss_body *body, const ss_run_settings *run,
+                     const char *cache_dir, ss_progress_fn progress, void *progress_user,
+                     char *err, int err_sz);
+void ss_reference_destroy(ss_reference *ref);
+
+/* The running error of one run against a reference. */
+typedef struct ss_ref_error ss_ref_error;
+/* For a skin of nvert vertices (rest: nvert x 3, the run's skin at rest).
+ * A skin identical to the reference's is compared vertex to vertex, any
+ * other through closest points at rest (see above). */
+int ss_ref_error_create(ss_ref_error **out, const ss_reference *ref, int nvert,
+                        const double *rest, char *err, int err_sz);
+void ss_ref_error_destroy(ss_ref_error *e);
+/* Adds frame (1..ref->frames) of the run's skin positions (nvert x 3). */
+void ss_ref_error_add(ss_ref_error *e, int frame, const double *pos);
+/* RMS distance over the frames added, in mean edge lengths (0 if none). */
+double ss_ref_error_value(const ss_ref_error *e);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,331 @@
+#!/usr/bin/python3
+"""Charts of `skinsim bench`: reads DIR/results.csv, writes into DIR
+pareto.png, stability.png + stability.md, scaling.png, breakdown.png,
+options.png + options.md (matplotlib, Agg backend, no display).
+
+usage: /usr/bin/python3 scripts/plot_bench.py DIR
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+DPI = 80
+METHODS = ["walk", "project", "nring1", "nring2", "nring4"]
+MARKERS = {"walk": "o", "project": "s", "nring1": "^", "nring2": "v", "nring4": "D"}
+COLORS = {"walk": "tab:green", "project": "tab:red", "nring1": "tab:orange",
+          "nring2": "tab:purple", "nring4": "tab:brown"}
+
+
+def num(row, key):
+    try:
+        v = float(row.get(key, ""))
+        return v if math.isfinite(v) else None
+    except ValueError:
+        return None
+
+
+def method_label(row):
+    m = row["method"]
+    return "nring" + row["nring_rings"] if m == "nring" else m
+
+
+def load(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def save(fig, out, name):
+    fig.savefig(os.path.join(out, name), dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+
+
+def pareto_front(points):
+    """Points (x, y) not dominated by another (lower x and lower y)."""
+    front, best = [], math.inf
+    for x, y in sorted(points):
+        if y < best:
+            front.append((x, y))
+            best = y
+    return front
+
+
+def config_label(row):
+    return "%s %s it %s sub %s" % (method_label(row), row["solver"], row["iterations"],
+                                   row["substeps"])
+
+
+def plot_pareto(rows, out):
+    """ms per frame against error, per scene with the solver/substeps sweep."""
+    scenes = []
+    for r in rows:
+        if r["sweep"] in ("solvers", "substeps") and r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    if not scenes:
+        scenes = sorted({r["scene"] for r in rows if num(r, "error_vs_reference") is not None})[:3]
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5.2 * len(scenes), 4.4), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        pts = [r for r in rows if r["scene"] == scene and r["sweep"] in
+               ("methods", "solvers", "substeps")
+               and num(r, "error_vs_reference") is not None]
+        seen = set()
+        for r in pts:
+            ms, err = num(r, "ms_per_frame_median"), num(r, "error_vs_reference")
+            m, solver = method_label(r), r["solver"]
+            key = (m, solver)
+            face = COLORS.get(m, "gray") if solver == "quasi-newton" else "none"
+            ax.scatter([ms], [max(err, 1e-6)], marker=MARKERS.get(m, "x"),
+                       facecolors=face, edgecolors=COLORS.get(m, "gray"), s=46,
+                       label=("%s, %s" % (m, solver)) if key not in seen else None)
+            seen.add(key)
+            if r["sweep"] in ("solvers", "substeps"):
+                tag = ("it %s" % r["variant"]) if r["sweep"] == "solvers" else ("sub %s" % r["variant"])
+                ax.annotate(tag, (ms, max(err, 1e-6)), fontsize=6, xytext=(3, 3),
+                            textcoords="offset points")
+        front = pareto_front([(num(r, "ms_per_frame_median"), max(num(r, "error_vs_reference"), 1e-6))
+                              for r in pts])
+        if front:
+            ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k",
+                    lw=1, ls="--", label="Pareto front")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        tri = pts[0]["triangles"] if pts else "?"
+        ax.set_title("%s (%s triangles)" % (scene, tri), fontsize=10)
+        ax.set_xlabel("ms per frame (median)")
+        ax.set_ylabel("error vs reference (mean edge lengths)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6, loc="best")
+    fig.suptitle("Speed against accuracy\n(filled: quasi-Newton, hollow: Newton; "
+                 "labels: iterations / substeps)", fontsize=9)
+    save(fig, out, "pareto.png")
+
+
+def plot_stability(rows, out):
+    mrows = [r for r in rows if r["sweep"] == "methods"]
+    scenes = []
+    for r in mrows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    cell = {(r["scene"], method_label(r)): r for r in mrows}
+    lines = ["# Stability: where each method breaks", "",
+             "Per scene and anchor method (quasi-Newton, 8 iterations, 1 substep): snags "
+             "(anchor jumps across a gap), failures (frames with NaN/Inf, an area ratio "
+             "outside [0.05, 20] or a failed step), hug RMS / max (skin to body distance, "
+             "mean edge lengths), error vs reference (mean edge lengths; the reference uses "
+             "the same method).", "",
+             "| scene | triangles | frames | method | snags | failures | hug rms | hug max "
+             "| error | ms/frame |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for s in scenes:
+        for m in METHODS:
+            r = cell.get((s, m))
+            if not r:
+                continue
+            e = num(r, "error_vs_reference")
+            lines.append("| %s | %s | %s | %s | %s | %s | %.3f | %.3f | %s | %.2f |" % (
+                s, r["triangles"], r["frames"], m, r["snags"], r["failures"],
+                num(r, "hug_rms") or 0.0, num(r, "hug_max") or 0.0,
+                "%.3g" % e if e is not None else "-", num(r, "ms_per_frame_median") or 0.0))
+    with open(os.path.join(out, "stability.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 0.42 * len(scenes) + 1.8))
+    keys = [("snags", "snags (count)"), ("failures", "failed frames"),
+            ("hug_rms", "hug RMS (edge lengths)")]
+    for ax, (key, title) in zip(axes, keys):
+        data = [[num(cell[(s, m)], key) if (s, m) in cell else float("nan") for m in METHODS]
+                for s in scenes]
+        vals = [v for row in data for v in row if v is not None and not math.isnan(v)]
+        vmax = max(vals) if vals else 1.0
+        img = [[(v if v is not None else float("nan")) for v in row] for row in data]
+        ax.imshow(img, cmap="Reds", vmin=0, vmax=vmax if vmax > 0 else 1.0, aspect="auto")
+        for i, row in enumerate(data):
+            for j, v in enumerate(row):
+                if v is None or math.isnan(v):
+                    continue
+                txt = ("%d" % v) if key != "hug_rms" else ("%.3f" % v)
+                ax.text(j, i, txt, ha="center", va="center", fontsize=7,
+                        color="white" if vmax > 0 and v > 0.6 * vmax else "black")
+        ax.set_xticks(range(len(METHODS)))
+        ax.set_xticklabels(METHODS, fontsize=8)
+        ax.set_yticks(range(len(scenes)))
+        ax.set_yticklabels(scenes, fontsize=8)
+        ax.set_title(title, fontsize=10)
+    fig.suptitle("Where methods break: per scene and anchor method", fontsize=11)
+    save(fig, out, "stability.png")
+
+
+def fit_exponent(xs, ys):
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    n = len(lx)
+    mx, my = sum(lx) / n, sum(ly) / n
+    sxx = sum((a - mx) ** 2 for a in lx)
+    if n < 2 or sxx == 0:
+        return None, None
+    k = sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx
+    return k, math.exp(my - k * mx)
+
+
+def plot_scaling(rows, out):
+    srows = [r for r in rows if r["sweep"] == "scaling"]
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    summary = []
+    for m, key, style, what in [("walk", "ms_per_frame_median", "o-", "frame, walk"),
+                                ("project", "ms_per_frame_median", "s-", "frame, project"),
+                                ("walk", "walk_ms_per_frame_median", "o:", "anchor walk only"),
+                                ("project", "walk_ms_per_frame_median", "s:",
+                                 "anchor projection only")]:
+        pts = sorted((int(r["triangles"]), num(r, key)) for r in srows
+                     if method_label(r) == m and num(r, key))
+        if len(pts) < 2:
+            continue
+        k, c = fit_exponent([p[0] for p in pts], [p[1] for p in pts])
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], style, color=COLORS[m],
+                label="%s: ms ~ tris^%.2f" % (what, k))
+        summary.append("%s: exponent %.2f" % (what, k))
+    ax.axhline(33.0, color="gray", ls="--", lw=1)
+    ax.text(0.01, 35, "33 ms budget (30 Hz)", fontsize=7, color="gray",
+            transform=ax.get_yaxis_transform())
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("body triangles (quadruped)")
+    ax.set_ylabel("ms per frame (median)")
+    ax.set_title("Scaling: quasi-Newton, 8 iterations, 1 substep", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    save(fig, out, "scaling.png")
+    with open(os.path.join(out, "scaling.txt"), "w") as f:
+        f.write("\n".join(summary) + "\n")
+
+
+def plot_breakdown(rows, out):
+    bars = []
+    for r in rows:
+        if r["sweep"] == "methods" and method_label(r) == "walk":
+            bars.append(("%s qn" % r["scene"], r))
+    for r in rows:
+        if r["sweep"] == "solvers" and r["solver"] == "newton" and r["variant"] == "8":
+            bars.append(("%s newton" % r["scene"], r))
+    for r in rows:
+        if r["sweep"] == "scaling" and method_label(r) == "walk":
+            bars.append(("quadruped %s" % r["triangles"], r))
+    parts = [("assemble_ms_per_frame_median", "assemble", "tab:blue"),
+             ("factor_ms_per_frame_median", "factorise", "tab:red"),
+             ("solve_ms_per_frame_median", "solve", "tab:orange"),
+             ("walk_ms_per_frame_median", "walk (anchor update)", "tab:green")]
+    fig, ax = plt.subplots(figsize=(max(7.0, 0.42 * len(bars) + 4), 4.8))
+    xs = range(len(bars))
+    for i, (label, r) in enumerate(bars):
+        total = num(r, "ms_per_frame_median") or 0.0
+        bottom = 0.0
+        fracs = []
+        for key, name, color in parts:
+            v = num(r, key) or 0.0
+            fracs.append(v)
+        # medians of the parts need not add up to the median total: scale shares
+        s = sum(fracs)
+        other = max(total - s, 0.0)
+        scale = total / s if s > total and s > 0 else 1.0
+        for (key, name, color), v in zip(parts, fracs):
+            ax.bar(i, 100.0 * v * scale / total if total else 0, bottom=bottom, color=color,
+                   label=name if i == 0 else None)
+            bottom += 100.0 * v * scale / total if total else 0
+        ax.bar(i, 100.0 * other / total if total else 0, bottom=bottom, color="lightgray",
+               label="other (pose, line search, bookkeeping)" if i == 0 else None)
+        ax.text(i, 101, "%.1f" % total, ha="center", fontsize=6, rotation=90)
+    ax.set_xticks(list(xs))
+    ax.set_xticklabels([b[0] for b in bars], rotation=70, fontsize=7)
+    ax.set_ylabel("% of a frame's time (median; ms on top)")
+    ax.set_ylim(0, 118)
+    ax.set_title("Where a frame's time goes", fontsize=10)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    save(fig, out, "breakdown.png")
+
+
+def plot_options(rows, out):
+    orows = [r for r in rows if r["sweep"] == "options"]
+    scenes = []
+    for r in orows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    options = []
+    for r in orows:
+        if r["option"] not in options:
+            options.append(r["option"])
+    cell = {(r["scene"], r["option"]): r for r in orows}
+    lines = ["# What each optional part costs and buys", "",
+             "Per scene (walk, quasi-Newton, 8 iterations, 1 substep): ms per frame; "
+             "error = RMS distance to the reference of the same model (what the fast "
+             "solve costs); vs default = RMS distance to the reference of the default model "
+             "(what the option changes: for a simplification its cost in accuracy, for an "
+             "added term how much the scene needs it). Both in mean edge lengths; the coarse "
+             "skin is compared with the fine skin's reference through closest points at "
+             "rest. bending: hinge k = 1e-3 N m; gravity: 9.81 m/s^2 along -z; region: only "
+             "the faces whose rest centroid has x >= the median simulated, the rest follows "
+             "the body; coarse-skin: the same scene at a quarter of the triangles as skin.", "",
+             "| scene | option | skin triangles | ms/frame | x base | error | vs default "
+             "| snags | hug rms |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for s in scenes:
+        base = num(cell[(s, "base")], "ms_per_frame_median") if (s, "base") in cell else None
+        for o in options:
+            r = cell.get((s, o))
+            if not r:
+                continue
+            ms = num(r, "ms_per_frame_median") or 0.0
+            e = num(r, "error_vs_reference")
+            d = num(r, "error_vs_base_reference")
+            lines.append("| %s | %s | %s | %.2f | %s | %s | %s | %s | %.3f |" % (
+                s, o, r["skin_triangles"], ms, "%.2f" % (ms / base) if base else "-",
+                "%.3g" % e if e is not None else "-", "%.3g" % d if d is not None else "-",
+                r["snags"], num(r, "hug_rms") or 0.0))
+    with open(os.path.join(out, "options.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    width = 0.8 / max(1, len(scenes))
+    for k, (key, title) in enumerate([
+            ("ms_per_frame_median", "ms per frame (median)"),
+            ("error_vs_reference", "error vs the same model's reference"),
+            ("error_vs_base_reference", "distance to the default model's reference")]):
+        ax = axes[k]
+        for i, s in enumerate(scenes):
+            vals = [num(cell[(s, o)], key) if (s, o) in cell else 0 for o in options]
+            ax.bar([j + i * width for j in range(len(options))], [v or 0 for v in vals], width,
+                   label="%s (%s tris)" % (s, cell[(s, options[0])]["triangles"])
+                   if (s, options[0]) in cell else s)
+        ax.set_xticks([j + 0.4 - width / 2 for j in range(len(options))])
+        ax.set_xticklabels(options, rotation=30, fontsize=8)
+        ax.set_title(title, fontsize=10)
+        ax.set_yscale("log")
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("What each optional part of the model costs (time) and changes (edge lengths)",
+                 fontsize=10)
+    save(fig, out, "options.png")
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.stderr.write(__doc__)
+        return 2
+    out = sys.argv[1]
+    rows = load(os.path.join(out, "results.csv"))
+    if not rows:
+        sys.stderr.write("plot_bench: %s/results.csv has no rows\n" % out)
+        return 1
+    plot_pareto(rows, out)
+    plot_stability(rows, out)
+    plot_scaling(rows, out)
+    plot_breakdown(rows, out)
+    plot_options(rows, out)
+    print("plot_bench: charts written to %s" % out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# skinsim bench --quick into a temporary folder: every chart, both Markdown
+# tables and the CSV exist; the CSV has a row for every anchor method and
+# every body (built-in scenes and avatars), with error_vs_reference filled in.
+# Usage: test_skinsim_bench.sh BUILD_DIR SOURCE_DIR
+set -u
+bld="$1"
+src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
+exe=$(find "$bld" -type f -name skinsim -perm -u+x | head -n 1)
+[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
+/usr/bin/python3 -c 'import matplotlib' 2> /dev/null ||
+  { echo "SKIP: python3-matplotlib missing (scripts/install_deps.sh installs it)"; exit 77; }
+fail=0
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+
+# BLAS threads only slow the references' small factorisations down here
+start=$(date +%s)
+OPENBLAS_NUM_THREADS=1 "$exe" bench --quick --out "$tmp/out" --cache "$tmp/cache" \
+  --plot-script "$src/scripts/plot_bench.py" 2> "$tmp/err"; rc=$?
+echo "bench --quick: exit $rc in $(( $(date +%s) - start )) s"
+check "bench --quick exits 0" "[ $rc -eq 0 ]" || tail -n 20 "$tmp/err"
+check "a progress line per run on stderr" "grep -q '^\[1/' '$tmp/err'"
+for f in results.csv pareto.png stability.png stability.md scaling.png breakdown.png \
+         options.png options.md; do
+  check "$f written and not empty" "[ -s '$tmp/out/$f' ]"
+done
+for f in pareto stability scaling breakdown options; do
+  check "$f.png is a PNG" "head -c 8 '$tmp/out/$f.png' | od -An -c | grep -q 'P   N   G'"
+done
+scenes=$("$exe" scenes | awk 'NR > 1 {print $1}' | tr '\n' ' ')
+check "CSV: a row per method and body, errors filled, every field of run --json" "/usr/bin/python3 - '$tmp/out/results.csv' $scenes <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+bodies = sys.argv[2:] + ['demo']
+import os
+if os.path.exists('/usr/share/assimp/models/X/BCN_Epileptic.X'):
+    bodies.append('BCN_Epileptic.X')
+methods = ['walk', 'project', 'nring1', 'nring2', 'nring4']
+def label(r):
+    return r['method'] + (r['nring_rings'] if r['method'] == 'nring' else '')
+have = {(r['scene'], label(r)) for r in rows if r['sweep'] == 'methods'}
+missing = [(b, m) for b in bodies for m in methods if (b, m) not in have]
+need = ['sweep', 'scene', 'method', 'solver', 'triangles', 'frames', 'substeps', 'iterations',
+        'ms_per_frame_median', 'walk_ms_per_frame_median', 'assemble_ms_per_frame_median',
+        'factor_ms_per_frame_median', 'solve_ms_per_frame_median', 'snags', 'failures',
+        'hug_rms', 'hug_max', 'final_hash', 'error_vs_reference', 'reference_cache_hit']
+absent = [k for k in need if k not in rows[0]]
+noerr = [(r['scene'], label(r)) for r in rows if r['sweep'] == 'methods' and not r['error_vs_reference']]
+sweeps = {r['sweep'] for r in rows}
+solvers = {r['solver'] for r in rows}
+print('rows', len(rows), 'missing', missing, 'absent', absent, 'no error', noerr, sweeps, solvers)
+ok = not missing and not absent and not noerr and solvers == {'newton', 'quasi-newton'} and \
+    sweeps == {'methods', 'solvers', 'substeps', 'scaling', 'options'}
+sys.exit(0 if ok else 1)
+PY"
+check "stability.md has a row for walk on the quadruped" \
+  "grep -q '^| quadruped | .* | walk |' '$tmp/out/stability.md'"
+
+bad() { # bad <description> <args...>: exit 2, one line on stderr
+  local what="$1"; shift
+  "$exe" "$@" > /dev/null 2> "$tmp/e"; local rc=$?
+  check "$what: exit 2, one message" "[ $rc -eq 2 ] && [ \$(wc -l < '$tmp/e') -eq 1 ]"
+}
+bad "bench without --out" bench --quick
+bad "bench unknown option" bench --out "$tmp/x" --bogus
+bad "bench missing plot script" bench --out "$tmp/x" --plot-script "$tmp/none.py"
+exit $fail
