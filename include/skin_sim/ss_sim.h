@@ -52,6 +52,11 @@ typedef struct ss_sim_settings {
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
                             lengths; default 1e-4 */
+  double safety_residual; /* quasi-Newton: a substep whose residual (same measure as tol) is
+                            still above this after `iterations` keeps iterating, up to
+                            iterations_max: a hard frame costs more instead of tangling the
+                            skin; default 0.05 (5% of an edge length); 0 turns it off */
+  int iterations_max;    /* the hard cap for that; default 32 */
   int lbfgs_history;     /* L-BFGS pairs kept (quasi-Newton); default 6, 1..32 */
   double young;          /* N/m: membrane Young's modulus times thickness; default 50 */
   double poisson;        /* Poisson ratio in [0, 0.5); default 0.3 */

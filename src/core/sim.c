@@ -53,6 +53,8 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.iterations = 8;
   s.tol = 1e-4;
   s.lbfgs_history = 6;
+  s.safety_residual = 0.05;
+  s.iterations_max = 32;
   s.young = 50.0;
   s.poisson = 0.3;
   s.density = 1.0;
@@ -75,6 +77,10 @@ static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
     return ss_fail(err, err_sz, SS_E_ARG, "substeps must be in [1, 1000] (got %d)", s->substeps);
   if (s->iterations < 0) return ss_fail(err, err_sz, SS_E_ARG, "iterations must be >= 0 (got %d)", s->iterations);
   if (!(s->tol >= 0.0)) return ss_fail(err, err_sz, SS_E_ARG, "tol must be >= 0 (got %g)", s->tol);
+  if (!(isfinite(s->safety_residual) && s->safety_residual >= 0.0))
+    return ss_fail(err, err_sz, SS_E_ARG, "safety_residual must be >= 0 (got %g)", s->safety_residual);
+  if (s->iterations_max < 0)
+    return ss_fail(err, err_sz, SS_E_ARG, "iterations_max must be >= 0 (got %d)", s->iterations_max);
   if (s->lbfgs_history < 1 || s->lbfgs_history > 32)
     return ss_fail(err, err_sz, SS_E_ARG, "lbfgs_history must be in [1, 32] (got %d)", s->lbfgs_history);
   if (!(isfinite(s->young) && s->young >= 0.0))

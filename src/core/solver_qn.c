@@ -18,7 +18,13 @@
  * not a descent direction (possible when curvature pairs are stale) is
  * replaced by -A^-1 g, which always is (A is positive definite). Pairs with
  * s.y <= 1e-12 |s| |y| are skipped (keeps the implicit Hessian positive
- * definite). Energy-based backtracking line search, as in solver_newton.c. */
+ * definite). Energy-based backtracking line search, as in solver_newton.c.
+ *
+ * Budget: `iterations` per substep, the real-time cost. A substep still far
+ * from converged after it (residual above `safety_residual`, e.g. a skin
+ * spun hard against soft anchors) goes on up to `iterations_max`: with the
+ * isotropic A, L-BFGS needs many iterations exactly where skipping them
+ * would leave the membrane crushed. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,7 +140,12 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
       *converged = 1;
       break;
     }
-    if (it >= sim->set.iterations) break;
+    if (it >= sim->set.iterations) {
+      /* past the budget: go on only while far from converged (safety net) */
+      const int hard = sim->set.iterations_max > sim->set.iterations ? sim->set.iterations_max
+                                                                      : sim->set.iterations;
+      if (!(sim->set.safety_residual > 0.0 && res > sim->set.safety_residual) || it >= hard) break;
+    }
     st->iterations++;
     double t1 = ss_now_ms();
     /* Two-loop recursion: dir = -H g. Each pass over the vectors applies
