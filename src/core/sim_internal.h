@@ -175,5 +175,12 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
  * everything tried was non-finite. */
 #define SS_ROUNDOFF_STEPS 8
 int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir);
+/* What a solver does after a line search returned ls (1 step taken, 2 step
+ * taken with E flat to round-off, 0 no step, < 0 non-finite): judges
+ * round-off progress by the residual (best_res, roundoff_steps), sets
+ * *converged, *stalled or *nonfinite and the step's residual and energy, and
+ * returns 1 to go on iterating or 0 to stop. g is the gradient at xd. */
+int ss_sim_after_line_search(ss_sim *sim, int ls, const double *g, double e, double *best_res,
+                             int *roundoff_steps, int *converged, int *stalled, int *nonfinite);
 
 #endif

@@ -37,6 +37,32 @@ static double dot(const double *a, const double *b, int n) {
   return s;
 }
 
+int ss_sim_after_line_search(ss_sim *sim, int ls, const double *g, double e, double *best_res,
+                             int *roundoff_steps, int *converged, int *stalled, int *nonfinite) {
+  if (ls == 2) {
+    /* E flat to round-off: progress is judged by the residual. */
+    double r = ss_sim_residual(sim, g);
+    *roundoff_steps = r < *best_res ? 0 : *roundoff_steps + 1;
+    if (r < *best_res) *best_res = r;
+    if (*roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+  }
+  if (ls < 0) {
+    *nonfinite = 2; /* xd is still the last finite iterate */
+    return 0;
+  }
+  if (ls == 0) {
+    ss_sim_stats *st = sim->st;
+    st->residual = ss_sim_residual(sim, g); /* g is at xd */
+    st->energy = e;
+    if (st->residual <= sim->set.tol)
+      *converged = 1;
+    else
+      *stalled = 1;
+    return 0;
+  }
+  return 1;
+}
+
 int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir) {
   int n3 = 3 * sim->ndof;
   double slope = dot(gd, dir, n3);
@@ -200,26 +226,9 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
       }
       ls = ss_sim_line_search(sim, xd, g, &e, dir);
     }
-    if (ls == 2) {
-      /* E flat to round-off: progress is judged by the residual. */
-      double r = ss_sim_residual(sim, g);
-      roundoff_steps = r < best_res ? 0 : roundoff_steps + 1;
-      if (r < best_res) best_res = r;
-      if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
-    }
-    if (ls < 0) {
-      *nonfinite = 2; /* xd is still the last finite iterate */
+    if (!ss_sim_after_line_search(sim, ls, g, e, &best_res, &roundoff_steps, converged, stalled,
+                                  nonfinite))
       break;
-    }
-    if (ls == 0) {
-      st->residual = ss_sim_residual(sim, g); /* g is at xd */
-      st->energy = e;
-      if (st->residual <= sim->set.tol)
-        *converged = 1;
-      else
-        *stalled = 1;
-      break;
-    }
     ss_sim_scatter(sim, xd, sim->xfull_t);
     res = ss_sim_residual(sim, g);
   }

@@ -219,26 +219,9 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
       for (int i = 0; i < n3; i++) dir[i] = -dir[i];
       ls = ss_sim_line_search(sim, xd, g, &e, dir);
     }
-    if (ls == 2) {
-      /* E flat to round-off: progress is judged by the residual. */
-      double r = ss_sim_residual(sim, g);
-      roundoff_steps = r < best_res ? 0 : roundoff_steps + 1;
-      if (r < best_res) best_res = r;
-      if (roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
-    }
-    if (ls < 0) {
-      *nonfinite = 2; /* xd is still the last finite iterate */
+    if (!ss_sim_after_line_search(sim, ls, g, e, &best_res, &roundoff_steps, converged, stalled,
+                                  nonfinite))
       break;
-    }
-    if (ls == 0) {
-      st->residual = ss_sim_residual(sim, g); /* g is at xd */
-      st->energy = e;
-      if (st->residual <= sim->set.tol)
-        *converged = 1;
-      else
-        *stalled = 1;
-      break;
-    }
     for (int i = 0; i < n3; i++) {
       s_new[i] = xd[i] - s_new[i];
       y_new[i] = g[i] - y_new[i];
