@@ -10,6 +10,7 @@
 
 #include "snag.h"
 #include "ss_err.h"
+#include "ss_util.h"
 
 #define AREA_RATIO_MIN 0.05
 #define AREA_RATIO_MAX 20.0
@@ -33,16 +34,6 @@ unsigned long long ss_hash_bytes(const void *data, size_t n) {
   return h;
 }
 
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *values, int n) {
-  if (n <= 0) return 0.0;
-  qsort(values, (size_t)n, sizeof(double), cmp_double);
-  return (n % 2) ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 static int scene_pose(void *user, double frame, double *pos) {
   ss_scene_pose(user, frame, pos);
@@ -257,11 +248,11 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   stats->iterations_mean = done_frames ? (double)iterations / done_frames : 0.0;
   stats->walk_steps_per_update = anchor_updates ? (double)walk_steps / anchor_updates : 0.0;
   stats->walk_share = step_total > 0.0 ? walk_total / step_total : 0.0;
-  stats->ms_per_frame_median = median(ms_total, done_frames);
-  stats->walk_ms_per_frame_median = median(ms_walk, done_frames);
-  stats->assemble_ms_per_frame_median = median(ms_asm, done_frames);
-  stats->factor_ms_per_frame_median = median(ms_factor, done_frames);
-  stats->solve_ms_per_frame_median = median(ms_solve, done_frames);
+  stats->ms_per_frame_median = ss_median(ms_total, done_frames);
+  stats->walk_ms_per_frame_median = ss_median(ms_walk, done_frames);
+  stats->assemble_ms_per_frame_median = ss_median(ms_asm, done_frames);
+  stats->factor_ms_per_frame_median = ss_median(ms_factor, done_frames);
+  stats->solve_ms_per_frame_median = ss_median(ms_solve, done_frames);
   stats->hug_rms = hug_count ? sqrt(hug_sum2 / (double)hug_count) : 0.0;
   if (!isfinite(stats->min_area_ratio)) stats->min_area_ratio = 0.0;
   stats->final_hash =

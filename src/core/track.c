@@ -15,6 +15,7 @@
 #include "skin_sim/ss_track.h"
 #include "snag.h"
 #include "ss_err.h"
+#include "ss_util.h"
 
 ss_track_settings ss_track_default_settings(void) {
   ss_track_settings s;
@@ -25,17 +26,6 @@ ss_track_settings ss_track_default_settings(void) {
   return s;
 }
 
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-/* Median of values (sorted in place); 0 for an empty set. */
-static double median(double *values, int n) {
-  if (n <= 0) return 0.0;
-  qsort(values, (size_t)n, sizeof(double), cmp_double);
-  return (n % 2) ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 /* Seeds one anchor per vertex (on the first face around it, at that corner)
  * and one per face barycenter. */
@@ -181,7 +171,7 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
 
   stats->frames = done_frames;
   stats->mean_steps = walks ? (double)total_steps / (double)walks : 0.0;
-  stats->ms_per_frame_median = median(frame_ms, done_frames);
+  stats->ms_per_frame_median = ss_median(frame_ms, done_frames);
   stats->ms_per_anchor_update_median = stats->ms_per_frame_median / (double)nanchor;
 
 done:
