@@ -74,20 +74,16 @@ const ss_frames *ss_mover_frames(const ss_mover *m) { return m->frames; }
 
 void ss_mover_move(ss_mover *m, int face, const double uv[2], const double target[3],
                    ss_walk_result *res) {
-  if (m->settings.method == SS_METHOD_WALK || !m->pos ||
-      !(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) {
-    /* the walk also handles a non-finite target: it leaves the anchor in place */
-    ss_walk(m->walker, m->topo, m->frames, face, uv, target, m->settings.walk_max_steps, res);
-    return;
-  }
-  res->stop = SS_STOP_INSIDE;
-  res->steps = 0;
-  res->length = 0.0;
-  if (m->settings.method == SS_METHOD_PROJECT)
-    ss_bvh_closest(m->bvh, m->pos, target, &res->face, res->uv);
-  else
+  if (m->settings.method == SS_METHOD_NRING && m->pos &&
+      isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2])) {
+    res->stop = SS_STOP_INSIDE;
+    res->steps = 0;
+    res->length = 0.0;
     ss_nring_closest(m->nring, m->topo, m->pos, face, m->settings.nring_rings, target, &res->face,
                      res->uv);
+    return;
+  }
+  ss_mover_walk_with(m, m->walker, face, uv, target, res); /* walk and project */
 }
 
 int ss_mover_method(const ss_mover *m) { return m->settings.method; }
@@ -96,6 +92,7 @@ void ss_mover_walk_with(const ss_mover *m, ss_walker *walker, int face, const do
                         const double target[3], ss_walk_result *res) {
   if (m->settings.method == SS_METHOD_WALK || !m->pos ||
       !(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) {
+    /* the walk also handles a non-finite target: it leaves the anchor in place */
     ss_walk(walker, m->topo, m->frames, face, uv, target, m->settings.walk_max_steps, res);
     return;
   }
