@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "skin_sim/ss_anchor.h"
 #include "skin_sim/ss_track.h"
 
 void cli_error(const char *fmt, ...) {
@@ -147,4 +148,24 @@ int progress_update(void *user, int done, int total) {
 
 void progress_end(progress *p) {
   if (p->enabled) fputs("\r\033[K", stderr);
+}
+
+int cli_mover_option(int argc, char **argv, int *i, struct ss_mover_settings *mover) {
+  const char *a = argv[*i], *v = NULL;
+  if (strcmp(a, "--method") == 0) {
+    if (!(v = cli_value(argc, argv, i))) return -1;
+    mover->method = ss_method_parse(v);
+    if (mover->method < 0) {
+      cli_error("--method expects walk, project or nring, got '%s'", v);
+      return -1;
+    }
+    return 1;
+  }
+  if (strcmp(a, "--rings") == 0)
+    return (!(v = cli_value(argc, argv, i)) || cli_int(a, v, 0, 64, &mover->nring_rings)) ? -1 : 1;
+  if (strcmp(a, "--max-steps") == 0)
+    return (!(v = cli_value(argc, argv, i)) || cli_int(a, v, 1, 1000000, &mover->walk_max_steps))
+               ? -1
+               : 1;
+  return 0;
 }

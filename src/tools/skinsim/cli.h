@@ -15,6 +15,13 @@ void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 int cli_int(const char *opt, const char *text, long min, long max, int *out);
 int cli_double(const char *opt, const char *text, double min, double max, double *out);
 
+/* The anchor-method options shared by track and run: --method walk|project|nring,
+ * --rings N, --max-steps N. Returns 1 if argv[*i] was one (value consumed,
+ * *i advanced), 0 if it is some other option, -1 on a bad value (message
+ * printed). */
+struct ss_mover_settings;
+int cli_mover_option(int argc, char **argv, int *i, struct ss_mover_settings *mover);
+
 /* Returns the value after argv[*i] (advancing *i), or NULL with a message. */
 const char *cli_value(int argc, char **argv, int *i);
 

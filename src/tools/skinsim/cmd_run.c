@@ -63,15 +63,11 @@ int cmd_run(int argc, char **argv) {
   ss_run_settings s = ss_run_default_settings();
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
+    const int mover_opt = cli_mover_option(argc, argv, &i, &s.sim.mover);
+    if (mover_opt < 0) return EXIT_USAGE;
+    if (mover_opt > 0) continue;
     if (strcmp(a, "--scene") == 0) {
       if (!(scene_name = cli_value(argc, argv, &i))) return EXIT_USAGE;
-    } else if (strcmp(a, "--method") == 0) {
-      if (!(v = cli_value(argc, argv, &i))) return EXIT_USAGE;
-      s.sim.mover.method = ss_method_parse(v);
-      if (s.sim.mover.method < 0) {
-        cli_error("--method expects walk, project or nring, got '%s'", v);
-        return EXIT_USAGE;
-      }
     } else if (strcmp(a, "--solver") == 0) {
       if (!(v = cli_value(argc, argv, &i))) return EXIT_USAGE;
       s.sim.solver = ss_solver_parse(v);
@@ -79,13 +75,6 @@ int cmd_run(int argc, char **argv) {
         cli_error("--solver expects newton or quasi-newton, got '%s'", v);
         return EXIT_USAGE;
       }
-    } else if (strcmp(a, "--rings") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 64, &s.sim.mover.nring_rings))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--max-steps") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) ||
-          cli_int(a, v, 1, 1000000, &s.sim.mover.walk_max_steps))
-        return EXIT_USAGE;
     } else if (strcmp(a, "--tris") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 5000000, &tris)) return EXIT_USAGE;
     } else if (strcmp(a, "--frames") == 0) {

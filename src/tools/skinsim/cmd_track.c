@@ -58,25 +58,15 @@ int cmd_track(int argc, char **argv) {
   ss_track_settings s = ss_track_default_settings();
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
+    const int mover_opt = cli_mover_option(argc, argv, &i, &s.mover);
+    if (mover_opt < 0) return EXIT_USAGE;
+    if (mover_opt > 0) continue;
     if (strcmp(a, "--scene") == 0) {
       if (!(scene_name = cli_value(argc, argv, &i))) return EXIT_USAGE;
-    } else if (strcmp(a, "--method") == 0) {
-      if (!(v = cli_value(argc, argv, &i))) return EXIT_USAGE;
-      s.mover.method = ss_method_parse(v);
-      if (s.mover.method < 0) {
-        cli_error("--method expects walk, project or nring, got '%s'", v);
-        return EXIT_USAGE;
-      }
-    } else if (strcmp(a, "--rings") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 64, &s.mover.nring_rings))
-        return EXIT_USAGE;
     } else if (strcmp(a, "--tris") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 2000000, &tris)) return EXIT_USAGE;
     } else if (strcmp(a, "--frames") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000000, &s.frames))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--max-steps") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000000, &s.mover.walk_max_steps))
         return EXIT_USAGE;
     } else if (strcmp(a, "--lift") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0, 100, &s.lift)) return EXIT_USAGE;
