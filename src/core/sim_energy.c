@@ -20,6 +20,7 @@
 
 #include "energy.h"
 #include "sim_internal.h"
+#include "skin_sim/ss_track.h"
 
 void ss_sim_energy_begin(ss_sim *sim, double h) {
   double c = sim->set.damping;
@@ -123,6 +124,14 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     if (g)
       for (int c = 0; c < 4; c++) add_grad(sim, g, hv[c], g12 + 3 * c);
   }
+  return e;
+}
+
+double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
+  double t0 = ss_now_ms();
+  ss_sim_scatter(sim, xd, sim->xfull_t);
+  double e = ss_sim_energy(sim, sim->xfull_t, g);
+  if (sim->st) sim->st->assemble_ms += ss_now_ms() - t0;
   return e;
 }
 

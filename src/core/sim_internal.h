@@ -174,6 +174,9 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
  * accepted by the approximate Wolfe conditions, E flat to round-off); 0 if no step decreased E; -1 if
  * everything tried was non-finite. */
 #define SS_ROUNDOFF_STEPS 8
+/* Energy and gradient g at the unknowns xd (scattered into xfull_t), timed
+ * into the step's assemble_ms. */
+double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g);
 int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir);
 /* What a solver does after a line search returned ls (1 step taken, 2 step
  * taken with E flat to round-off, 0 no step, < 0 non-finite): judges

@@ -71,10 +71,7 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
   int any_finite = 0;
   for (int tries = 0; tries < 40; tries++, alpha *= 0.5) {
     for (int i = 0; i < n3; i++) sim->xt[i] = xd[i] + alpha * dir[i];
-    ss_sim_scatter(sim, sim->xt, sim->xfull_t);
-    double t0 = ss_now_ms();
-    double et = ss_sim_energy(sim, sim->xfull_t, sim->gt);
-    sim->st->assemble_ms += ss_now_ms() - t0;
+    double et = ss_sim_energy_at(sim, sim->xt, sim->gt);
     if (!isfinite(et) || !isfinite(dot(sim->gt, sim->gt, n3))) continue;
     any_finite = 1;
     /* Armijo, on the difference (exact for nearby values): it asks for a
@@ -179,10 +176,7 @@ int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled
     ss_sim_constant_hessian(sim, sim->h_const);
     sim->h_const_h = sim->h;
   }
-  double t0 = ss_now_ms();
-  ss_sim_scatter(sim, xd, sim->xfull_t);
-  double e = ss_sim_energy(sim, sim->xfull_t, g);
-  st->assemble_ms += ss_now_ms() - t0;
+  double e = ss_sim_energy_at(sim, xd, g);
   double res = ss_sim_residual(sim, g);
   if (!isfinite(e) || !isfinite(res)) {
     *nonfinite = 1;

@@ -122,10 +122,7 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
   }
   sim->lb_count = 0;
   sim->lb_head = 0;
-  double t0 = ss_now_ms();
-  ss_sim_scatter(sim, xd, sim->xfull_t);
-  double e = ss_sim_energy(sim, sim->xfull_t, g);
-  st->assemble_ms += ss_now_ms() - t0;
+  double e = ss_sim_energy_at(sim, xd, g);
   double res = ss_sim_residual(sim, g);
   if (!isfinite(e) || !isfinite(res)) {
     *nonfinite = 1;
