@@ -91,13 +91,15 @@ static int run_relay(int argc, char **argv)
   ok &= rosc_sub_joint_state(&subs[2], "joints_in", 20, relay_joints, &r) == ROSC_OK;
   ok &= rosc_sub_marker(&subs[3], "marker_in", 20, relay_marker, &r) == ROSC_OK;
   ok &= rosc_sub_string(&subs[4], "string_in", 20, relay_string, &r) == ROSC_OK;
-  if (!ok) {
-    fprintf(stderr, "relay: could not create publishers/subscribers\n");
-    return 1;
+  /* A SIGINT during set-up (roslaunch stopping a node that is still starting, e.g.
+   * on a loaded machine) makes roscpp refuse new publishers: a clean stop, exit 0. */
+  int interrupted = !ok && !rosc_ok();
+  if (!ok && !interrupted) fprintf(stderr, "relay: could not create publishers/subscribers\n");
+  if (ok) {
+    ROSC_INFO("relay ready");
+    while (rosc_ok() && !r.quit) rosc_spin_once(0.1);
+    ROSC_INFO("relay: %lu messages relayed, quitting", r.relayed);
   }
-  ROSC_INFO("relay ready");
-  while (rosc_ok() && !r.quit) rosc_spin_once(0.1);
-  ROSC_INFO("relay: %lu messages relayed, quitting", r.relayed);
   for (int i = 0; i < 5; ++i) rosc_sub_destroy(subs[i]);
   rosc_pub_destroy(r.mesh);
   rosc_pub_destroy(r.stats);
@@ -106,6 +108,7 @@ static int run_relay(int argc, char **argv)
   rosc_pub_destroy(r.string);
   /* no rosc_shutdown(): the shim's atexit handler must stop the node cleanly (a
    * sanitizer build checks that for leaks and use after free) */
+  if (!ok && !interrupted) return 1;
   return 0;   /* "quit" arrived, or SIGINT (roscpp's handler) stopped the node */
 }
 
