@@ -736,6 +736,13 @@ int rosc_param_explain(int status, const char *name, const char *expected, char 
         std::string t = static_cast<std::string &>(v);
         if (t.size() > 60) t = t.substr(0, 60) + "...";
         held = "the string '" + t + "'";
+        char *end = nullptr;
+        const std::string &full = static_cast<std::string &>(v);
+        std::strtod(full.c_str(), &end);
+        if (!full.empty() && end != nullptr && *end == '\0' && expected != nullptr &&
+            std::strstr(expected, "double") != nullptr)
+          held += " (in a launch file, a number without a '.' such as 1e-4 stays a string: "
+                  "write type=\"double\")";
         break;
       }
       case XmlRpc::XmlRpcValue::TypeDouble:
