@@ -269,8 +269,8 @@ enum ssa_up_axis_mode {
   SSA_UP_AXIS_IGNORE = 0, /* coordinates as written, as rviz draws them (its RobotModel clears
                              the rotation assimp puts on the root): the skin overlays rviz */
   SSA_UP_AXIS_FILE = 1    /* honour the file: its up axis becomes the link's +Z (Y_UP: +90
-                             degrees about X, (x,y,z) -> (x,-z,y)), as meshes loaded through
-                             assimp with its defaults (pinocchio, hpp-fcl) come out */
+                             degrees about X, (x,y,z) -> (x,-z,y); X_UP: x onto z; Z_UP:
+                             as written), for URDFs authored for tools that honour it */
 };
 
 /* Receives a warning of the avatar layer (one sentence, no newline); the
