@@ -327,7 +327,8 @@ typedef struct ssa_avatar {
  * triangles stay within a factor ~1.5 of each other); a cylinder is a grid
  * on its side and concentric rings on its caps (ring k of 6k vertices). At
  * least 24 segments go around a circle (the volume then falls short by
- * under 2%), at most 512 along any direction.
+ * under 2%), at most 512 along any direction; a primitive that would get more
+ * than about 200,000 triangles gets longer edges instead.
  * kind: SSA_VISUAL_BOX (size: x y z), SSA_VISUAL_SPHERE (size[0]: radius),
  * SSA_VISUAL_CYLINDER (size[0]: radius, size[1]: length). *pos (nvert x 3)
  * and *faces (nface x 3) are allocated here (free()). Errors: SS_E_ARG (an

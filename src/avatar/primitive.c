@@ -22,6 +22,7 @@
 
 #define PRIM_DEFAULT_EDGE 0.02
 #define PRIM_MAX_SEG 512
+#define PRIM_MAX_TRIS 200000.0
 
 typedef struct builder {
   double *pos;
@@ -277,6 +278,13 @@ int ssa_primitive_mesh(int kind, const double *size, double edge, double **pos, 
     if (!(size[k] > 0) || !isfinite(size[k]))
       return ssa_fail(err, err_sz, SS_E_ARG, "primitive: %s %g is not a positive finite length",
                       what[kind], size[k]);
+  /* at most about PRIM_MAX_TRIS triangles: a huge primitive gets longer edges */
+  const double area = kind == SSA_VISUAL_BOX
+                          ? 2 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0])
+                      : kind == SSA_VISUAL_SPHERE
+                          ? 4 * SSA_PI * size[0] * size[0]
+                          : 2 * SSA_PI * size[0] * (size[0] + size[1]);
+  if (2.0 * area / (edge * edge) > PRIM_MAX_TRIS) edge = sqrt(2.0 * area / PRIM_MAX_TRIS);
   builder b = {NULL, 0, 0, NULL, 0, 0, 1};
   if (kind == SSA_VISUAL_BOX) {
     double h[3];

@@ -184,6 +184,13 @@ int main(void) {
       printf("bad box -> %s\n", err);
     }
     CHECK_EQ_INT(ssa_primitive_mesh(SSA_VISUAL_MESH, tiny, edge, &pos, &nv, &faces, &nf, err, sizeof err), SS_E_ARG);
+    /* a 20 m box at 2 cm edges would be 6 million triangles: capped, still closed */
+    double huge[3] = {20, 20, 20};
+    CHECK_EQ_INT(ssa_primitive_mesh(SSA_VISUAL_BOX, huge, edge, &pos, &nv, &faces, &nf, err, sizeof err), SS_OK);
+    CHECK_MSG(nf > 100000 && nf <= 250000, "%d triangles", nf);
+    if (pos) CHECK_EQ_INT(measure(pos, faces, 0, nf, nv).open_edges, 0);
+    free(pos);
+    free(faces);
   }
 
   /* ---- a robot of primitives: base box, an arm cylinder placed by its origin, a ball */
