@@ -46,6 +46,7 @@ typedef struct node {
   int strict_limits;      /* ~strict_limits: reject values outside the URDF limits */
   int limits_warned;      /* the clamping warning is given once */
   unsigned long clamped;  /* messages with values clamped to the limits */
+  int queue;              /* ~queue_size */
 } node;
 
 static uint32_t hash_topology(int nvert, int nface, const int *faces)
@@ -191,6 +192,12 @@ static int load_avatar(node *nd)
     ROSC_ERROR("~mesh_up_axis: '%s' is neither 'ignore' (rviz's way) nor 'file'", up);
     ok = 0;
   }
+  nd->queue = 2;
+  ok &= param_ok(rosc_param_get_int("~queue_size", &nd->queue, 2, NULL), "~queue_size", "an int");
+  if (ok && (nd->queue < 1 || nd->queue > 1000)) {
+    ROSC_ERROR("~queue_size = %d is out of range [1, 1000]", nd->queue);
+    ok = 0;
+  }
   if (ok && !(edge >= 1e-4 && edge <= 10.0)) {
     ROSC_ERROR("~primitive_edge = %g m is out of range [0.0001, 10]", edge);
     ok = 0;
@@ -270,20 +277,10 @@ int main(int argc, char **argv)
   }
   for (size_t i = 0; i < 3 * (size_t)av->nface; i++) nd.tri_out[i] = (uint32_t)av->faces[i];
   nd.topology_id = hash_topology(av->nvert, av->nface, av->faces);
-  int queue = 2;
-  if (!param_ok(rosc_param_get_int("~queue_size", &queue, 2, NULL), "~queue_size", "an int")) {
-    rosc_shutdown();
-    return 2;
-  }
-  if (queue < 1 || queue > 1000) {
-    ROSC_ERROR("~queue_size = %d is out of range [1, 1000]", queue);
-    rosc_shutdown();
-    return 2;
-  }
   rosc_sub *sub = NULL;
   if (rosc_pub_create(&nd.pub_mesh, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd.pub_stats, ROSC_MSG_SKIN_STATS, "avatar_stats", 10, 0) != ROSC_OK ||
-      rosc_sub_joint_state(&sub, "joint_states", (unsigned)queue, on_joints, &nd) != ROSC_OK) {
+      rosc_sub_joint_state(&sub, "joint_states", (unsigned)nd.queue, on_joints, &nd) != ROSC_OK) {
     ROSC_ERROR("cannot advertise or subscribe");
     rosc_shutdown();
     return 1;
