@@ -150,6 +150,14 @@ int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
 int rosc_param_get_string_alloc(const char *name, char **out, size_t *len);
 /* *out = 1 if the parameter is set (any type), else 0. */
 int rosc_param_has(const char *name, int *out);
+/* One sentence for a getter's failure, for the node to log before it refuses to
+ * start: status is what a getter returned for parameter name, expected what the
+ * node wanted ("an int", "a double (or an int)", "a bool", "a string"). ROSC_E_TYPE:
+ * "~substeps must be an int, but is the string 'abc'" (the value the server holds,
+ * e.g. from _substeps:=abc); other errors name the parameter and the error. Returns
+ * status; with ROSC_OK err gets "". */
+int rosc_param_explain(int status, const char *name, const char *expected, char *err,
+                       size_t err_size);
 /* Setters (tests and tools); bool is any non-zero int. */
 int rosc_param_set_string(const char *name, const char *value);
 int rosc_param_set_double(const char *name, double value);

@@ -71,7 +71,19 @@ typedef struct ssa_robot {
   char **visual_path;       /* (nvisual) that file resolved to a readable path, or NULL */
   double *visual_origin;    /* (nvisual x 16) visual frame in its link frame */
   double *visual_scale;     /* (nvisual x 3) mesh scale */
+  int *visual_kind;         /* (nvisual) ssa_visual_kind */
+  double *visual_size;      /* (nvisual x 3) box: x y z sizes; sphere: radius; cylinder: radius,
+                               length (along the visual frame's z), in metres */
 } ssa_robot;
+
+/* The geometry of a URDF visual. */
+enum ssa_visual_kind {
+  SSA_VISUAL_NONE = 0,
+  SSA_VISUAL_SPHERE = 1,
+  SSA_VISUAL_BOX = 2,
+  SSA_VISUAL_CYLINDER = 3,
+  SSA_VISUAL_MESH = 4
+};
 
 /* Reads a URDF file. package_path resolves package:// mesh URIs: a list of
  * entries separated by ':' or ';', each either NAME=DIR (package NAME is
@@ -105,6 +117,15 @@ int ssa_robot_set_joints(const ssa_robot *robot, double *q, int n, const char *c
 /* The value joint j really takes for raw values q (NULL: all zero): a mimic
  * joint follows its leader (mult * leader + off), then limits clamp. */
 double ssa_robot_joint_value(const ssa_robot *robot, const double *q, int j);
+
+/* Joint limits. Counts the joints whose raw value q[j] lies outside their
+ * URDF limits (more than 1e-9 beyond; mimic joints are not checked: they
+ * follow their leader) and, if any, writes one sentence into (msg, msg_sz)
+ * naming the worst one, its value and its limits, e.g. "joint 'l_elbow' of
+ * robot 'r' is 143 rad, outside its limits [0, 2.6] rad (degrees? values are
+ * radians)". Returns that count (0: all within limits); the FK clamps such
+ * values. q NULL: 0. */
+int ssa_robot_check_limits(const ssa_robot *robot, const double *q, char *msg, int msg_sz);
 
 /* Forward kinematics: the pose of every link in the root link's frame
  * (link_world, nlink x 16) for joint values q (njoint; NULL: all zero).
@@ -243,15 +264,36 @@ enum ssa_weight_source {
   SSA_WEIGHTS_AUTO = 2   /* heat diffusion from the link segments */
 };
 
+/* How the Collada (.dae) visual meshes of a URDF treat their <up_axis>. */
+enum ssa_up_axis_mode {
+  SSA_UP_AXIS_IGNORE = 0, /* coordinates as written, as rviz draws them (its RobotModel clears
+                             the rotation assimp puts on the root): the skin overlays rviz */
+  SSA_UP_AXIS_FILE = 1    /* honour the file: its up axis becomes the link's +Z (Y_UP: +90
+                             degrees about X, (x,y,z) -> (x,-z,y); X_UP: x onto z; Z_UP:
+                             as written), for URDFs authored for tools that honour it */
+};
+
+/* Receives a warning of the avatar layer (one sentence, no newline); the
+ * layer never prints. */
+typedef void (*ssa_warn_fn)(void *user, const char *msg);
+
 typedef struct ssa_avatar_opts {
   const char *package_path; /* see ssa_robot_load; may be NULL */
   ssa_asset_opts asset;     /* how body and visual meshes are read */
   double weld_tol;          /* topology welding distance (negative: relative, see ss_topo) */
   int force_auto_weights;   /* 1: compute weights even when the file's bones match links */
   ssa_autoweight_opts autoweight;
+  int mesh_up_axis;         /* ssa_up_axis_mode for URDF visual meshes (default IGNORE); with
+                               IGNORE, Collada files declaring another up axis than Z get one
+                               warning (through warn) per load */
+  double primitive_edge;    /* target edge length (m) of tessellated URDF box, cylinder and
+                               sphere visuals (default 0.02; see ssa_primitive_mesh) */
+  ssa_warn_fn warn;         /* warnings while loading; NULL: dropped */
+  void *warn_user;
 } ssa_avatar_opts;
 
-/* Defaults: no package path, asset defaults, weld_tol -1, file weights when they match. */
+/* Defaults: no package path, asset defaults, weld_tol -1, file weights when they match,
+ * mesh_up_axis IGNORE, primitive_edge 0.02 m, no warning callback. */
 ssa_avatar_opts ssa_avatar_default_opts(void);
 
 typedef struct ssa_avatar {
@@ -278,8 +320,31 @@ typedef struct ssa_avatar {
   double *bone_mat;     /* (nbone x 16) scratch */
 } ssa_avatar;
 
-/* An avatar from a URDF file. mesh_path NULL: the body is the URDF's visual
- * meshes, each bound rigidly to its link (primitives are skipped). Otherwise
+/* A closed, outward-wound triangle mesh of a URDF primitive in its visual
+ * frame (centred on the origin; a cylinder along z), with edges about
+ * `edge` metres long (<= 0: 0.02): box faces are regular grids; a sphere is
+ * a cube projected by equal angles (the cube's grid mapped through tan, so
+ * triangles stay within a factor ~1.5 of each other); a cylinder is a grid
+ * on its side and concentric rings on its caps (ring k of 6k vertices). At
+ * least 24 segments go around a circle (the volume then falls short by
+ * under 2%), at most 512 along any direction; a primitive that would get more
+ * than about 200,000 triangles gets longer edges instead.
+ * kind: SSA_VISUAL_BOX (size: x y z), SSA_VISUAL_SPHERE (size[0]: radius),
+ * SSA_VISUAL_CYLINDER (size[0]: radius, size[1]: length). *pos (nvert x 3)
+ * and *faces (nface x 3) are allocated here (free()). Errors: SS_E_ARG (an
+ * unknown kind, a size that is not finite and > 0). */
+int ssa_primitive_mesh(int kind, const double *size, double edge, double **pos, int *nvert,
+                       int **faces, int *nface, char *err, int err_sz);
+
+/* The up axis a Collada file declares in its <asset><up_axis>: 0 X_UP, 1 Y_UP,
+ * 2 Z_UP (also when it declares none, Collada's default is Y_UP: 1), -1 for a
+ * file that is not Collada (by extension .dae) or cannot be read. */
+int ssa_collada_up_axis(const char *path);
+
+/* An avatar from a URDF file. mesh_path NULL: the body is the URDF's visuals,
+ * each bound rigidly to its link: meshes (read with opts->mesh_up_axis) and
+ * primitives (box, cylinder, sphere, tessellated by ssa_primitive_mesh at
+ * opts->primitive_edge), each placed by its <origin>. Otherwise
  * the body is that mesh file, posed with the URDF at zero joint values: its
  * bones bind to links of the same name (a bone whose node is no link binds
  * to the nearest ancestor node that is one); when no bone matches, or some
@@ -350,13 +415,16 @@ const char *ssa_motion_builtin_name(int i);
 int ssa_motion_builtin_index(const char *name);
 /* Period of built-in motion i in seconds (it repeats after it). */
 double ssa_motion_builtin_period(int i);
+/* How many of the joints built-in motion i moves the robot has (0: the
+ * motion would not move it at all). */
+int ssa_motion_builtin_coverage(int i, const ssa_robot *robot);
 /* Joint values of built-in motion i at time t for robot (normally the
  * mannequin; joints it does not have are ignored): q (njoint) is filled, all
  * other joints zero. Returns SS_E_ARG for an unknown motion. */
 int ssa_motion_builtin_eval(int i, double t, const ssa_robot *robot, double *q);
 
 /* A motion table: joint values over time. CSV format: one header row
- * "time,<joint>,<joint>,..." (the first column's name is free), then one row
+ * "time,<joint>,<joint>,..." (the first column must be named time), then one row
  * per sample: time in seconds (strictly increasing) and one value per joint
  * (radians or metres). Commas separate; blank lines and lines starting with
  * '#' are skipped; spaces around fields are ignored. */
@@ -368,8 +436,8 @@ typedef struct ssa_motion {
   double *value;     /* (nframe x njoint) */
 } ssa_motion;
 
-/* Reads a CSV motion. Errors: SS_E_IO (unreadable), SS_E_ARG (a row with the
- * wrong number of columns, a value that is not a number, times not
+/* Reads a CSV motion. Errors: SS_E_IO (unreadable), SS_E_ARG (a first column
+ * not named time, a row with the wrong number of columns, a value that is not a number, times not
  * increasing, no rows), naming the file and line. */
 int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_sz);
 /* Writes a motion as CSV (%.17g, so it reads back bit for bit). */
@@ -386,6 +454,12 @@ int ssa_motion_bind(const ssa_motion *motion, const ssa_robot *robot, int *map, 
 /* Joint values at time t (clamped to the table's range, linear between
  * frames) written into q (robot njoint) through map; other entries untouched. */
 void ssa_motion_sample(const ssa_motion *motion, const int *map, double t, double *q);
+/* Joint limits over a whole table bound with map: counts the values (frames x
+ * columns) outside their joint's URDF limits and, if any, writes one sentence
+ * naming the worst joint, its value and its limits and how many values of how
+ * many joints are outside into (msg, msg_sz). Returns that count (0: none). */
+int ssa_motion_check_limits(const ssa_motion *motion, const int *map, const ssa_robot *robot,
+                            char *msg, int msg_sz);
 
 #ifdef __cplusplus
 }

@@ -11,6 +11,8 @@
 #include "skin_sim/ssa_avatar.h"
 #include "ssa_util.h"
 
+#include <strings.h>
+
 ssa_avatar_opts ssa_avatar_default_opts(void) {
   ssa_avatar_opts o;
   o.package_path = NULL;
@@ -18,6 +20,10 @@ ssa_avatar_opts ssa_avatar_default_opts(void) {
   o.weld_tol = -1.0;
   o.force_auto_weights = 0;
   o.autoweight = ssa_autoweight_default_opts();
+  o.mesh_up_axis = SSA_UP_AXIS_IGNORE;
+  o.primitive_edge = 0.02;
+  o.warn = NULL;
+  o.warn_user = NULL;
   return o;
 }
 
@@ -307,6 +313,46 @@ static int finish_mesh_body(ssa_avatar *av, const ssa_avatar_opts *o, const char
   return SS_OK;
 }
 
+int ssa_collada_up_axis(const char *path) {
+  size_t n = path ? strlen(path) : 0;
+  if (n < 4 || strcasecmp(path + n - 4, ".dae") != 0) return -1;
+  FILE *f = fopen(path, "rb");
+  if (!f) return -1;
+  char buf[65536];
+  size_t got = fread(buf, 1, sizeof buf - 1, f);
+  fclose(f);
+  buf[got] = '\0';
+  /* <asset> comes first in a COLLADA document; its <up_axis> is X_UP, Y_UP or Z_UP */
+  const char *u = strstr(buf, "<up_axis>");
+  if (!u) return 1;
+  u += 9;
+  while (*u == ' ' || *u == '\t' || *u == '\r' || *u == '\n') u++;
+  if (strncmp(u, "X_UP", 4) == 0) return 0;
+  if (strncmp(u, "Z_UP", 4) == 0) return 2;
+  return 1;
+}
+
+static void warn(const ssa_avatar_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void warn(const ssa_avatar_opts *o, const char *fmt, ...) {
+  if (!o->warn) return;
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  o->warn(o->warn_user, msg);
+}
+
+/* One visual's triangles in its own frame: a mesh file (asset) or a tessellated primitive. */
+typedef struct visual_part {
+  ssa_asset *asset;
+  double *prim_pos;
+  int *prim_faces;
+  int nvert, nface;
+  const double *pos;
+  const int *faces;
+} visual_part;
+
 static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err, int err_sz) {
   const ssa_robot *r = av->robot;
   const char *urdf = r->path && r->path[0] ? r->path : "(URDF text)";
@@ -314,50 +360,91 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
   ao.scale = 1.0;
   ao.z_up = 0;
   ao.ignore_up_axis = 1;
-  ssa_asset **parts = calloc((size_t)(r->nvisual > 0 ? r->nvisual : 1), sizeof *parts);
+  visual_part *parts = calloc((size_t)(r->nvisual > 0 ? r->nvisual : 1), sizeof *parts);
   if (!parts) return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
-  int st = SS_OK, nv = 0, nf = 0, nb = 0;
+  int st = SS_OK, nv = 0, nf = 0, nb = 0, other_up = 0, first_up = -1;
+  static const char *const up_names[3] = {"X_UP", "Y_UP", "Z_UP"};
   char base[4096];
   snprintf(base, sizeof base, "%s", r->path ? r->path : "");
   char *slash = strrchr(base, '/');
   if (slash) *slash = '\0'; else snprintf(base, sizeof base, ".");
   for (int i = 0; i < r->nvisual && st == SS_OK; i++) {
-    if (!r->visual_is_mesh[i]) continue;
-    if (!r->visual_path[i]) {
-      char path[4096], why[1024] = "";
-      ssa_resolve_uri(r->visual_uri[i], base, o->package_path, path, sizeof path, why, sizeof why);
-      st = ssa_fail(err, err_sz, SS_E_IO, "URDF '%s', link '%s': %s", urdf,
-                    r->link_name[r->visual_link[i]], why);
-      break;
+    visual_part *vp = parts + i;
+    const char *link = r->link_name[r->visual_link[i]];
+    const int kind = r->visual_kind[i];
+    if (kind == SSA_VISUAL_BOX || kind == SSA_VISUAL_SPHERE || kind == SSA_VISUAL_CYLINDER) {
+      char why[512] = "";
+      st = ssa_primitive_mesh(kind, r->visual_size + 3 * i, o->primitive_edge, &vp->prim_pos,
+                              &vp->nvert, &vp->prim_faces, &vp->nface, why, sizeof why);
+      if (st != SS_OK) {
+        ssa_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, link, why);
+        break;
+      }
+      vp->pos = vp->prim_pos;
+      vp->faces = vp->prim_faces;
+    } else if (kind == SSA_VISUAL_MESH) {
+      if (!r->visual_path[i]) {
+        char path[4096], why[1024] = "";
+        ssa_resolve_uri(r->visual_uri[i], base, o->package_path, path, sizeof path, why,
+                        sizeof why);
+        st = ssa_fail(err, err_sz, SS_E_IO, "URDF '%s', link '%s': %s", urdf, link, why);
+        break;
+      }
+      ssa_asset_opts aoi = ao;
+      const int up = ssa_collada_up_axis(r->visual_path[i]);
+      if (up >= 0 && up != 2) {
+        if (o->mesh_up_axis == SSA_UP_AXIS_FILE) {
+          aoi.ignore_up_axis = 0; /* assimp turns the file Y-up, then Y-up becomes Z-up */
+          aoi.z_up = 1;
+        } else if (other_up++ == 0) {
+          first_up = i;
+        }
+      }
+      char why[1024] = "";
+      st = ssa_asset_load(&vp->asset, r->visual_path[i], &aoi, why, sizeof why);
+      if (st != SS_OK) {
+        ssa_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, link, why);
+        break;
+      }
+      vp->nvert = vp->asset->nvert;
+      vp->nface = vp->asset->nface;
+      vp->pos = vp->asset->rest_pos;
+      vp->faces = vp->asset->faces;
+    } else {
+      continue;
     }
-    char why[1024] = "";
-    st = ssa_asset_load(&parts[i], r->visual_path[i], &ao, why, sizeof why);
-    if (st != SS_OK) {
-      ssa_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, r->link_name[r->visual_link[i]],
-               why);
-      break;
-    }
-    nv += parts[i]->nvert;
-    nf += parts[i]->nface;
+    nv += vp->nvert;
+    nf += vp->nface;
     nb++;
   }
+  if (st == SS_OK && other_up > 0)
+    warn(o, "URDF '%s': %d Collada mesh%s declare%s an up axis other than Z (first: '%s', %s) and "
+         "%s read as written, as rviz draws %s (mesh up axis 'ignore'); if the robot comes out "
+         "in rotated pieces, set the mesh up axis option to 'file' (skinsim --mesh-up-axis "
+         "file, avatar_node ~mesh_up_axis:=file)",
+         urdf, other_up, other_up == 1 ? "" : "es", other_up == 1 ? "s" : "",
+         r->visual_path[first_up], up_names[ssa_collada_up_axis(r->visual_path[first_up])],
+         other_up == 1 ? "is" : "are", other_up == 1 ? "it" : "them");
   if (st == SS_OK && nf == 0)
-    st = ssa_fail(err, err_sz, SS_E_MESH, "URDF '%s' has no visual meshes to make a body of", urdf);
+    st = ssa_fail(err, err_sz, SS_E_MESH, "URDF '%s' has no visual meshes or primitives to make a "
+                  "body of", urdf);
   if (st == SS_OK && !alloc_body(av, nv, nf, nb, r->nlink, nv))
     st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
   if (st == SS_OK) {
     int v0 = 0, f0 = 0, b = 0;
     for (int i = 0; i < r->nvisual; i++) {
-      const ssa_asset *p = parts[i];
-      if (!p) continue;
+      const visual_part *p = parts + i;
+      if (!p->pos) continue;
       double sc[16];
       m4_identity(sc);
-      sc[0] = r->visual_scale[3 * i];
-      sc[5] = r->visual_scale[3 * i + 1];
-      sc[10] = r->visual_scale[3 * i + 2];
+      if (p->asset) { /* a mesh's scale; a primitive is tessellated at its size */
+        sc[0] = r->visual_scale[3 * i];
+        sc[5] = r->visual_scale[3 * i + 1];
+        sc[10] = r->visual_scale[3 * i + 2];
+      }
       av->bone_target[b] = r->visual_link[i];
       m4_mul(r->visual_origin + 16 * i, sc, av->bone_offset + 16 * b);
-      memcpy(av->bind_pos + 3 * v0, p->rest_pos, sizeof(double) * 3 * (size_t)p->nvert);
+      memcpy(av->bind_pos + 3 * v0, p->pos, sizeof(double) * 3 * (size_t)p->nvert);
       for (int v = 0; v < p->nvert; v++) {
         av->vert_part[v0 + v] = i;
         av->vert_src[v0 + v] = v;
@@ -374,7 +461,11 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
     ssa_avatar_pose_joints(av, NULL, av->rest_pos);
     set_dominant(av);
   }
-  for (int i = 0; i < r->nvisual; i++) ssa_asset_destroy(parts[i]);
+  for (int i = 0; i < r->nvisual; i++) {
+    ssa_asset_destroy(parts[i].asset);
+    free(parts[i].prim_pos);
+    free(parts[i].prim_faces);
+  }
   free(parts);
   return st;
 }

@@ -2,6 +2,7 @@
  * motion tables read from and written to a small CSV format (see
  * ssa_avatar.h), sampled by linear interpolation. */
 #include <errno.h>
+#include <strings.h>
 
 #include "skin_sim/ssa_avatar.h"
 #include "ssa_util.h"
@@ -28,6 +29,21 @@ double ssa_motion_builtin_period(int i) { return i >= 0 && i < NBUILTIN ? builti
 static void put(const ssa_robot *r, double *q, const char *name, double v) {
   int j = ssa_robot_joint_index(r, name);
   if (j >= 0) q[j] = v;
+}
+
+/* The joints each built-in motion moves (arms, elbows, twist; all: every one). */
+static const char *const builtin_joints[] = {"l_shoulder_abduct", "r_shoulder_abduct", "l_elbow",
+                                             "r_elbow", "torso_twist", "neck_twist", "head_nod"};
+
+int ssa_motion_builtin_coverage(int i, const ssa_robot *robot) {
+  if (i < 0 || i >= NBUILTIN || !robot) return 0;
+  int first = 0, last = 7; /* all */
+  if (i == 0) last = 2;
+  if (i == 1) last = 4; /* elbows also holds the shoulders */
+  if (i == 2) first = 4;
+  int n = 0;
+  for (int k = first; k < last; k++) n += ssa_robot_joint_index(robot, builtin_joints[k]) >= 0;
+  return n;
 }
 
 /* Smooth 0 -> 1 -> 0 over one period (raised cosine). */
@@ -121,6 +137,12 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
         char *c = strchr(p, ',');
         if (c) *c = '\0';
         char *name = trim(p);
+        if (k == 0 && strcasecmp(name, "time") != 0) {
+          st = ssa_fail(err, err_sz, SS_E_ARG,
+                        "motion file '%s', line %d: the first column must be 'time' (seconds), "
+                        "not '%s'", path, line_no, name);
+          break;
+        }
         if (k > 0) {
           if (!*name) {
             st = ssa_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: column %d has no joint name",
@@ -301,4 +323,39 @@ void ssa_motion_sample(const ssa_motion *m, const int *map, double t, double *q)
     double vb = m->value[(size_t)b * (size_t)m->njoint + (size_t)k];
     if (map[k] >= 0) q[map[k]] = a == b ? va : (1 - u) * va + u * vb;
   }
+}
+
+int ssa_motion_check_limits(const ssa_motion *m, const int *map, const ssa_robot *robot,
+                            char *msg, int msg_sz) {
+  if (!m || !map || !robot) return 0;
+  int count = 0, joints = 0, worst_k = -1, worst_f = 0;
+  double worst_excess = 0.0;
+  for (int k = 0; k < m->njoint; k++) {
+    int j = map[k];
+    if (j < 0 || !robot->joint_has_limits[j] || robot->joint_mimic[j] >= 0) continue;
+    int here = 0;
+    for (int f = 0; f < m->nframe; f++) {
+      double v = m->value[(size_t)f * (size_t)m->njoint + (size_t)k];
+      double lo = robot->joint_lower[j], hi = robot->joint_upper[j];
+      double excess = v < lo ? lo - v : v > hi ? v - hi : 0.0;
+      if (!(excess > 1e-9)) continue;
+      here++;
+      if (excess > worst_excess) {
+        worst_excess = excess;
+        worst_k = k;
+        worst_f = f;
+      }
+    }
+    count += here;
+    joints += here > 0;
+  }
+  if (worst_k >= 0 && msg && msg_sz > 0) {
+    char one[512];
+    ssa_limit_sentence(robot, map[worst_k], m->value[(size_t)worst_f * (size_t)m->njoint + (size_t)worst_k],
+                       one, sizeof one);
+    snprintf(msg, (size_t)msg_sz, "%d value%s (of %d joint%s) %s outside the URDF limits; worst: %s at t = %g s",
+             count, count == 1 ? "" : "s", joints, joints == 1 ? "" : "s", count == 1 ? "is" : "are", one,
+             m->time[worst_f]);
+  }
+  return count;
 }

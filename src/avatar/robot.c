@@ -237,6 +237,8 @@ void ssa_robot_destroy(ssa_robot *r) {
   ssa_free_strs(r->visual_path, r->nvisual);
   free(r->visual_origin);
   free(r->visual_scale);
+  free(r->visual_kind);
+  free(r->visual_size);
   free(r);
 }
 
@@ -273,7 +275,8 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
       !ALLOC(r->joint_mimic_mult, r->njoint) || !ALLOC(r->joint_mimic_off, r->njoint) ||
       !ALLOC(r->visual_link, r->nvisual) || !ALLOC(r->visual_is_mesh, r->nvisual) ||
       !ALLOC(r->visual_uri, r->nvisual) || !ALLOC(r->visual_path, r->nvisual) ||
-      !ALLOC(r->visual_origin, 16 * r->nvisual) || !ALLOC(r->visual_scale, 3 * r->nvisual))
+      !ALLOC(r->visual_origin, 16 * r->nvisual) || !ALLOC(r->visual_scale, 3 * r->nvisual) ||
+      !ALLOC(r->visual_kind, r->nvisual) || !ALLOC(r->visual_size, 3 * r->nvisual))
     return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
   for (int i = 0; i < r->nlink; i++) {
     if (!(r->link_name[i] = ssa_strdup(d->link_name[i])))
@@ -349,6 +352,8 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
     m4_from_tqs(d->visual_origin + 7 * v, d->visual_origin + 7 * v + 3, NULL,
                 r->visual_origin + 16 * v);
     memcpy(r->visual_scale + 3 * v, d->visual_scale + 3 * v, 3 * sizeof(double));
+    r->visual_kind[v] = d->visual_geom[v]; /* ssa_urdf_geom and ssa_visual_kind agree */
+    memcpy(r->visual_size + 3 * v, d->visual_size + 3 * v, 3 * sizeof(double));
     if (d->visual_uri[v]) {
       if (!(r->visual_uri[v] = ssa_strdup(d->visual_uri[v])))
         return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
@@ -462,6 +467,39 @@ double ssa_robot_joint_value(const ssa_robot *r, const double *q, int j) {
     if (v > r->joint_upper[j]) v = r->joint_upper[j];
   }
   return v;
+}
+
+int ssa_robot_check_limits(const ssa_robot *r, const double *q, char *msg, int msg_sz) {
+  if (!r || !q) return 0;
+  int count = 0, worst = -1;
+  double worst_excess = 0.0;
+  for (int j = 0; j < r->njoint; j++) {
+    if (!r->joint_has_limits[j] || r->joint_mimic[j] >= 0 || !isfinite(q[j])) continue;
+    double lo = r->joint_lower[j], hi = r->joint_upper[j];
+    double excess = q[j] < lo ? lo - q[j] : q[j] > hi ? q[j] - hi : 0.0;
+    if (!(excess > 1e-9)) continue;
+    count++;
+    if (excess > worst_excess) {
+      worst_excess = excess;
+      worst = j;
+    }
+  }
+  if (worst >= 0) ssa_limit_sentence(r, worst, q[worst], msg, msg_sz);
+  return count;
+}
+
+void ssa_limit_sentence(const ssa_robot *r, int j, double v, char *msg, int msg_sz) {
+  if (!msg || msg_sz <= 0) return;
+  const int rev = r->joint_type[j] == SSA_JOINT_REVOLUTE;
+  const char *unit = rev ? "rad" : "m";
+  /* a revolute value beyond a full turn, or one whose radian reading is past the
+   * limits while its degree reading fits them, was most likely given in degrees */
+  const double deg = v * SSA_PI / 180.0;
+  const int degrees = rev && (fabs(v) > 2 * SSA_PI + 1e-9 ||
+                              (deg >= r->joint_lower[j] && deg <= r->joint_upper[j] && fabs(v) > SSA_PI));
+  snprintf(msg, (size_t)msg_sz, "joint '%s' of robot '%s' is %g %s, outside its limits [%g, %g] %s%s",
+           r->joint_name[j], r->name, v, unit, r->joint_lower[j], r->joint_upper[j], unit,
+           degrees ? " (degrees? joint values are radians)" : "");
 }
 
 void ssa_robot_fk(const ssa_robot *r, const double *q, double *link_world) {

@@ -17,6 +17,11 @@
  * `what` and the path on failure (robot.c). */
 char *ssa_read_text_file(const char *path, const char *what, char *err, int err_sz);
 
+/* One sentence on joint j of robot r whose value v is outside its limits
+ * (robot.c; r is a const ssa_robot *). */
+struct ssa_robot;
+void ssa_limit_sentence(const struct ssa_robot *r, int j, double v, char *msg, int msg_sz);
+
 static inline int ssa_fail(char *err, int err_sz, int status, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 static inline int ssa_fail(char *err, int err_sz, int status, const char *fmt, ...) {

@@ -15,7 +15,11 @@
  * arrays disagree, or with a NaN/Inf position, or naming no joint of the robot
  * is rejected with a throttled log line and counted. avatar_stats (SkinStats)
  * reports per message the posing time (total_ms) and the counters
- * (inputs_rejected: rejected messages; inputs_dropped: names ignored). */
+ * (inputs_rejected: rejected messages; inputs_dropped: names ignored).
+ * Values outside a joint's URDF limits are clamped (by the FK) with one
+ * warning naming the joint and its limits, or with ~strict_limits the
+ * message is rejected. Parameters of the wrong type or out of range stop the
+ * node at start (exit 2) with one message naming the parameter. */
 #include "rosc/rosc.h"
 #include "skin_sim/ssa_avatar.h"
 
@@ -39,6 +43,10 @@ typedef struct node {
   rosc_pub *pub_mesh, *pub_stats;
   uint32_t rejected, unknown_names;
   unsigned long in, out;
+  int strict_limits;      /* ~strict_limits: reject values outside the URDF limits */
+  int limits_warned;      /* the clamping warning is given once */
+  unsigned long clamped;  /* messages with values clamped to the limits */
+  int queue;              /* ~queue_size */
 } node;
 
 static uint32_t hash_topology(int nvert, int nface, const int *faces)
@@ -102,6 +110,21 @@ static void on_joints(const rosc_joint_state *m, void *user)
                        "'%s'): ignored (%u names ignored so far)", unknown, first_unknown,
                        (unsigned)nd->unknown_names);
   }
+  char lim[ERR_SZ];
+  if (ssa_robot_check_limits(r, nd->q_try, lim, sizeof lim) > 0) {
+    if (nd->strict_limits) {
+      char why2[ERR_SZ + 32];
+      snprintf(why2, sizeof why2, "%s (~strict_limits)", lim);
+      reject(nd, why2);
+      return;
+    }
+    nd->clamped++;
+    if (!nd->limits_warned) {
+      nd->limits_warned = 1;
+      ROSC_WARN("joint_states: %s; clamped to the limits (said once; ~strict_limits:=true "
+                "rejects such messages)", lim);
+    }
+  }
   memcpy(nd->q, nd->q_try, (size_t)r->njoint * sizeof(double));
   double t0 = 0, t1 = 0;
   rosc_wall_now_s(&t0);
@@ -131,37 +154,77 @@ static void on_joints(const rosc_joint_state *m, void *user)
   rosc_publish_skin_stats(nd->pub_stats, &s);
 }
 
+/* 1 if a getter read its parameter (or its default); else logs why (a wrong type
+ * names the parameter, the type wanted and the value given) and returns 0. */
+static int param_ok(int status, const char *name, const char *expected)
+{
+  if (status == ROSC_OK) return 1;
+  char why[ERR_SZ];
+  rosc_param_explain(status, name, expected, why, sizeof why);
+  ROSC_ERROR("%s", why);
+  return 0;
+}
+
+static void on_avatar_warning(void *user, const char *msg)
+{
+  (void)user;
+  ROSC_WARN("%s", msg);
+}
+
+/* Loads the avatar: 0, or the exit status (1 it cannot be built, 2 a bad parameter). */
 static int load_avatar(node *nd)
 {
-  char kind[64], mesh[1024], err[ERR_SZ] = "";
-  int tris = 5000;
-  rosc_param_get_string("~avatar", kind, sizeof kind, "", NULL);
-  rosc_param_get_string("~mesh", mesh, sizeof mesh, "", NULL);
-  rosc_param_get_int("~tris", &tris, 5000, NULL);
+  char kind[64], mesh[1024], up[32], pkg[2048], err[ERR_SZ] = "";
+  int tris = 5000, ok = 1;
+  double edge = 0.02;
+  ok &= param_ok(rosc_param_get_string("~avatar", kind, sizeof kind, "", NULL), "~avatar", "a string");
+  ok &= param_ok(rosc_param_get_string("~mesh", mesh, sizeof mesh, "", NULL), "~mesh", "a string");
+  ok &= param_ok(rosc_param_get_int("~tris", &tris, 5000, NULL), "~tris", "an int");
+  ok &= param_ok(rosc_param_get_string("~package_path", pkg, sizeof pkg, "", NULL), "~package_path",
+                 "a string");
+  ok &= param_ok(rosc_param_get_bool("~strict_limits", &nd->strict_limits, 0, NULL),
+                 "~strict_limits", "a bool");
+  ok &= param_ok(rosc_param_get_string("~mesh_up_axis", up, sizeof up, "ignore", NULL),
+                 "~mesh_up_axis", "a string");
+  ok &= param_ok(rosc_param_get_double("~primitive_edge", &edge, 0.02, NULL), "~primitive_edge",
+                 "a double (or an int)");
+  if (ok && strcmp(up, "ignore") != 0 && strcmp(up, "file") != 0) {
+    ROSC_ERROR("~mesh_up_axis: '%s' is neither 'ignore' (rviz's way) nor 'file'", up);
+    ok = 0;
+  }
+  nd->queue = 2;
+  ok &= param_ok(rosc_param_get_int("~queue_size", &nd->queue, 2, NULL), "~queue_size", "an int");
+  if (ok && (nd->queue < 1 || nd->queue > 1000)) {
+    ROSC_ERROR("~queue_size = %d is out of range [1, 1000]", nd->queue);
+    ok = 0;
+  }
+  if (ok && !(edge >= 1e-4 && edge <= 10.0)) {
+    ROSC_ERROR("~primitive_edge = %g m is out of range [0.0001, 10]", edge);
+    ok = 0;
+  }
+  if (!ok) return 2;
   int st;
   if (strcmp(kind, "mannequin") == 0) {
     st = ssa_avatar_mannequin(&nd->av, tris, err, sizeof err);
     if (st != SS_OK) {
       ROSC_ERROR("mannequin: %s", err);
-      return 0;
+      return st == SS_E_ARG ? 2 : 1;
     }
   } else if (kind[0]) {
     ROSC_ERROR("~avatar: unknown built-in avatar '%s' (mannequin, or empty for the URDF)", kind);
-    return 0;
+    return 2;
   } else {
     char *urdf = NULL;
     if (rosc_robot_description(&urdf, NULL) != ROSC_OK) {
       ROSC_ERROR("robot_description is not set (load a URDF, or use ~avatar:=mannequin)");
-      return 0;
+      return 1;
     }
-    char pkg[2048];
-    rosc_param_get_string("~package_path", pkg, sizeof pkg, "", NULL);
     ssa_robot *robot = NULL;
     st = ssa_robot_load_string(&robot, urdf, NULL, pkg[0] ? pkg : NULL, err, sizeof err);
     free(urdf);
     if (st != SS_OK) {
       ROSC_ERROR("robot_description: %s", err);
-      return 0;
+      return 1;
     }
     char path[4096];
     if (mesh[0]) {
@@ -169,20 +232,23 @@ static int load_avatar(node *nd)
           SS_OK) {
         ROSC_ERROR("~mesh: %s", err);
         ssa_robot_destroy(robot);
-        return 0;
+        return 1;
       }
     }
     ssa_avatar_opts opts = ssa_avatar_default_opts();
     opts.package_path = pkg[0] ? pkg : NULL;
+    opts.mesh_up_axis = strcmp(up, "file") == 0 ? SSA_UP_AXIS_FILE : SSA_UP_AXIS_IGNORE;
+    opts.primitive_edge = edge;
+    opts.warn = on_avatar_warning;
     st = ssa_avatar_from_robot(&nd->av, robot, mesh[0] ? path : NULL, &opts, err, sizeof err);
     if (st != SS_OK) {
       ROSC_ERROR("avatar: %s", err);
-      return 0;
+      return 1;
     }
   }
   nd->robot = nd->av->robot;
   snprintf(nd->frame, sizeof nd->frame, "%s", nd->robot->link_name[nd->robot->root_link]);
-  return 1;
+  return 0;
 }
 
 int main(int argc, char **argv)
@@ -194,9 +260,10 @@ int main(int argc, char **argv)
   }
   node nd;
   memset(&nd, 0, sizeof nd);
-  if (!load_avatar(&nd)) {
+  int load = load_avatar(&nd);
+  if (load != 0) {
     rosc_shutdown();
-    return 1;
+    return load;
   }
   const ssa_avatar *av = nd.av;
   nd.q = calloc((size_t)nd.robot->njoint + 1, sizeof(double));
@@ -210,13 +277,10 @@ int main(int argc, char **argv)
   }
   for (size_t i = 0; i < 3 * (size_t)av->nface; i++) nd.tri_out[i] = (uint32_t)av->faces[i];
   nd.topology_id = hash_topology(av->nvert, av->nface, av->faces);
-  int queue = 2;
-  rosc_param_get_int("~queue_size", &queue, 2, NULL);
-  if (queue < 1) queue = 1;
   rosc_sub *sub = NULL;
   if (rosc_pub_create(&nd.pub_mesh, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd.pub_stats, ROSC_MSG_SKIN_STATS, "avatar_stats", 10, 0) != ROSC_OK ||
-      rosc_sub_joint_state(&sub, "joint_states", (unsigned)queue, on_joints, &nd) != ROSC_OK) {
+      rosc_sub_joint_state(&sub, "joint_states", (unsigned)nd.queue, on_joints, &nd) != ROSC_OK) {
     ROSC_ERROR("cannot advertise or subscribe");
     rosc_shutdown();
     return 1;
@@ -225,8 +289,9 @@ int main(int argc, char **argv)
             nd.robot->name, av->nvert, av->nface, nd.robot->njoint, nd.frame,
             (unsigned)nd.topology_id);
   rosc_spin_for(-1.0);
-  ROSC_INFO("avatar: %lu joint_states in, %lu meshes out, %u rejected, %u names ignored", nd.in,
-            nd.out, (unsigned)nd.rejected, (unsigned)nd.unknown_names);
+  ROSC_INFO("avatar: %lu joint_states in, %lu meshes out, %u rejected, %u names ignored, %lu "
+            "with values clamped to the joint limits", nd.in, nd.out, (unsigned)nd.rejected,
+            (unsigned)nd.unknown_names, nd.clamped);
   rosc_sub_destroy(sub);
   rosc_pub_destroy(nd.pub_mesh);
   rosc_pub_destroy(nd.pub_stats);

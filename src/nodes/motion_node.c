@@ -7,13 +7,27 @@
  * regular: the start time plus i / rate (re-based on the clock if the loop
  * falls more than half a second behind), so the stream steps the skin with
  * one constant dt. ~speed scales the motion's time; ~duration (s, 0: for
- * ever) ends the node after that long. */
+ * ever) ends the node after that long. A parameter of the wrong type or out of
+ * range, or a motion that moves no joint of robot_description, stops the node
+ * at start (exit 2) with one message. */
 #include "rosc/rosc.h"
 #include "skin_sim/ssa_avatar.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* 1 if a getter read its parameter (or its default); else logs why (a wrong type
+ * names the parameter, the type wanted and the value given) and returns 0. */
+static int param_ok(int status, const char *name, const char *expected)
+{
+  if (status == ROSC_OK) return 1;
+  char why[512];
+  rosc_param_explain(status, name, expected, why, sizeof why);
+  ROSC_ERROR("%s", why);
+  return 0;
+}
 
 int main(int argc, char **argv)
 {
@@ -24,14 +38,27 @@ int main(int argc, char **argv)
   }
   char motion[64], err[512] = "";
   double rate = 30.0, speed = 1.0, duration = 0.0;
-  rosc_param_get_string("~motion", motion, sizeof motion, "all", NULL);
-  rosc_param_get_double("~rate", &rate, 30.0, NULL);
-  rosc_param_get_double("~speed", &speed, 1.0, NULL);
-  rosc_param_get_double("~duration", &duration, 0.0, NULL);
+  int ok = 1;
+  ok &= param_ok(rosc_param_get_string("~motion", motion, sizeof motion, "all", NULL), "~motion",
+                 "a string");
+  ok &= param_ok(rosc_param_get_double("~rate", &rate, 30.0, NULL), "~rate", "a double (or an int)");
+  ok &= param_ok(rosc_param_get_double("~speed", &speed, 1.0, NULL), "~speed", "a double (or an int)");
+  ok &= param_ok(rosc_param_get_double("~duration", &duration, 0.0, NULL), "~duration",
+                 "a double (or an int)");
   int mi = ssa_motion_builtin_index(motion);
-  if (mi < 0 || !(rate > 0.0) || rate > 1000.0) {
-    ROSC_ERROR("~motion '%s' unknown (arms, elbows, twist, all) or ~rate %g outside (0, 1000] Hz",
-               motion, rate);
+  if (ok && mi < 0) {
+    ROSC_ERROR("~motion: unknown motion '%s' (arms, elbows, twist, all)", motion);
+    ok = 0;
+  }
+  if (ok && (!(rate > 0.0) || rate > 1000.0)) {
+    ROSC_ERROR("~rate = %g Hz is out of range (0, 1000]", rate);
+    ok = 0;
+  }
+  if (ok && (!isfinite(speed) || !isfinite(duration) || duration < 0.0)) {
+    ROSC_ERROR("~speed (%g) must be finite and ~duration (%g s) finite and >= 0", speed, duration);
+    ok = 0;
+  }
+  if (!ok) {
     rosc_shutdown();
     return 2;
   }
@@ -45,6 +72,13 @@ int main(int argc, char **argv)
     ROSC_ERROR("%s: %s", from_param ? "robot_description" : "mannequin URDF", err);
     rosc_shutdown();
     return 1;
+  }
+  if (ssa_motion_builtin_coverage(mi, robot) == 0) {
+    ROSC_ERROR("~motion '%s' moves joints of the mannequin, and robot '%s' (robot_description) "
+               "has none of them: it would publish no motion", motion, robot->name);
+    ssa_robot_destroy(robot);
+    rosc_shutdown();
+    return 2;
   }
   int nj = robot->njoint, n = 0;
   const char **names = malloc((size_t)(nj + 1) * sizeof *names);

@@ -88,41 +88,77 @@ typedef struct node {
 } node;
 
 /* ------------------------------------------------------------------ parameters */
+/* 1 if a getter read its parameter (or its default); else logs why (a wrong type
+ * names the parameter, the type wanted and the value given) and returns 0. */
+static int param_ok(int status, const char *name, const char *expected)
+{
+  if (status == ROSC_OK) return 1;
+  char why[ERR_SZ];
+  rosc_param_explain(status, name, expected, why, sizeof why);
+  ROSC_ERROR("%s", why);
+  return 0;
+}
+
+static int get_int(const char *name, int *v, int def)
+{
+  return param_ok(rosc_param_get_int(name, v, def, NULL), name, "an int");
+}
+static int get_double(const char *name, double *v, double def)
+{
+  return param_ok(rosc_param_get_double(name, v, def, NULL), name, "a double (or an int)");
+}
+static int get_bool(const char *name, int *v, int def)
+{
+  return param_ok(rosc_param_get_bool(name, v, def, NULL), name, "a bool");
+}
+static int get_string(const char *name, char *buf, size_t size, const char *def)
+{
+  return param_ok(rosc_param_get_string(name, buf, size, def, NULL), name, "a string");
+}
+
+/* 1 if an int parameter is within [lo, hi]; else logs it and returns 0 (never clamped). */
+static int param_range(const char *name, int v, int lo, int hi)
+{
+  if (v >= lo && v <= hi) return 1;
+  ROSC_ERROR("%s = %d is out of range [%d, %d]", name, v, lo, hi);
+  return 0;
+}
+
 static int get_params(params *p)
 {
   char buf[256];
   int ok = 1;
   p->set = ss_sim_default_settings();
-  rosc_param_get_string("~solver", buf, sizeof buf, ss_solver_name(p->set.solver), NULL);
+  ok &= get_string("~solver", buf, sizeof buf, ss_solver_name(p->set.solver));
   if ((p->set.solver = ss_solver_parse(buf)) < 0) {
     ROSC_ERROR("~solver: unknown solver '%s' (newton, quasi-newton)", buf);
     ok = 0;
   }
-  rosc_param_get_string("~method", buf, sizeof buf, ss_method_name(p->set.mover.method), NULL);
+  ok &= get_string("~method", buf, sizeof buf, ss_method_name(p->set.mover.method));
   if ((p->set.mover.method = ss_method_parse(buf)) < 0) {
     ROSC_ERROR("~method: unknown anchor method '%s' (walk, project, nring)", buf);
     ok = 0;
   }
-  rosc_param_get_int("~rings", &p->set.mover.nring_rings, p->set.mover.nring_rings, NULL);
-  rosc_param_get_int("~walk_max_steps", &p->set.mover.walk_max_steps, p->set.mover.walk_max_steps, NULL);
-  rosc_param_get_double("~stiffness", &p->set.anchor_stiffness, p->set.anchor_stiffness, NULL);
-  rosc_param_get_double("~young", &p->set.young, p->set.young, NULL);
-  rosc_param_get_double("~poisson", &p->set.poisson, p->set.poisson, NULL);
-  rosc_param_get_double("~density", &p->set.density, p->set.density, NULL);
-  rosc_param_get_double("~slide", &p->set.slide, p->set.slide, NULL);
-  rosc_param_get_int("~substeps", &p->set.substeps, p->set.substeps, NULL);
-  rosc_param_get_int("~iterations", &p->set.iterations, p->set.iterations, NULL);
-  rosc_param_get_double("~tol", &p->set.tol, p->set.tol, NULL);
-  rosc_param_get_int("~lbfgs_history", &p->set.lbfgs_history, p->set.lbfgs_history, NULL);
-  rosc_param_get_double("~bending", &p->set.bending, p->set.bending, NULL);
-  rosc_param_get_double("~damping", &p->set.damping, p->set.damping, NULL);
-  rosc_param_get_bool("~barycenters", &p->set.barycenter_anchors, p->set.barycenter_anchors, NULL);
-  rosc_param_get_string("~gravity", buf, sizeof buf, "0 0 0", NULL);
+  ok &= get_int("~rings", &p->set.mover.nring_rings, p->set.mover.nring_rings);
+  ok &= get_int("~walk_max_steps", &p->set.mover.walk_max_steps, p->set.mover.walk_max_steps);
+  ok &= get_double("~stiffness", &p->set.anchor_stiffness, p->set.anchor_stiffness);
+  ok &= get_double("~young", &p->set.young, p->set.young);
+  ok &= get_double("~poisson", &p->set.poisson, p->set.poisson);
+  ok &= get_double("~density", &p->set.density, p->set.density);
+  ok &= get_double("~slide", &p->set.slide, p->set.slide);
+  ok &= get_int("~substeps", &p->set.substeps, p->set.substeps);
+  ok &= get_int("~iterations", &p->set.iterations, p->set.iterations);
+  ok &= get_double("~tol", &p->set.tol, p->set.tol);
+  ok &= get_int("~lbfgs_history", &p->set.lbfgs_history, p->set.lbfgs_history);
+  ok &= get_double("~bending", &p->set.bending, p->set.bending);
+  ok &= get_double("~damping", &p->set.damping, p->set.damping);
+  ok &= get_bool("~barycenters", &p->set.barycenter_anchors, p->set.barycenter_anchors);
+  ok &= get_string("~gravity", buf, sizeof buf, "0 0 0");
   if (sscanf(buf, "%lf %lf %lf", &p->set.gravity[0], &p->set.gravity[1], &p->set.gravity[2]) != 3) {
     ROSC_ERROR("~gravity: '%s' is not three numbers 'x y z' (m/s^2)", buf);
     ok = 0;
   }
-  rosc_param_get_string("~mask_box", buf, sizeof buf, "", NULL);
+  ok &= get_string("~mask_box", buf, sizeof buf, "");
   p->have_box = 0;
   if (buf[0]) {
     double *b = p->box;
@@ -133,15 +169,18 @@ static int get_params(params *p)
       p->have_box = 1;
     }
   }
-  rosc_param_get_double("~max_gap", &p->max_gap, 0.5, NULL);
-  rosc_param_get_double("~max_step", &p->max_step, 0.05, NULL);
-  rosc_param_get_int("~max_split", &p->max_split, 8, NULL);
-  rosc_param_get_double("~marker_rate", &p->marker_rate, 10.0, NULL);
-  rosc_param_get_double("~slide_scale", &p->slide_scale, 0.05, NULL);
-  rosc_param_get_int("~queue_size", &p->queue_size, 1, NULL);
-  if (p->queue_size < 1) p->queue_size = 1;
-  if (p->queue_size > 1000) p->queue_size = 1000;
-  if (p->max_split < 1) p->max_split = 1;
+  ok &= get_double("~max_gap", &p->max_gap, 0.5);
+  ok &= get_double("~max_step", &p->max_step, 0.05);
+  ok &= get_int("~max_split", &p->max_split, 8);
+  ok &= get_double("~marker_rate", &p->marker_rate, 10.0);
+  ok &= get_double("~slide_scale", &p->slide_scale, 0.05);
+  ok &= get_int("~queue_size", &p->queue_size, 1);
+  ok &= param_range("~queue_size", p->queue_size, 1, 1000);
+  ok &= param_range("~max_split", p->max_split, 1, 1000);
+  if (!(p->max_step > 0.0)) {
+    ROSC_ERROR("~max_step must be > 0 s, got %g", p->max_step);
+    ok = 0;
+  }
   if (!(p->max_gap > 0.0)) {
     ROSC_ERROR("~max_gap must be > 0 s");
     ok = 0;

@@ -714,6 +714,59 @@ int rosc_param_has(const char *name, int *out)
   });
 }
 
+int rosc_param_explain(int status, const char *name, const char *expected, char *err,
+                       size_t err_size)
+{
+  if (err == nullptr || err_size == 0) return status;
+  err[0] = '\0';
+  if (status == ROSC_OK) return status;
+  const char *nm = name != nullptr ? name : "(null)";
+  if (status != ROSC_E_TYPE) {
+    std::snprintf(err, err_size, "parameter %s: %s", nm, rosc_strerror(status));
+    return status;
+  }
+  std::string held = "a value of another type";
+  guard(__func__, [&]() -> int {
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    if (param_fetch(nm, v, &found) != ROSC_OK || !found) return ROSC_OK;
+    char buf[160];
+    switch (v.getType()) {
+      case XmlRpc::XmlRpcValue::TypeString: {
+        std::string t = static_cast<std::string &>(v);
+        if (t.size() > 60) t = t.substr(0, 60) + "...";
+        held = "the string '" + t + "'";
+        char *end = nullptr;
+        const std::string &full = static_cast<std::string &>(v);
+        std::strtod(full.c_str(), &end);
+        if (!full.empty() && end != nullptr && *end == '\0' && expected != nullptr &&
+            std::strstr(expected, "double") != nullptr)
+          held += " (in a launch file, a number without a '.' such as 1e-4 stays a string: "
+                  "write type=\"double\")";
+        break;
+      }
+      case XmlRpc::XmlRpcValue::TypeDouble:
+        std::snprintf(buf, sizeof buf, "the double %g", static_cast<double>(v));
+        held = buf;
+        break;
+      case XmlRpc::XmlRpcValue::TypeInt:
+        std::snprintf(buf, sizeof buf, "the int %d", static_cast<int>(v));
+        held = buf;
+        break;
+      case XmlRpc::XmlRpcValue::TypeBoolean:
+        held = static_cast<bool>(v) ? "the bool true" : "the bool false";
+        break;
+      case XmlRpc::XmlRpcValue::TypeArray: held = "a list"; break;
+      case XmlRpc::XmlRpcValue::TypeStruct: held = "a dictionary"; break;
+      default: break;
+    }
+    return ROSC_OK;
+  });
+  std::snprintf(err, err_size, "%s must be %s, but is %s", nm,
+                expected != nullptr ? expected : "of another type", held.c_str());
+  return status;
+}
+
 namespace {
 template <class T>
 int param_set(const char *func, const char *name, const T &value)

@@ -157,6 +157,41 @@ int main(void) {
   EXPECT(ssa_motion_bind(mo, r, map, err, sizeof err), SS_E_ARG, "tail_wag");
   ssa_motion_destroy(mo);
   mo = NULL;
+
+  /* joint values outside the URDF limits: counted, one sentence naming the worst joint
+   * and its limits (l_elbow [0, 2.6]); values in degrees are called so */
+  double ql[32] = {0};
+  int je = ssa_robot_joint_index(r, "l_elbow"), js = ssa_robot_joint_index(r, "l_shoulder_abduct");
+  CHECK_EQ_INT(ssa_robot_check_limits(r, ql, err, sizeof err), 0);
+  ql[je] = 2.6;
+  CHECK_EQ_INT(ssa_robot_check_limits(r, ql, err, sizeof err), 0); /* on the limit is inside */
+  ql[je] = 90.0;
+  ql[js] = 2.0;
+  CHECK_EQ_INT(ssa_robot_check_limits(r, ql, err, sizeof err), 2);
+  CHECK(strstr(err, "'l_elbow'") && strstr(err, "[0, 2.6] rad") && strstr(err, "degrees?"));
+  printf("%-28s -> %s\n", "limits (q)", err);
+  ql[je] = 0;
+  CHECK_EQ_INT(ssa_robot_check_limits(r, ql, err, sizeof err), 1);
+  CHECK(strstr(err, "'l_shoulder_abduct'") && strstr(err, "[-0.6, 1.8]") && !strstr(err, "degrees"));
+  p = put_text("degrees.csv", "time,l_elbow,r_elbow,neck_twist\n0,0,0,0\n1,90,45,0.5\n2,143,2,0\n");
+  CHECK_EQ_INT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_OK);
+  int map3[3];
+  CHECK_EQ_INT(ssa_motion_bind(mo, r, map3, err, sizeof err), SS_OK);
+  CHECK_EQ_INT(ssa_motion_check_limits(mo, map3, r, err, sizeof err), 3);
+  CHECK(strstr(err, "3 values (of 2 joints) are outside") && strstr(err, "'l_elbow'") && strstr(err, "143") &&
+        strstr(err, "[0, 2.6]") && strstr(err, "degrees?") && strstr(err, "t = 2 s"));
+  printf("%-28s -> %s\n", "limits (motion)", err);
+  ssa_motion_destroy(mo);
+  mo = NULL;
+  /* the built-in motions move the mannequin, not a robot without its joints */
+  for (int i = 0; i < ssa_motion_builtin_count(); i++) CHECK(ssa_motion_builtin_coverage(i, r) > 0);
+  ssa_robot_destroy(r);
+  r = NULL;
+  CHECK_EQ_INT(ssa_robot_load_string(&r, "<robot name='arm'><link name='a'/><link name='b'/>"
+                                         "<joint name='j1' type='continuous'><parent link='a'/>"
+                                         "<child link='b'/></joint></robot>",
+                                     NULL, NULL, err, sizeof err), SS_OK);
+  for (int i = 0; i < ssa_motion_builtin_count(); i++) CHECK_EQ_INT(ssa_motion_builtin_coverage(i, r), 0);
   ssa_robot_destroy(r);
   r = NULL;
 
@@ -181,8 +216,14 @@ int main(void) {
   EXPECT(ssa_motion_read_csv(&mo, "/nonexistent/m.csv", err, sizeof err), SS_E_IO,
          "/nonexistent/m.csv");
   CHECK(mo == NULL);
-  /* a CSV with spaces and CRLF is fine */
-  p = put_text("ok.csv", "t , a\r\n 0 , 1.5 \r\n2,2.5\r\n");
+  /* the first column must be time: a file that starts with a joint is refused */
+  p = put_text("notime.csv", "l_elbow,r_elbow\n0,0\n1,1\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "notime.csv", "line 1",
+         "first column must be 'time'", "'l_elbow'");
+  p = put_text("notime2.csv", "# motion\nt,a\n0,0\n");
+  EXPECT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_E_ARG, "notime2.csv", "line 2", "'t'");
+  /* a CSV with spaces, CRLF and a capitalised Time is fine */
+  p = put_text("ok.csv", "Time , a\r\n 0 , 1.5 \r\n2,2.5\r\n");
   CHECK_EQ_INT(ssa_motion_read_csv(&mo, p, err, sizeof err), SS_OK);
   if (mo) {
     CHECK(mo->njoint == 1 && mo->nframe == 2 && strcmp(mo->joint_name[0], "a") == 0);

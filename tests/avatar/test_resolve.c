@@ -95,21 +95,27 @@ int main(void) {
   snprintf(urdf, sizeof urdf, "%s/robot/r.urdf", dir);
   ssa_avatar_opts o = ssa_avatar_default_opts();
   o.package_path = pp;
+  o.primitive_edge = 0.5; /* the unit box: 2 x 2 cells a face, 26 vertices, 48 triangles */
   ssa_avatar *av = NULL;
   CHECK_EQ_INT(ssa_avatar_load_urdf(&av, urdf, NULL, &o, err, sizeof err), SS_OK);
   if (av) {
     CHECK_EQ_INT(av->robot->nvisual, 4);
-    CHECK_EQ_INT(av->nface, 3); /* the box is a primitive: skipped */
-    CHECK_EQ_INT(av->nvert, 9);
+    CHECK_EQ_INT(av->nface, 3 + 48); /* the box is tessellated (visual 2, after two meshes) */
+    CHECK_EQ_INT(av->nvert, 9 + 26);
+    for (int w = 6; w < 6 + 26; w++) {
+      CHECK_EQ_INT(av->vert_part[w], 2);
+      for (int k = 0; k < 3; k++) CHECK(fabs(fabs(av->rest_pos[3 * w + k]) - 0.5) < 1e-12 ||
+                                        fabs(av->rest_pos[3 * w + k]) < 1e-12);
+    }
     /* visual 0: scaled by 2, lifted by 1 */
     CHECK_NEAR(av->rest_pos[3 * 1 + 0], 2.0, 1e-12);
     CHECK_NEAR(av->rest_pos[3 * 1 + 2], 1.0, 1e-12);
     /* visual of link b: turned a quarter about z, at x = 5: (1,0,0) -> (5,1,0) */
-    int v = 7;
+    int v = 7 + 26;
     CHECK_EQ_INT(av->vert_link[v], ssa_robot_link_index(av->robot, "b"));
     CHECK_NEAR(av->rest_pos[3 * v + 0], 5.0, 1e-12);
     CHECK_NEAR(av->rest_pos[3 * v + 1], 1.0, 1e-12);
-    double q[1] = {0.5}, pos[27];
+    double q[1] = {0.5}, pos[3 * (9 + 26)];
     CHECK_EQ_INT(ssa_avatar_pose_joints(av, q, pos), SS_OK);
     CHECK_NEAR(pos[3 * v + 2], 0.5, 1e-12);
     CHECK_NEAR(pos[3 * 1 + 2], 1.0, 1e-12);

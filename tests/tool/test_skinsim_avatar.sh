@@ -3,7 +3,9 @@
 # (the mannequin's own file, and the Solo robot whose links wear their own
 # visual meshes), a region mask, and rigged characters nobody here made
 # (Debian's assimp-testmodels, ../shared/data) animated for 100 frames with
-# the walk: 0 failures. Bad input: one clear message, exit 2, no crash.
+# the walk: 0 failures; robots of URDF primitives, mixed with a Y_UP Collada mesh
+# (--mesh-up-axis), joint values outside the limits (--strict-limits). Bad input:
+# one clear message, exit 2, no crash.
 set -u
 bld="$1"
 src="$2"
@@ -89,6 +91,92 @@ bad "unknown avatar" run --avatar robocop
 bad "missing asset" run --asset "$tmp/none.glb"
 if [ -f "$models/X/BCN_Epileptic.X" ]; then
   bad "animation out of range" run --asset "$models/X/BCN_Epileptic.X" --anim 7
+fi
+
+# ---- inputs that used to run silently wrong
+# a robot of primitives (box, cylinder placed by its origin, sphere) and one mixing a
+# Y_UP Collada mesh with a sphere: both are bodies (they used to be refused)
+cat > "$tmp/prims.urdf" <<'URDF'
+<robot name='prims'>
+<link name='base'><visual><origin xyz='0 0 0.05'/><geometry><box size='0.4 0.3 0.1'/></geometry></visual></link>
+<link name='arm'><visual><origin xyz='0.15 0 0' rpy='0 1.5707963267948966 0'/><geometry><cylinder radius='0.04' length='0.3'/></geometry></visual></link>
+<link name='ball'><visual><geometry><sphere radius='0.06'/></geometry></visual></link>
+<joint name='shoulder' type='revolute'><parent link='base'/><child link='arm'/><origin xyz='0 0 0.2'/>
+<axis xyz='0 0 1'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>
+<joint name='wrist' type='fixed'><parent link='arm'/><child link='ball'/><origin xyz='0.3 0 0'/></joint>
+</robot>
+URDF
+printf 'time,shoulder\n0,0\n1,1.5\n2,-1.5\n' > "$tmp/shoulder.csv"
+printf 'shoulder,wrist\n0,0\n1,1\n' > "$tmp/notime.csv"
+bad "CSV without a time column" run --urdf "$tmp/prims.urdf" --motion "$tmp/notime.csv"
+check "  ... names the column" "grep -q \"first column must be 'time'.*'shoulder'\" '$tmp/err'"
+run prims --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 30
+check "prims: 3244 triangles at the default 2 cm edge" "[ \"\$(field '$tmp/prims.json' triangles)\" = 3244 ]"
+run prims_coarse --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 5 --primitive-edge 0.05
+check "prims_coarse: --primitive-edge 0.05 gives fewer triangles" \
+  "[ \"\$(field '$tmp/prims_coarse.json' triangles)\" -lt 2000 ]"
+bad "built-in motion on a robot without its joints" run --urdf "$tmp/prims.urdf" --motion arms
+check "  ... names the motion and the robot" "grep -q \"'arms'.*robot 'prims'\" '$tmp/err'"
+bad "bad --mesh-up-axis" run --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --mesh-up-axis up
+cat > "$tmp/tet_y.dae" <<'DAE'
+<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+<asset><unit name="meter" meter="1"/><up_axis>Y_UP</up_axis></asset>
+<library_geometries><geometry id="g" name="g"><mesh>
+<source id="gp"><float_array id="gpa" count="12">0 0 0 0.1 0 0 0 0.2 0 0 0 0.3</float_array>
+<technique_common><accessor source="#gpa" count="4" stride="3"><param name="X" type="float"/>
+<param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="gv"><input semantic="POSITION" source="#gp"/></vertices>
+<triangles count="4"><input semantic="VERTEX" source="#gv" offset="0"/><p>0 2 1 0 1 3 0 3 2 1 2 3</p></triangles>
+</mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="s"><node id="n" name="n"><instance_geometry url="#g"/></node>
+</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/></scene></COLLADA>
+DAE
+cat > "$tmp/mixed.urdf" <<'URDF'
+<robot name='mixed'>
+<link name='body'><visual><geometry><mesh filename='tet_y.dae'/></geometry></visual>
+<visual><origin xyz='0.5 0 0'/><geometry><mesh filename='tet_y.dae'/></geometry></visual></link>
+<link name='head'><visual><geometry><sphere radius='0.05'/></geometry></visual></link>
+<joint name='neck' type='revolute'><parent link='body'/><child link='head'/><origin xyz='0 0 0.4'/>
+<axis xyz='0 1 0'/><limit lower='-1' upper='1' effort='1' velocity='1'/></joint>
+</robot>
+URDF
+printf 'time,neck\n0,0\n0.5,0.8\n1,0\n' > "$tmp/neck.csv"
+"$exe" run --urdf "$tmp/mixed.urdf" --motion "$tmp/neck.csv" --out "$tmp/mixed_ignore" > /dev/null 2> "$tmp/err"; rc=$?
+check "mixed mesh + sphere: exit 0" "[ $rc -eq 0 ]"
+check "Y_UP Collada, --mesh-up-axis ignore (default): one warning naming the option" \
+  "[ \$(wc -l < '$tmp/err') -eq 1 ] && grep -q 'warning: .*Y_UP.*--mesh-up-axis file' '$tmp/err'"
+cat "$tmp/err"
+"$exe" run --urdf "$tmp/mixed.urdf" --motion "$tmp/neck.csv" --mesh-up-axis file --frames 1 \
+  --out "$tmp/mixed_file" > /dev/null 2> "$tmp/err"; rc=$?
+check "--mesh-up-axis file: exit 0, no warning" "[ $rc -eq 0 ] && [ ! -s '$tmp/err' ]"
+check "the tetrahedron as written (ignore: z up to 0.3) or turned Z-up (file: y down to -0.3)" "$py - '$tmp' <<'PY'
+import struct, sys
+def verts(path):
+    b = open(path, 'rb').read(); h = b.index(b'end_header\n') + 11
+    n = int(b[:h].decode().split('element vertex ')[1].split()[0])
+    return [struct.unpack_from('<3f', b, h + 12 * i) for i in range(n)]
+ign, fil = verts(sys.argv[1] + '/mixed_ignore/body_0001.ply')[:4], verts(sys.argv[1] + '/mixed_file/body_0001.ply')[:4]
+lo = lambda v, k: min(p[k] for p in v); hi = lambda v, k: max(p[k] for p in v)
+print('ignore: z', lo(ign, 2), hi(ign, 2), ' file: y', lo(fil, 1), hi(fil, 1), 'z', hi(fil, 2))
+ok = abs(hi(ign, 2) - 0.3) < 1e-6 and abs(lo(fil, 1) + 0.3) < 1e-6 and abs(hi(fil, 2) - 0.2) < 1e-6
+sys.exit(0 if ok else 1)
+PY"
+# joint values outside the URDF limits (here in degrees): clamped with one warning naming
+# the joint and its limits; --strict-limits makes it an error
+printf 'time,l_elbow,r_elbow\n0,0,0\n0.5,90,45\n1,0,0\n' > "$tmp/degrees.csv"
+if [ -f "$tmp/ply/body_0001.ply" ]; then
+  "$exe" run --urdf "$src/urdf/mannequin.urdf" --mesh "$tmp/ply/body_0001.ply" \
+    --motion "$tmp/degrees.csv" --frames 2 > /dev/null 2> "$tmp/err"; rc=$?
+  check "degrees: exit 0 (clamped)" "[ $rc -eq 0 ]"
+  check "degrees: one warning naming l_elbow and its limits" \
+    "[ \$(wc -l < '$tmp/err') -eq 1 ] && grep -q \"warning: .*'l_elbow'.*\\[0, 2.6\\] rad (degrees?.*--strict-limits\" '$tmp/err'"
+  cat "$tmp/err"
+  bad "degrees with --strict-limits" run --urdf "$src/urdf/mannequin.urdf" \
+    --mesh "$tmp/ply/body_0001.ply" --motion "$tmp/degrees.csv" --strict-limits
+  "$exe" run --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 1 --strict-limits \
+    > /dev/null 2> "$tmp/err"; rc=$?
+  check "motion within limits with --strict-limits: exit 0, silent" "[ $rc -eq 0 ] && [ ! -s '$tmp/err' ]"
 fi
 [ $assets -ge 2 ] || { echo "fewer than two real assets here: the real-asset part was skipped"; [ $fail -eq 0 ] && exit 77; }
 exit $fail

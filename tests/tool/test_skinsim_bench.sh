@@ -54,6 +54,16 @@ ok = not missing and not absent and not noerr and solvers == {'newton', 'quasi-n
     sweeps == {'methods', 'solvers', 'substeps', 'scaling', 'options'}
 sys.exit(0 if ok else 1)
 PY"
+# a run whose frames fail is kept (its row, failures > 0) and the sweep goes on; the summary
+# line counts such runs, and its count matches the CSV
+check "summary counts the runs with failing frames, as many as the CSV's rows" "/usr/bin/python3 - '$tmp/out/results.csv' '$tmp/err' <<'PY'
+import csv, re, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+n = sum(1 for r in rows if int(r['failures']) > 0)
+m = re.search(r'(\\d+) had failing frames', open(sys.argv[2]).read())
+print('runs with failing frames: CSV', n, 'summary', m and m.group(1))
+sys.exit(0 if m and int(m.group(1)) == n else 1)
+PY"
 check "stability.md has a row for walk on the quadruped" \
   "grep -q '^| quadruped | .* | walk |' '$tmp/out/stability.md'"
 

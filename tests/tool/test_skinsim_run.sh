@@ -56,4 +56,21 @@ bad "run substeps zero" run --scene fold --substeps 0
 bad "run NaN tol" run --scene fold --tol nan
 bad "run unknown scene" run --scene nowhere
 bad "run unwritable out" run --scene fold --frames 1 --out /proc/no/such/dir
+# --out naming a file: refused before the first step (a run of 100000 frames would not
+# end within the timeout), nothing written next to it
+touch "$tmp/a_file"
+timeout 60 "$exe" run --scene quadruped --frames 100000 --out "$tmp/a_file" > /dev/null 2> "$tmp/err"; rc=$?
+check "--out FILE: exit 2 at once" "[ $rc -eq 2 ]"
+check "--out FILE: one message saying it is not a folder" \
+  "[ \$(wc -l < '$tmp/err') -eq 1 ] && grep -q \"is not a folder\" '$tmp/err'"
+cat "$tmp/err"
+# a run whose frames fail exits 1, says so in one line and still writes its JSON
+# (no membrane under a fast twist: triangles crushed past the area-ratio bounds)
+"$exe" run --scene twist --young 0 --frames 60 --json "$tmp/f.json" > /dev/null 2> "$tmp/err"; rc=$?
+check "failing frames: exit 1" "[ $rc -eq 1 ]"
+check "failing frames: one message counting them" \
+  "[ \$(wc -l < '$tmp/err') -eq 1 ] && grep -q 'run failed: [0-9]* of 60 frames failed' '$tmp/err'"
+check "failing frames: JSON written with failures > 0" \
+  "$py -c 'import json,sys; sys.exit(0 if json.load(open(\"$tmp/f.json\"))[\"failures\"] > 0 else 1)'"
+cat "$tmp/err"
 exit $fail

@@ -7,7 +7,8 @@
 #include <string.h>
 
 int avatar_args_given(const avatar_args *a) {
-  return a->avatar || a->urdf || a->mesh || a->motion || a->asset || a->anim || a->region;
+  return a->avatar || a->urdf || a->mesh || a->motion || a->asset || a->anim || a->region ||
+         a->strict_limits || a->mesh_up_axis || a->primitive_edge > 0.0;
 }
 
 #ifdef SS_HAVE_AVATAR
@@ -53,20 +54,59 @@ void avatar_body_close(avatar_body *ab) {
   free(ab);
 }
 
+static void print_warning(void *user, const char *msg) {
+  (void)user;
+  fprintf(stderr, "skinsim: warning: %s\n", msg);
+}
+
+/* Joint values of the motion outside the robot's limits: one warning (they are
+ * clamped), or with --strict-limits an error. */
+static int check_limits(const ssa_motion *m, const int *map, const ssa_robot *robot,
+                        const char *motion, int strict, char *err, int err_sz) {
+  char msg[1024];
+  if (ssa_motion_check_limits(m, map, robot, msg, sizeof msg) == 0) return SS_OK;
+  if (strict) {
+    snprintf(err, (size_t)err_sz, "motion '%s': %s (--strict-limits)", motion, msg);
+    return SS_E_ARG;
+  }
+  fprintf(stderr, "skinsim: warning: motion '%s': %s; clamped to the limits (--strict-limits "
+          "makes this an error)\n", motion, msg);
+  return SS_OK;
+}
+
 /* The robot's motion: a built-in name or a CSV file. Sets *duration. */
-static int open_motion(avatar_body *ab, const char *motion, double *duration, char *err,
-                       int err_sz) {
+static int open_motion(avatar_body *ab, const char *motion, int strict, double *duration,
+                       char *err, int err_sz) {
   const ssa_robot *robot = ab->av->robot;
   ab->builtin = ssa_motion_builtin_index(motion);
   if (ab->builtin >= 0) {
+    if (ssa_motion_builtin_coverage(ab->builtin, robot) == 0) {
+      snprintf(err, (size_t)err_sz, "built-in motion '%s' moves joints of the mannequin "
+               "(--avatar demo), and robot '%s' has none of them: give a CSV motion "
+               "(time,<joint>,...) for its joints", motion, robot->name);
+      return SS_E_ARG;
+    }
     *duration = ssa_motion_builtin_period(ab->builtin);
-    return SS_OK;
+    /* sampled at the frames, as the run will pose it */
+    ssa_motion *table = NULL;
+    int n = (int)(*duration * AVATAR_FPS + 0.5) + 1;
+    int status = ssa_motion_from_builtin(&table, ab->builtin, robot, *duration, n < 2 ? 2 : n,
+                                         err, err_sz);
+    int *map = table ? malloc(sizeof(int) * (size_t)(table->njoint > 0 ? table->njoint : 1)) : NULL;
+    if (!status && !map) status = SS_E_NOMEM;
+    if (!status) status = ssa_motion_bind(table, robot, map, err, err_sz);
+    if (!status) status = check_limits(table, map, robot, motion, strict, err, err_sz);
+    free(map);
+    ssa_motion_destroy(table);
+    return status;
   }
   int status = ssa_motion_read_csv(&ab->motion, motion, err, err_sz);
   if (status) return status;
   ab->map = malloc(sizeof(int) * (size_t)(ab->motion->njoint > 0 ? ab->motion->njoint : 1));
   if (!ab->map) return SS_E_NOMEM;
   status = ssa_motion_bind(ab->motion, robot, ab->map, err, err_sz);
+  if (status) return status;
+  status = check_limits(ab->motion, ab->map, robot, motion, strict, err, err_sz);
   if (status) return status;
   *duration = ab->motion->time[ab->motion->nframe - 1];
   return SS_OK;
@@ -144,6 +184,16 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   ssa_avatar_opts opts = ssa_avatar_default_opts();
   opts.package_path = args->package_path;
   if (args->asset_scale > 0.0) opts.asset.scale = args->asset_scale;
+  if (args->primitive_edge > 0.0) opts.primitive_edge = args->primitive_edge;
+  opts.warn = print_warning;
+  if (args->mesh_up_axis && strcmp(args->mesh_up_axis, "file") == 0)
+    opts.mesh_up_axis = SSA_UP_AXIS_FILE;
+  else if (args->mesh_up_axis && strcmp(args->mesh_up_axis, "ignore") != 0) {
+    snprintf(err, (size_t)err_sz, "--mesh-up-axis expects ignore or file, got '%s'",
+             args->mesh_up_axis);
+    avatar_body_close(ab);
+    return SS_E_ARG;
+  }
   int status;
   double duration = 0.0;
   if (args->avatar)
@@ -155,7 +205,8 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   if (!status && ab->av->robot) {
     ab->q = calloc((size_t)(ab->av->robot->njoint > 0 ? ab->av->robot->njoint : 1), sizeof(double));
     if (!ab->q) status = SS_E_NOMEM;
-    if (!status) status = open_motion(ab, args->motion ? args->motion : "all", &duration, err, err_sz);
+    if (!status) status = open_motion(ab, args->motion ? args->motion : "all", args->strict_limits,
+                                        &duration, err, err_sz);
   } else if (!status) {
     const ssa_asset *asset = ab->av->asset;
     if (!asset || asset->nanim <= 0) {

@@ -16,13 +16,19 @@ typedef struct avatar_args {
   const char *package_path; /* NAME=DIR,... or search roots, for package:// URIs */
   int avatar_tris;          /* mannequin size (0: 5000) */
   double asset_scale;       /* metres per file unit (<= 0: from the file) */
+  int strict_limits;        /* 1: joint values outside the URDF limits are an error, not a
+                               warning (they are clamped either way) */
+  const char *mesh_up_axis; /* "ignore" (NULL: the default) or "file": Collada up axes of
+                               URDF visual meshes */
+  double primitive_edge;    /* edge length (m) of tessellated URDF primitives (<= 0: default) */
 } avatar_args;
 
 typedef struct avatar_body avatar_body;
 
 /* 1 if args name an avatar at all. */
 int avatar_args_given(const avatar_args *args);
-/* Loads the avatar and its motion; fills body (valid until avatar_body_close)
+/* Loads the avatar and its motion; warnings (joint values outside the
+ * limits, Collada up axes) go to stderr, one line each. Fills body (valid until avatar_body_close)
  * and, with --region, *face_mask (owned by the avatar_body). Returns SS_OK
  * or an error with one sentence in err. */
 int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "avatar_body.h"
 #include "cli.h"
@@ -52,6 +53,26 @@ static int write_frame(void *user, int frame, const ss_sim *sim, const double *b
   if (write_ply(path, w->body->nvert, body_pos, w->body->nface, w->body->faces)) {
     snprintf(w->error, sizeof w->error, "cannot write '%s': %s", path, strerror(errno));
     return 1;
+  }
+  return 0;
+}
+
+/* --out DIR: an existing folder we may write into, or one we can create; checked
+ * before the first step so a bad path costs nothing. One message on failure. */
+static int check_out_dir(const char *dir) {
+  struct stat st;
+  if (stat(dir, &st) == 0) {
+    if (!S_ISDIR(st.st_mode)) {
+      cli_error("--out '%s' is not a folder (a file of that name exists)", dir);
+      return -1;
+    }
+  } else if (mkdir(dir, 0777) != 0) {
+    cli_error("--out: cannot create the folder '%s': %s", dir, strerror(errno));
+    return -1;
+  }
+  if (access(dir, W_OK | X_OK) != 0) {
+    cli_error("--out: cannot write into the folder '%s': %s", dir, strerror(errno));
+    return -1;
   }
   return 0;
 }
@@ -143,6 +164,17 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--asset-scale") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-9, 1e9, &av.asset_scale))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--strict-limits") == 0) {
+      av.strict_limits = 1;
+    } else if (strcmp(a, "--mesh-up-axis") == 0) {
+      if (!(av.mesh_up_axis = cli_value(argc, argv, &i))) return EXIT_USAGE;
+      if (strcmp(av.mesh_up_axis, "ignore") != 0 && strcmp(av.mesh_up_axis, "file") != 0) {
+        cli_error("--mesh-up-axis expects ignore or file, got '%s'", av.mesh_up_axis);
+        return EXIT_USAGE;
+      }
+    } else if (strcmp(a, "--primitive-edge") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-4, 10.0, &av.primitive_edge))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--reference") == 0) {
       reference = 1;
     } else if (strcmp(a, "--cache") == 0) {
@@ -166,10 +198,7 @@ int cmd_run(int argc, char **argv) {
     cli_error("--tris sizes a built-in scene; for the demo avatar use --avatar-tris");
     return EXIT_USAGE;
   }
-  if (out_dir && mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
-    cli_error("cannot create output folder '%s': %s", out_dir, strerror(errno));
-    return EXIT_USAGE;
-  }
+  if (out_dir && check_out_dir(out_dir)) return EXIT_USAGE;
   char cache_dir[4096] = "";
   if (reference && measure_cache_dir(cache_opt, cache_dir, sizeof cache_dir)) return EXIT_USAGE;
   char err[512] = "";
@@ -232,5 +261,11 @@ int cmd_run(int argc, char **argv) {
            res.error_vs_reference, res.reference_key,
            res.reference_cache_hit ? "from the cache" : "computed", res.reference_ms);
   avatar_body_close(ab);
+  if (st.failures > 0) {
+    cli_error("run failed: %lld of %d frames failed (a non-finite value, a triangle squeezed or "
+              "stretched past [0.05, 20] of its rest area, or a step error)",
+              st.failures, st.frames);
+    return EXIT_RUN_FAILED;
+  }
   return 0;
 }

@@ -34,8 +34,11 @@ static void usage(FILE *f) {
 #ifdef SS_HAVE_AVATAR
       "        or an avatar:  --avatar demo [--avatar-tris N] [--motion arms|elbows|twist|all|CSV]\n"
       "                       --urdf FILE [--mesh FILE] --motion CSV|NAME [--package-path NAME=DIR,...]\n"
+      "                              [--mesh-up-axis ignore|file] [--primitive-edge M]\n"
       "                       --asset FILE [--anim NAME|INDEX] [--asset-scale M]\n"
       "                       [--region LINK,...]  simulate only the skin of these links\n"
+      "                       [--strict-limits]    joint values outside the URDF limits are an\n"
+      "                                            error (else clamped with one warning)\n"
 #endif
 
       "  bench --out DIR [--quick] [--cache DIR] [--no-plot] [--plot-script FILE] [--python EXE]\n"
