@@ -149,7 +149,8 @@ int ss_input_stream_arrive(ss_input_stream *s, uint32_t seq, int64_t stamp_ns, d
 }
 
 int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns, int64_t stamp_ns,
-                       int discontinuity, double max_step, int max_split, ss_input_plan *plan)
+                       int discontinuity, int prev_periods, double max_step, int max_split,
+                       ss_input_plan *plan)
 {
   plan->periods = 0;
   plan->substeps = 0;
@@ -163,8 +164,18 @@ int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns,
   int64_t elapsed_us = (stamp_ns - skin_ns + 500) / 1000;
   int64_t period_us = s && s->period_us > 0 ? s->period_us : elapsed_us;
   if (period_us <= 0) return plan->kind = SS_TIME_SAME; /* under half a microsecond */
-  /* whole periods, rounded: the skin's clock stays within half a period of the stamps */
+  /* whole periods: the last step's while the skin's clock stays within tol =
+   * max(1, k/4) periods of the stamps (one dt, no refactorisation); one more or
+   * one fewer within 2 tol (the clock drifts back without overshooting); else
+   * the elapsed time rounded (the clock within half a period) */
   int64_t k = (elapsed_us + period_us / 2) / period_us;
+  if (prev_periods >= 1) {
+    int64_t tol_us = period_us * (prev_periods >= 4 ? prev_periods : 4) / 4;
+    int64_t off_us = elapsed_us - (int64_t)prev_periods * period_us;
+    int64_t a_us = off_us < 0 ? -off_us : off_us;
+    if (a_us <= tol_us) k = prev_periods;
+    else if (a_us <= 2 * tol_us) k = prev_periods + (off_us > 0 ? 1 : -1);
+  }
   if (k < 1) return plan->kind = SS_TIME_SAME;
   if (k > INT_MAX) k = INT_MAX;
   plan->periods = (int)k;

@@ -92,6 +92,7 @@ typedef struct node {
   float *mk_pts, *mk_col; /* (nface x 3 x 3), (nface x 3 x 4) */
   ss_input_stream stream; /* every arrival: seq gaps, the input's period, real jumps */
   int64_t skin_ns;        /* the skin's clock (whole input periods from its creation) */
+  int prev_periods;       /* input periods of the last step (0: none since creation) */
   int carry_disc;         /* a jump seen on a message that was rejected: reset on the next */
   /* counters */
   uint32_t rejected, dropped, skipped, resets, failures;
@@ -438,7 +439,7 @@ static void process(node *nd, const mailbox *b)
   nd->carry_disc = 0;
   ss_input_plan plan;
   int kind = ss_input_plan_step(&nd->stream, nd->sim != NULL, nd->skin_ns, now_ns, disc,
-                                nd->p.max_step, nd->p.max_split, &plan);
+                                nd->prev_periods, nd->p.max_step, nd->p.max_split, &plan);
   double dt = plan.dt;
   ss_sim_stats acc;
   memset(&acc, 0, sizeof acc);
@@ -458,6 +459,7 @@ static void process(node *nd, const mailbox *b)
     }
     if (!create_sim(nd, b)) return;
     nd->skin_ns = now_ns;
+    nd->prev_periods = 0;
   } else if (kind == SS_TIME_STEP) {
     size_t n3 = 3 * (size_t)nd->nvert;
     for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
@@ -498,6 +500,7 @@ static void process(node *nd, const mailbox *b)
     }
     memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
     nd->skin_ns = plan.skin_ns;
+    nd->prev_periods = plan.periods;
   }
   /* SS_TIME_SAME: nothing to step; the state is published again */
   rosc_wall_now_s(&t1);

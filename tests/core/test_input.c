@@ -157,16 +157,16 @@ static void test_plan(void)
   memset(&s, 0, sizeof s);
   for (int i = 0; i <= 10; i++) ss_input_stream_arrive(&s, (uint32_t)i, stamp30(i), 0.5);
   ss_input_plan p;
-  CHECK(ss_input_plan_step(&s, 0, 0, stamp30(10), 0, 0.05, 8, &p) == SS_TIME_FIRST);
+  CHECK(ss_input_plan_step(&s, 0, 0, stamp30(10), 0, 0, 0.05, 8, &p) == SS_TIME_FIRST);
   CHECK(p.skin_ns == stamp30(10));
   int64_t skin = stamp30(10);
   /* one frame: one period, one substep */
-  CHECK(ss_input_plan_step(&s, 1, skin, stamp30(11), 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(ss_input_plan_step(&s, 1, skin, stamp30(11), 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
   CHECK(p.periods == 1 && p.substeps == 1 && p.dt == 33333e-6);
   skin = p.skin_ns;
   /* the node fell 18 frames behind (0.6 s, over max_gap): 18 periods in
    * ONE step of the same substep count, never a reset; dt a whole number of periods */
-  CHECK(ss_input_plan_step(&s, 1, skin, stamp30(29), 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(ss_input_plan_step(&s, 1, skin, stamp30(29), 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
   CHECK(p.periods == 18 && p.substeps == 1);
   CHECK(p.dt == 1e-6 * (18 * 33333));
   /* the skin's clock keeps the remainder: within half a period of the stamps */
@@ -176,7 +176,7 @@ static void test_plan(void)
   /* many steps later the clock has not drifted */
   int last = 29;
   for (int i = 32; i < 3000; i += 3) {
-    CHECK(ss_input_plan_step(&s, 1, skin, stamp30(i), 0, 0.05, 8, &p) == SS_TIME_STEP);
+    CHECK(ss_input_plan_step(&s, 1, skin, stamp30(i), 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
     CHECK(p.periods == 3 && p.dt == 1e-6 * (3 * 33333));
     skin = p.skin_ns;
     last = i;
@@ -184,29 +184,61 @@ static void test_plan(void)
   off = stamp30(last) - skin;
   CHECK(off >= -16667000 && off <= 16667000);
   /* at or behind the skin's clock: nothing to step */
-  CHECK(ss_input_plan_step(&s, 1, skin, skin, 0, 0.05, 8, &p) == SS_TIME_SAME && p.skin_ns == skin);
-  CHECK(ss_input_plan_step(&s, 1, skin, skin - 5, 0, 0.05, 8, &p) == SS_TIME_SAME);
-  CHECK(ss_input_plan_step(&s, 1, skin, skin + 1000000, 0, 0.05, 8, &p) == SS_TIME_SAME);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin, 0, 0, 0.05, 8, &p) == SS_TIME_SAME && p.skin_ns == skin);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin - 5, 0, 0, 0.05, 8, &p) == SS_TIME_SAME);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin + 1000000, 0, 0, 0.05, 8, &p) == SS_TIME_SAME);
   /* a real discontinuity carried over: reset on the stepped message */
-  CHECK(ss_input_plan_step(&s, 1, skin, skin + 33333000, SS_TIME_GAP, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin + 33333000, SS_TIME_GAP, 0, 0.05, 8, &p) == SS_TIME_GAP);
   CHECK(p.skin_ns == skin + 33333000);
-  CHECK(ss_input_plan_step(&s, 1, skin, skin - 1000, SS_TIME_BACKWARDS, 0.05, 8, &p) ==
+  CHECK(ss_input_plan_step(&s, 1, skin, skin - 1000, SS_TIME_BACKWARDS, 0, 0.05, 8, &p) ==
         SS_TIME_BACKWARDS);
   /* substeps from the input's period: 10 Hz input with max_step 0.05 -> 2, late or not */
   memset(&s, 0, sizeof s);
   for (int i = 0; i <= 5; i++) ss_input_stream_arrive(&s, (uint32_t)i, (int64_t)i * 100000000, 0.5);
-  CHECK(ss_input_plan_step(&s, 1, 500000000, 600000000, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(ss_input_plan_step(&s, 1, 500000000, 600000000, 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
   CHECK(p.substeps == 2 && p.periods == 1);
-  CHECK(ss_input_plan_step(&s, 1, 500000000, 1400000000, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(ss_input_plan_step(&s, 1, 500000000, 1400000000, 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
   CHECK(p.substeps == 2 && p.periods == 9);
-  CHECK(ss_input_plan_step(&s, 1, 500000000, 600000000, 0, 0.01, 4, &p) == SS_TIME_STEP);
+  CHECK(ss_input_plan_step(&s, 1, 500000000, 600000000, 0, 0, 0.01, 4, &p) == SS_TIME_STEP);
   CHECK(p.substeps == 4);
+  /* hysteresis: the last step's periods are kept while the skin's clock stays within
+   * tol = max(1, k/4) periods of the stamps, nudged by one within 2 tol, else rounded */
+  memset(&s, 0, sizeof s);
+  for (int i = 0; i <= 10; i++) ss_input_stream_arrive(&s, (uint32_t)i, stamp30(i), 0.5);
+  const int64_t T = 33333000; /* ns */
+  CHECK(ss_input_plan_step(&s, 1, 0, 13 * T / 2, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 6);
+  CHECK(ss_input_plan_step(&s, 1, 0, 13 * T / 2, 0, 0, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 7);
+  CHECK(ss_input_plan_step(&s, 1, 0, 8 * T, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 7);
+  CHECK(ss_input_plan_step(&s, 1, 0, 10 * T, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 10);
+  CHECK(ss_input_plan_step(&s, 1, 0, 4 * T, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 5);
+  CHECK(ss_input_plan_step(&s, 1, 0, 19 * T / 10, 0, 1, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 1);
+  CHECK(ss_input_plan_step(&s, 1, 0, 22 * T / 10, 0, 1, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 2);
+  CHECK(ss_input_plan_step(&s, 1, 0, 3 * T / 10, 0, 1, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 1);
+  /* a node 6 and 7 frames behind in turn (rounding would change dt every step): at
+   * most one step in four changes dt, and the clock stays within 2 periods */
+  {
+    int64_t clock = 0, stamp = 0;
+    int prev = 0, changes = 0;
+    int64_t worst = 0;
+    for (int i = 0; i < 200; i++) {
+      stamp += (i % 2) ? 7 * T : 6 * T;
+      CHECK(ss_input_plan_step(&s, 1, clock, stamp, 0, prev, 0.05, 8, &p) == SS_TIME_STEP);
+      if (i > 0 && p.periods != prev) changes++;
+      prev = p.periods;
+      clock = p.skin_ns;
+      int64_t d = stamp - clock;
+      if (d < 0) d = -d;
+      if (d > worst) worst = d;
+    }
+    CHECK_MSG(changes * 4 <= 200, "%d dt changes in 200 steps", changes);
+    CHECK_MSG(worst <= 2 * T, "clock within %lld ns of the stamps", (long long)worst);
+  }
   /* period unknown (one message so far): the elapsed time is one period */
   memset(&s, 0, sizeof s);
   ss_input_stream_arrive(&s, 0, 0, 0.5);
-  CHECK(ss_input_plan_step(&s, 1, 0, 40000000, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(ss_input_plan_step(&s, 1, 0, 40000000, 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
   CHECK(p.periods == 1 && p.dt == 0.04);
-  CHECK(ss_input_plan_step(NULL, 1, 0, 40000400, 0, 0.05, 8, &p) == SS_TIME_STEP && p.dt == 0.04);
+  CHECK(ss_input_plan_step(NULL, 1, 0, 40000400, 0, 0, 0.05, 8, &p) == SS_TIME_STEP && p.dt == 0.04);
 }
 
 int main(void)
