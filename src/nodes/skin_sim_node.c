@@ -194,11 +194,11 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   nd->frames_in++;
   /* roscpp numbers the messages of a publisher (header.seq): a gap means meshes lost
    * before they reached this callback (roscpp's queue overflowing during a stall, or
-   * the publisher's): counted as dropped. A smaller seq is a new publisher. */
-  /* Every arrival is judged against the previous one in publication order: only a
-   * jump between consecutively published messages (or time going backwards) is
-   * the input's own and resets the skin; it is carried over the messages the node
-   * skips, to the one it steps. */
+   * the publisher's): counted as dropped. A smaller seq is a new publisher. Every
+   * arrival is judged against the previous one in publication order: only a jump
+   * between consecutively published messages (or time going backwards) is the
+   * input's own and resets the skin; it is carried over the messages the node skips,
+   * to the one it steps. */
   int kind = ss_input_stream_arrive(&nd->stream, m->header.seq, rosc_time_to_ns(m->header.stamp),
                                     nd->p.max_gap);
   int disc = (kind == SS_TIME_GAP || kind == SS_TIME_BACKWARDS) ? kind : 0;
@@ -215,6 +215,7 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
       !grow((void **)&b->tri, &b->cap_tri, m->n_triangles, sizeof(uint32_t))) {
     ROSC_ERROR_THROTTLE(2.0, "out of memory for a mesh of %zu values", m->n_positions);
     nd->dropped++;
+    if (disc) nd->carry_disc = disc;
     return;
   }
   if (m->n_positions) memcpy(b->pos, m->positions, m->n_positions * sizeof(float));
