@@ -4,14 +4,16 @@ for test_skin_seams.sh (no mocks: real nodes, real master).
 
   seam_probe.py URDF SECONDS OUT_JSON [RATE_HZ]
 
-Publishes joint_states at RATE_HZ (default 30) for SECONDS: every movable joint of URDF
+Publishes joint_states at RATE_HZ (default 30) for SECONDS (and on, at most 120 s more,
+until 8 skin_mesh came): every movable joint of URDF
 swings through most of its range (sinusoids, a phase per joint, 1 Hz). Subscribes
 kinematic_mesh and skin_mesh. Seam copies are the vertices of the first kinematic_mesh
 at bit-identical positions (what the node welds at its default ~weld_tol); for every
 skin_mesh it measures the largest distance between two copies of one welded vertex (the
 seam gap, 0 when no seam opened), the number of seams open by more than 1 mm, and
 whether every value is finite and the layout (vertex count, triangles, topology_id) is
-the body's. At the end: skin pieces = connected components of the last skin_mesh with
+the body's. skin_marker must be a TRIANGLE_LIST over the body's triangles whose corners of
+one welded vertex share one point and one colour. At the end: skin pieces = connected components of the last skin_mesh with
 its vertices at bit-identical positions joined (the pieces of skin as a user sees them),
 and of the body's own index graph. Writes OUT_JSON and prints it. Exit 0 if it could
 measure (skin_mesh received), 1 otherwise; the test judges the figures."""
@@ -25,6 +27,7 @@ import numpy as np
 import rospy
 from sensor_msgs.msg import JointState
 from skin_sim.msg import SkinMesh
+from visualization_msgs.msg import Marker
 
 urdf, seconds, out_path = sys.argv[1], float(sys.argv[2]), sys.argv[3]
 rate_hz = float(sys.argv[4]) if len(sys.argv) > 4 else 30.0
@@ -74,7 +77,27 @@ def same_position_ids(pos):
 
 
 st = {"kin": None, "n_kin": 0, "n_skin": 0, "max_gap": 0.0, "max_open_1mm": 0,
-      "nonfinite": 0, "bad_layout": 0, "last": None, "gaps": []}
+      "nonfinite": 0, "bad_layout": 0, "last": None, "gaps": [], "markers": 0, "markers_ok": 0}
+
+
+def on_marker(m):
+    """skin_marker: a TRIANGLE_LIST over the body's triangles, a colour per corner,
+    corners of one welded vertex at one point with one colour."""
+    k = st["kin"]
+    if k is None:
+        return
+    st["markers"] += 1
+    pts = np.array([(p.x, p.y, p.z) for p in m.points])
+    col = np.array([(c.r, c.g, c.b, c.a) for c in m.colors])
+    if (m.type != Marker.TRIANGLE_LIST or len(pts) != len(k["tri"]) or len(col) != len(pts) or
+            not np.all(np.isfinite(pts)) or not np.all((col >= 0) & (col <= 1))):
+        return
+    w = k["rep"][k["tri"]]  # welded vertex of each corner
+    order = np.argsort(w, kind="stable")
+    ws, ps, cs = w[order], pts[order], col[order]
+    same = ws[1:] == ws[:-1]
+    if np.all(ps[1:][same] == ps[:-1][same]) and np.all(cs[1:][same] == cs[:-1][same]):
+        st["markers_ok"] += 1
 
 
 def on_kin(m):
@@ -114,6 +137,7 @@ rospy.init_node("seam_probe", anonymous=True, disable_signals=True)
 pub = rospy.Publisher("joint_states", JointState, queue_size=10)
 rospy.Subscriber("kinematic_mesh", SkinMesh, on_kin, queue_size=5)
 rospy.Subscriber("skin_mesh", SkinMesh, on_skin, queue_size=5)
+rospy.Subscriber("skin_marker", Marker, on_marker, queue_size=2)
 deadline = time.monotonic() + 60.0
 while pub.get_num_connections() == 0 and time.monotonic() < deadline:
     time.sleep(0.05)
@@ -128,7 +152,10 @@ while st["n_skin"] == 0 and time.monotonic() < deadline:
     time.sleep(1.0 / rate_hz)
 t0 = time.monotonic()
 n_sent = 0
-while time.monotonic() - t0 < seconds:
+# at least SECONDS, and on until MIN_SKIN skin_mesh came (a slow machine, a big robot),
+# at most 120 s more
+MIN_SKIN = 8
+while time.monotonic() - t0 < seconds or (st["n_skin"] < MIN_SKIN and time.monotonic() - t0 < seconds + 120):
     t = time.monotonic() - t0
     js = JointState()
     js.header.stamp = rospy.Time.now()
@@ -144,7 +171,8 @@ k = st["kin"]
 res = {"urdf": urdf, "joints": len(joints), "joint_states": n_sent,
        "kinematic_mesh": st["n_kin"], "skin_mesh": st["n_skin"], "max_gap_m": st["max_gap"],
        "max_seams_open_1mm": st["max_open_1mm"], "nonfinite_skin_mesh": st["nonfinite"],
-       "bad_layout_skin_mesh": st["bad_layout"]}
+       "bad_layout_skin_mesh": st["bad_layout"], "skin_marker": st["markers"],
+       "skin_marker_ok": st["markers_ok"]}
 if k is not None:
     res["vertices"] = k["nvert"]
     res["triangles"] = len(k["tri"]) // 3

@@ -10,7 +10,8 @@
 # For each: every skin_mesh keeps the body's layout (vertex count, triangles,
 # topology_id), is finite, and every seam stays closed: the copies of one welded vertex
 # are bit-identical (distance exactly 0) in every skin_mesh; the skin has as many pieces
-# as the welded body. Figures (pieces, seam gaps) are printed.
+# as the welded body; skin_marker's corners of one welded vertex share a point and a
+# slide colour. Figures (pieces, seam gaps) are printed.
 # SKIN_SIM_NODE=PATH runs another skin_sim_node binary (to measure an older one).
 # Usage: test_skin_seams.sh BUILD_DIR [SOURCE_DIR].
 set -u
@@ -34,13 +35,13 @@ xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", o
     "$ROS_MASTER_URI" "$urdf"
   ros_env_bg "avatar_$name" "$avatar" __name:="avatar_$name" _package_path:="$pkgpath" _queue_size:=5
   local apid=$ROS_ENV_LAST_PID
-  ros_env_bg "skin_$name" "$skin" __name:="skin_$name" _marker_rate:=-1
+  ros_env_bg "skin_$name" "$skin" __name:="skin_$name" _marker_rate:=2
   local spid=$ROS_ENV_LAST_PID
   if ! ros_env_wait_node "/avatar_$name" 60 "$apid" || ! ros_env_wait_node "/skin_$name" 30 "$spid"; then
     check "$name: avatar_node and skin_sim_node start" false
     return
   fi
-  timeout 150 /usr/bin/python3 "$src/tests/ros/seam_probe.py" "$urdf" "$secs" \
+  timeout 240 /usr/bin/python3 "$src/tests/ros/seam_probe.py" "$urdf" "$secs" \
     "$ROS_ENV_DIR/$name.json" > "$ROS_ENV_DIR/probe_$name.log" 2>&1
   local rc=$?
   cat "$ROS_ENV_DIR/probe_$name.log"
@@ -63,11 +64,13 @@ xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", o
   else
     check "$name: the body has seams (duplicated vertices)" "[ $(val seam_copies) -gt 0 ]"
   fi
-  check "$name: skin_mesh kept coming (>= 5)" "[ $(val skin_mesh) -ge 5 ]"
+  check "$name: skin_mesh kept coming (>= 8)" "[ $(val skin_mesh) -ge 8 ]"
   check "$name: every skin_mesh in the body's layout (vertices, triangles, topology_id)" "[ $(val bad_layout_skin_mesh) -eq 0 ]"
   check "$name: every skin_mesh finite" "[ $(val nonfinite_skin_mesh) -eq 0 ]"
   check "$name: every seam closed in every skin_mesh (max gap exactly 0)" "[ \"$(val max_gap_m)\" = 0.0 ]"
   check "$name: the skin is as many pieces as the welded body" "[ $(val pieces_skin_last) -eq $(val pieces_body_welded) ]"
+  check "$name: skin_marker came ($(val skin_marker)) and every one is a TRIANGLE_LIST of the body's triangles, seam corners at one point in one slide colour" \
+    "[ $(val skin_marker) -ge 1 ] && [ $(val skin_marker_ok) -eq $(val skin_marker) ]"
 }
 
 # 1. a robot written here: two boxes with flat normals (every box edge a seam)
@@ -122,7 +125,7 @@ run_robot seam_robot "$pkg/seam_robot.urdf" "$ROS_ENV_DIR/pkgs"
 # normals, so assimp joins their vertices and the body has no seams as shipped; the
 # same robot with normals split at creases over 40 degrees (what exporters write for
 # hard edges: one vertex copy per smoothing group) is the seamed real robot.
-solo="$src/../shared/data/urdf-solo-quadruped"
+solo="${SS_SHARED_DIR:-$src/../shared}/data/urdf-solo-quadruped"
 solo_urdf="$solo/example-robot-data/robots/solo_description/robots/solo.urdf"
 if [ -f "$solo_urdf" ]; then
   cp="$ROS_ENV_DIR/pkgs_creased/solo_creased"
