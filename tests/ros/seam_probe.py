@@ -4,8 +4,8 @@ for test_skin_seams.sh (no mocks: real nodes, real master).
 
   seam_probe.py URDF SECONDS OUT_JSON [RATE_HZ]
 
-Publishes joint_states at RATE_HZ (default 30) for SECONDS (and on, at most 120 s more,
-until 8 skin_mesh came): every movable joint of URDF
+Publishes joint_states at RATE_HZ (default 30) for SECONDS (and on, at most 180 s more,
+until 3 skin_mesh came): every movable joint of URDF
 swings through most of its range (sinusoids, a phase per joint, 1 Hz). Subscribes
 kinematic_mesh and skin_mesh. Seam copies are the vertices of the first kinematic_mesh
 at bit-identical positions (what the node welds at its default ~weld_tol); for every
@@ -15,7 +15,8 @@ whether every value is finite and the layout (vertex count, triangles, topology_
 the body's. skin_marker must be a TRIANGLE_LIST over the body's triangles whose corners of
 one welded vertex share one point and one colour. At the end: skin pieces = connected components of the last skin_mesh with
 its vertices at bit-identical positions joined (the pieces of skin as a user sees them),
-and of the body's own index graph. Writes OUT_JSON and prints it. Exit 0 if it could
+and of the body's own index graph. Writes OUT_JSON and prints it, and OUT_JSON.npz: the skin_mesh with the widest seam gap
+(pos, tri, copies, rep) for a picture. Exit 0 if it could
 measure (skin_mesh received), 1 otherwise; the test judges the figures."""
 import json
 import math
@@ -77,7 +78,8 @@ def same_position_ids(pos):
 
 
 st = {"kin": None, "n_kin": 0, "n_skin": 0, "max_gap": 0.0, "max_open_1mm": 0,
-      "nonfinite": 0, "bad_layout": 0, "last": None, "gaps": [], "markers": 0, "markers_ok": 0}
+      "nonfinite": 0, "bad_layout": 0, "last": None, "gaps": [], "markers": 0, "markers_ok": 0,
+      "worst": None}
 
 
 def on_marker(m):
@@ -128,6 +130,8 @@ def on_skin(m):
     gap = np.linalg.norm(pos[c] - pos[k["rep"][c]], axis=1) if len(c) else np.zeros(1)
     g = float(gap.max())
     st["gaps"].append(g)
+    if g > st["max_gap"] or st["worst"] is None:
+        st["worst"] = pos.astype(np.float32)
     st["max_gap"] = max(st["max_gap"], g)
     st["max_open_1mm"] = max(st["max_open_1mm"], int((gap > 1e-3).sum()))
     st["last"] = pos.astype(np.float32)
@@ -153,9 +157,9 @@ while st["n_skin"] == 0 and time.monotonic() < deadline:
 t0 = time.monotonic()
 n_sent = 0
 # at least SECONDS, and on until MIN_SKIN skin_mesh came (a slow machine, a big robot),
-# at most 120 s more
-MIN_SKIN = 8
-while time.monotonic() - t0 < seconds or (st["n_skin"] < MIN_SKIN and time.monotonic() - t0 < seconds + 120):
+# at most 180 s more
+MIN_SKIN = 3
+while time.monotonic() - t0 < seconds or (st["n_skin"] < MIN_SKIN and time.monotonic() - t0 < seconds + 180):
     t = time.monotonic() - t0
     js = JointState()
     js.header.stamp = rospy.Time.now()
@@ -185,6 +189,9 @@ if k is not None:
     if st["gaps"]:
         g = sorted(st["gaps"])
         res["median_gap_m"] = g[len(g) // 2]
+if k is not None and st["worst"] is not None:  # the skin_mesh of the widest seam gap
+    np.savez_compressed(out_path + ".npz", pos=st["worst"], tri=k["tri"].reshape(-1, 3),
+                        copies=k["copies"], rep=k["rep"])
 with open(out_path, "w") as f:
     json.dump(res, f, indent=1)
 print(json.dumps(res))
