@@ -21,6 +21,7 @@ measure (skin_mesh received), 1 otherwise; the test judges the figures."""
 import json
 import math
 import sys
+import threading
 import time
 import xml.etree.ElementTree as ET
 
@@ -82,24 +83,43 @@ st = {"kin": None, "n_kin": 0, "n_skin": 0, "max_gap": 0.0, "max_open_1mm": 0,
       "worst": None}
 
 
+lock = threading.Lock()
+
+
 def on_marker(m):
     """skin_marker: a TRIANGLE_LIST over the body's triangles, a colour per corner,
     corners of one welded vertex at one point with one colour."""
     k = st["kin"]
     if k is None:
         return
-    st["markers"] += 1
     pts = np.array([(p.x, p.y, p.z) for p in m.points])
     col = np.array([(c.r, c.g, c.b, c.a) for c in m.colors])
-    if (m.type != Marker.TRIANGLE_LIST or len(pts) != len(k["tri"]) or len(col) != len(pts) or
-            not np.all(np.isfinite(pts)) or not np.all((col >= 0) & (col <= 1))):
-        return
-    w = k["rep"][k["tri"]]  # welded vertex of each corner
-    order = np.argsort(w, kind="stable")
-    ws, ps, cs = w[order], pts[order], col[order]
-    same = ws[1:] == ws[:-1]
-    if np.all(ps[1:][same] == ps[:-1][same]) and np.all(cs[1:][same] == cs[:-1][same]):
-        st["markers_ok"] += 1
+    why = None
+    if m.type != Marker.TRIANGLE_LIST:
+        why = "type %d" % m.type
+    elif len(pts) != len(k["tri"]) or len(col) != len(pts):
+        why = "%d points, %d colours for %d corners" % (len(pts), len(col), len(k["tri"]))
+    elif not np.all(np.isfinite(pts)):
+        why = "non-finite points"
+    elif not np.all((col >= 0) & (col <= 1)):
+        why = "colours outside [0, 1]: %g .. %g" % (col.min(), col.max())
+    else:
+        w = k["rep"][k["tri"]]  # welded vertex of each corner
+        order = np.argsort(w, kind="stable")
+        ws, ps, cs = w[order], pts[order], col[order]
+        same = ws[1:] == ws[:-1]
+        if not np.all(ps[1:][same] == ps[:-1][same]):
+            why = "corners of one welded vertex at different points"
+        elif not np.all(cs[1:][same] == cs[:-1][same]):
+            why = "corners of one welded vertex in different colours"
+    # counted when judged (a big marker takes a while in Python: the summary must not
+    # count one whose judgement is still under way)
+    with lock:
+        if why is None:
+            st["markers_ok"] += 1
+        else:
+            st["marker_why"] = why
+        st["markers"] += 1
 
 
 def on_kin(m):
@@ -140,8 +160,8 @@ def on_skin(m):
 rospy.init_node("seam_probe", anonymous=True, disable_signals=True)
 pub = rospy.Publisher("joint_states", JointState, queue_size=10)
 rospy.Subscriber("kinematic_mesh", SkinMesh, on_kin, queue_size=5)
-rospy.Subscriber("skin_mesh", SkinMesh, on_skin, queue_size=5)
-rospy.Subscriber("skin_marker", Marker, on_marker, queue_size=2)
+subs = [rospy.Subscriber("skin_mesh", SkinMesh, on_skin, queue_size=5),
+        rospy.Subscriber("skin_marker", Marker, on_marker, queue_size=2)]
 deadline = time.monotonic() + 60.0
 while pub.get_num_connections() == 0 and time.monotonic() < deadline:
     time.sleep(0.05)
@@ -170,13 +190,18 @@ while time.monotonic() - t0 < seconds or (st["n_skin"] < MIN_SKIN and time.monot
     n_sent += 1
     time.sleep(max(0.0, t0 + n_sent / rate_hz - time.monotonic()))
 time.sleep(2.0)
+for sub in subs:
+    sub.unregister()
+time.sleep(1.0)  # callbacks under way finish
 
 k = st["kin"]
 res = {"urdf": urdf, "joints": len(joints), "joint_states": n_sent,
        "kinematic_mesh": st["n_kin"], "skin_mesh": st["n_skin"], "max_gap_m": st["max_gap"],
        "max_seams_open_1mm": st["max_open_1mm"], "nonfinite_skin_mesh": st["nonfinite"],
-       "bad_layout_skin_mesh": st["bad_layout"], "skin_marker": st["markers"],
-       "skin_marker_ok": st["markers_ok"]}
+       "bad_layout_skin_mesh": st["bad_layout"]}
+with lock:
+    res.update({"skin_marker": st["markers"], "skin_marker_ok": st["markers_ok"],
+                "skin_marker_bad": st.get("marker_why", "")})
 if k is not None:
     res["vertices"] = k["nvert"]
     res["triangles"] = len(k["tri"]) // 3

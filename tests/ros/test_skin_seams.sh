@@ -69,7 +69,7 @@ xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", o
   check "$name: every skin_mesh finite" "[ $(val nonfinite_skin_mesh) -eq 0 ]"
   check "$name: every seam closed in every skin_mesh (max gap exactly 0)" "[ \"$(val max_gap_m)\" = 0.0 ]"
   check "$name: the skin is as many pieces as the welded body" "[ $(val pieces_skin_last) -eq $(val pieces_body_welded) ]"
-  check "$name: skin_marker came ($(val skin_marker)) and every one is a TRIANGLE_LIST of the body's triangles, seam corners at one point in one slide colour" \
+  check "$name: skin_marker came ($(val skin_marker)) and every one is a TRIANGLE_LIST of the body's triangles, seam corners at one point in one slide colour ($(val skin_marker_ok) ok; $(val skin_marker_bad))" \
     "[ $(val skin_marker) -ge 1 ] && [ $(val skin_marker_ok) -eq $(val skin_marker) ]"
 }
 
