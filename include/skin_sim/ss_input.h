@@ -116,8 +116,10 @@ typedef struct ss_input_plan {
  * max(1, prev_periods / 4) periods of stamp_ns, one more or one fewer within
  * 2 tol, else the elapsed time rounded. A node about k frames behind then
  * keeps one dt for several steps (no quasi-Newton refactorisation) instead of
- * alternating k and k + 1 every step. Returns plan->kind; plan may not be
- * NULL. */
+ * alternating k and k + 1 every step. An elapsed time over 2^48 us (8
+ * years) is SS_TIME_GAP. Stamps are clamped to +-2^62 ns here and in
+ * ss_input_stream_arrive (ROS time is below that). Returns plan->kind; plan
+ * may not be NULL. */
 int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns, int64_t stamp_ns,
                        int discontinuity, int prev_periods, double max_step, int max_split,
                        ss_input_plan *plan);

@@ -233,6 +233,23 @@ static void test_plan(void)
     CHECK_MSG(changes * 4 <= 200, "%d dt changes in 200 steps", changes);
     CHECK_MSG(worst <= 2 * T, "clock within %lld ns of the stamps", (long long)worst);
   }
+  /* extreme stamps: no overflow (UBSan), sane answers */
+  memset(&s, 0, sizeof s);
+  CHECK(ss_input_stream_arrive(&s, 0, INT64_MIN, 0.5) == SS_TIME_FIRST);
+  CHECK(ss_input_stream_arrive(&s, 1, INT64_MAX, 0.5) == SS_TIME_GAP);
+  CHECK(ss_input_stream_arrive(&s, 2, INT64_MIN, 0.5) == SS_TIME_BACKWARDS);
+  CHECK(ss_input_stream_arrive(&s, 3, INT64_MIN + 1, 1e30) == SS_TIME_SAME); /* both clamped */
+  CHECK(ss_input_stream_arrive(&s, 4, INT64_MAX, 1e30) == SS_TIME_STEP);
+  CHECK(s.period_us > 0);
+  CHECK(ss_input_plan_step(&s, 1, INT64_MIN, INT64_MAX, 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, 0, ((int64_t)1 << 59), 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, INT64_MAX - 5, INT64_MAX, 0, INT32_MAX, 0.05, 8, &p) ==
+        SS_TIME_SAME);
+  memset(&s, 0, sizeof s);
+  ss_input_stream_arrive(&s, 0, 0, 1e30);
+  ss_input_stream_arrive(&s, 1, (int64_t)1 << 55, 1e30); /* a period of 1.1 years */
+  CHECK(ss_input_plan_step(&s, 1, 0, (int64_t)1 << 59, 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, 0, (int64_t)1 << 53, 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_SAME);
   /* period unknown (one message so far): the elapsed time is one period */
   memset(&s, 0, sizeof s);
   ss_input_stream_arrive(&s, 0, 0, 0.5);
