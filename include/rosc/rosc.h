@@ -200,6 +200,8 @@ typedef struct rosc_skin_stats {
   uint32_t substeps, anchors_at_boundary, anchors_at_crease;
   float max_slide;
   uint32_t inputs_rejected, inputs_dropped, resets;
+  uint32_t inputs_skipped, failures;
+  float latency_ms;
 } rosc_skin_stats;
 
 /* sensor_msgs/JointState. Arrays may be empty (NULL, 0). */

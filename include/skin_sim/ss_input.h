@@ -57,6 +57,73 @@ int ss_input_classify_time(int have_prev, int64_t prev_ns, int64_t now_ns, doubl
  * (>= 1; max_step <= 0: 1), capped at max_count (>= 1). */
 int ss_input_split_steps(double dt, double max_step, int max_count);
 
+/* ---- a stream that the node may fall behind ---------------------------------
+ *
+ * A node stepping a skin may be slower than its input: it then skips the
+ * older queued messages and steps the newest once. The time it skipped is
+ * its own doing: it must neither reset the skin (only a real jump of the
+ * input's stamps, between consecutively published messages, or time going
+ * backwards does) nor cost more substeps (the number of substeps comes from
+ * the input's own period). The step covers the elapsed time quantised to
+ * whole input periods (kept while the skin's clock stays close), so that a
+ * stream steps with few distinct dt (each a quasi-Newton refactorisation,
+ * about half a step's cost at 19k triangles) rather than a new one every
+ * frame; the skin's clock (skin_ns) keeps the remainder, so no time is lost
+ * or gained. */
+
+#define SS_INPUT_PERIOD_WINDOW 15
+
+/* What a node knows of the stream it receives, fed every message in arrival
+ * order (ss_input_stream_arrive) whether or not it will be stepped. Plain
+ * data: zero it to start. */
+typedef struct ss_input_stream {
+  int have_prev;
+  uint32_t prev_seq;        /* header.seq of the last message */
+  int64_t prev_ns;          /* and its stamp */
+  int64_t diff_us[SS_INPUT_PERIOD_WINDOW]; /* stamp differences of consecutive messages (us) */
+  int ndiff, diff_head;
+  int64_t period_us;        /* the input's period used for stepping: the median of diff_us,
+                               changed only when the median moves by more than 10%; 0 unknown */
+  uint64_t lost;            /* messages lost before they arrived (gaps in seq), so far */
+} ss_input_stream;
+
+/* One arriving message (publisher sequence number seq, stamp stamp_ns):
+ * counts messages lost in between (seq gaps; a smaller seq is a new
+ * publisher), learns the input period, and returns how the stamp follows the
+ * previous message's: SS_TIME_FIRST, SS_TIME_STEP, SS_TIME_SAME,
+ * SS_TIME_BACKWARDS, or SS_TIME_GAP when the stamps jumped forward by more
+ * than max_gap_s per publication (k lost messages in between: more than
+ * (k + 1) max_gap_s). BACKWARDS and GAP are real discontinuities of the
+ * input: the skin resets on the next message it steps. */
+int ss_input_stream_arrive(ss_input_stream *s, uint32_t seq, int64_t stamp_ns, double max_gap_s);
+
+/* What to do with the message stamped stamp_ns that the node steps now. */
+typedef struct ss_input_plan {
+  int kind;        /* SS_TIME_FIRST (create the skin), SS_TIME_BACKWARDS / SS_TIME_GAP
+                      (reset: create it again), SS_TIME_STEP, SS_TIME_SAME (no step) */
+  int periods;     /* STEP: whole input periods covered (>= 1) */
+  int substeps;    /* STEP: equal substeps, from the input period alone (max_step, max_split) */
+  double dt;       /* STEP: s, periods x period (a whole number of microseconds) */
+  int64_t skin_ns; /* the skin's clock after this message */
+} ss_input_plan;
+
+/* Plans the step to stamp_ns from the skin's clock skin_ns (have_skin 0: no
+ * skin yet). discontinuity: SS_TIME_BACKWARDS or SS_TIME_GAP if a message
+ * since the last stepped one arrived as such (the node carries it over the
+ * messages it skipped), else 0. The period is s->period_us (unknown: the
+ * elapsed time is one period). The step is whole periods: prev_periods (the
+ * last plan's; 0 none) while the skin's clock stays within tol =
+ * max(1, prev_periods / 4) periods of stamp_ns, one more or one fewer within
+ * 2 tol, else the elapsed time rounded. A node about k frames behind then
+ * keeps one dt for several steps (no quasi-Newton refactorisation) instead of
+ * alternating k and k + 1 every step. An elapsed time over 2^48 us (8
+ * years) is SS_TIME_GAP. Stamps are clamped to +-2^62 ns here and in
+ * ss_input_stream_arrive (ROS time is below that). Returns plan->kind; plan
+ * may not be NULL. */
+int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns, int64_t stamp_ns,
+                       int discontinuity, int prev_periods, double max_step, int max_split,
+                       ss_input_plan *plan);
+
 /* Slide: the distance between where an anchor is now and where it was bound,
  * both on the body in pose body_pos (body nvert x 3, faces nface x 3).
  * Anchors are (face, u, v) as in ss_anchor.h: n anchors now (face, uv: n and

@@ -66,6 +66,27 @@ void ss_topo_destroy(ss_topo *topo);
 /* Mean length of the distinct edges of the mesh posed at pos. */
 double ss_topo_mean_edge_length(const ss_topo *topo, const double *pos);
 
+/* A mesh with its coincident vertices welded into one: the skin of a body
+ * whose seams (normals, UVs, one mesh per part) duplicate vertices, so that
+ * no seam can open. Welded as ss_topo_create welds (same weld_tol meaning);
+ * welded vertex w sits at its representative, the smallest caller vertex of
+ * w; faces keep their order and corners, renumbered to welded ids. */
+typedef struct ss_weld {
+  int nvert;       /* caller's vertex count */
+  int nweld;       /* welded vertices */
+  int nface;       /* triangles (as the caller's) */
+  double *pos;     /* (nweld x 3) welded positions */
+  int *faces;      /* (nface x 3) welded vertex ids */
+  int *vert_weld;  /* (nvert) welded id of each caller vertex */
+  int *weld_rep;   /* (nweld) representative caller vertex of each welded id */
+} ss_weld;
+
+/* Welds a mesh (checked first; errors as ss_topo_create). On success *out
+ * owns its memory; free it with ss_weld_destroy. */
+int ss_weld_create(ss_weld **out, int nvert, const double *pos, int nface, const int *faces,
+                   double weld_tol, char *err, int err_sz);
+void ss_weld_destroy(ss_weld *weld);
+
 #ifdef __cplusplus
 }
 #endif

@@ -109,6 +109,96 @@ int ss_input_split_steps(double dt, double max_step, int max_count)
   return k < 1.0 ? 1 : (int)k;
 }
 
+/* Stamps are clamped to +-2^62 ns (+-146 years around the epoch; ROS time is
+ * below 2^32 s < 2^62 ns), so that differences and clocks never overflow. */
+#define SS_STAMP_MAX ((int64_t)1 << 62)
+static int64_t clamp_stamp(int64_t t)
+{
+  return t > SS_STAMP_MAX ? SS_STAMP_MAX : t < -SS_STAMP_MAX ? -SS_STAMP_MAX : t;
+}
+
+int ss_input_stream_arrive(ss_input_stream *s, uint32_t seq, int64_t stamp_ns, double max_gap_s)
+{
+  stamp_ns = clamp_stamp(stamp_ns);
+  if (!s->have_prev) {
+    s->have_prev = 1;
+    s->prev_seq = seq;
+    s->prev_ns = stamp_ns;
+    return SS_TIME_FIRST;
+  }
+  uint32_t lost = 0;
+  if (seq > s->prev_seq + 1u && seq - s->prev_seq <= 1000000u) lost = seq - s->prev_seq - 1u;
+  s->lost += lost;
+  int64_t prev = s->prev_ns;
+  s->prev_seq = seq;
+  s->prev_ns = stamp_ns;
+  if (stamp_ns < prev) return SS_TIME_BACKWARDS;
+  if (stamp_ns == prev) return SS_TIME_SAME;
+  uint64_t dn = (uint64_t)stamp_ns - (uint64_t)prev; /* in (0, 2^63]: clamped stamps */
+  double d = 1e-9 * (double)dn;
+  if (d > max_gap_s * ((double)lost + 1.0)) return SS_TIME_GAP;
+  if (lost == 0) {
+    int64_t us = (int64_t)((dn + 500u) / 1000u);
+    if (us > 0) {
+      s->diff_us[s->diff_head] = us;
+      s->diff_head = (s->diff_head + 1) % SS_INPUT_PERIOD_WINDOW;
+      if (s->ndiff < SS_INPUT_PERIOD_WINDOW) s->ndiff++;
+      int64_t sorted[SS_INPUT_PERIOD_WINDOW];
+      for (int i = 0; i < s->ndiff; i++) { /* insertion sort of at most 15 */
+        int64_t v = s->diff_us[i];
+        int j = i;
+        for (; j > 0 && sorted[j - 1] > v; j--) sorted[j] = sorted[j - 1];
+        sorted[j] = v;
+      }
+      int64_t med = sorted[s->ndiff / 2];
+      int64_t dev = med > s->period_us ? med - s->period_us : s->period_us - med;
+      if (s->period_us <= 0 || 10 * dev > s->period_us) s->period_us = med;
+    }
+  }
+  return SS_TIME_STEP;
+}
+
+int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns, int64_t stamp_ns,
+                       int discontinuity, int prev_periods, double max_step, int max_split,
+                       ss_input_plan *plan)
+{
+  skin_ns = clamp_stamp(skin_ns);
+  stamp_ns = clamp_stamp(stamp_ns);
+  plan->periods = 0;
+  plan->substeps = 0;
+  plan->dt = 0.0;
+  plan->skin_ns = stamp_ns;
+  if (!have_skin) return plan->kind = SS_TIME_FIRST;
+  if (discontinuity == SS_TIME_BACKWARDS || discontinuity == SS_TIME_GAP)
+    return plan->kind = discontinuity;
+  plan->skin_ns = skin_ns;
+  if (stamp_ns <= skin_ns) return plan->kind = SS_TIME_SAME; /* at or behind the skin's clock */
+  int64_t elapsed_us = (int64_t)(((uint64_t)stamp_ns - (uint64_t)skin_ns + 500u) / 1000u);
+  if (elapsed_us > ((int64_t)1 << 48)) /* over 8 years: no step but a jump (and no overflow) */
+    return plan->kind = SS_TIME_GAP;
+  int64_t period_us = s && s->period_us > 0 ? s->period_us : elapsed_us;
+  if (period_us <= 0) return plan->kind = SS_TIME_SAME; /* under half a microsecond */
+  /* whole periods: the last step's while the skin's clock stays within tol =
+   * max(1, k/4) periods of the stamps (one dt, no refactorisation); one more or
+   * one fewer within 2 tol (the clock drifts back without overshooting); else
+   * the elapsed time rounded (the clock within half a period) */
+  int64_t k = (elapsed_us + period_us / 2) / period_us;
+  if (prev_periods >= 1 && (int64_t)prev_periods <= 2 * k + 2) {
+    int64_t tol_us = period_us * (prev_periods >= 4 ? prev_periods : 4) / 4;
+    int64_t off_us = elapsed_us - (int64_t)prev_periods * period_us;
+    int64_t a_us = off_us < 0 ? -off_us : off_us;
+    if (a_us <= tol_us) k = prev_periods;
+    else if (a_us <= 2 * tol_us) k = prev_periods + (off_us > 0 ? 1 : -1);
+  }
+  if (k < 1) return plan->kind = SS_TIME_SAME;
+  if (k > INT_MAX) k = INT_MAX;
+  plan->periods = (int)k;
+  plan->dt = 1e-6 * (double)(k * period_us);
+  plan->substeps = ss_input_split_steps(1e-6 * (double)period_us, max_step, max_split);
+  plan->skin_ns = skin_ns + 1000 * k * period_us;
+  return plan->kind = SS_TIME_STEP;
+}
+
 static void anchor_point(const double *pos, int nvert, const int *faces, int nface, int f,
                          const double uv[2], double out[3])
 {

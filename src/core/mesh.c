@@ -302,3 +302,46 @@ nomem:
   ss_topo_destroy(t);
   return ss_fail(err, err_sz, SS_E_NOMEM, "topology: out of memory for %d triangles", nface);
 }
+
+/* ---- welded mesh ----------------------------------------------------------- */
+
+void ss_weld_destroy(ss_weld *w) {
+  if (!w) return;
+  free(w->pos);
+  free(w->faces);
+  free(w->vert_weld);
+  free(w->weld_rep);
+  free(w);
+}
+
+int ss_weld_create(ss_weld **out, int nvert, const double *pos, int nface, const int *faces,
+                   double weld_tol, char *err, int err_sz) {
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "weld: NULL output");
+  *out = NULL;
+  ss_topo *topo = NULL;
+  int status = ss_topo_create(&topo, nvert, pos, nface, faces, weld_tol, err, err_sz);
+  if (status) return status;
+  ss_weld *w = calloc(1, sizeof *w);
+  if (w) {
+    w->nvert = nvert;
+    w->nweld = topo->nweld;
+    w->nface = nface;
+    w->pos = malloc(sizeof(double) * 3 * (size_t)topo->nweld);
+    w->faces = malloc(sizeof(int) * 3 * (size_t)nface);
+    w->vert_weld = malloc(sizeof(int) * (size_t)nvert);
+    w->weld_rep = malloc(sizeof(int) * (size_t)topo->nweld);
+  }
+  if (!w || !w->pos || !w->faces || !w->vert_weld || !w->weld_rep) {
+    ss_topo_destroy(topo);
+    ss_weld_destroy(w);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "weld: out of memory for %d vertices", nvert);
+  }
+  for (int k = 0; k < topo->nweld; k++)
+    memcpy(w->pos + 3 * (size_t)k, pos + 3 * (size_t)topo->weld_rep[k], 3 * sizeof(double));
+  for (size_t i = 0; i < 3 * (size_t)nface; i++) w->faces[i] = topo->vert_weld[topo->face_vert[i]];
+  memcpy(w->vert_weld, topo->vert_weld, sizeof(int) * (size_t)nvert);
+  memcpy(w->weld_rep, topo->weld_rep, sizeof(int) * (size_t)topo->nweld);
+  ss_topo_destroy(topo);
+  *out = w;
+  return SS_OK;
+}

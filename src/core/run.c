@@ -62,18 +62,6 @@ int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_fram
                      err_sz);
 }
 
-/* The skin of a body: its vertices welded where the topology welds them
- * (one vertex per welded id, at its representative), faces renumbered. */
-static int weld_skin(const ss_topo *topo, const double *rest, double **skin_pos, int **skin_faces) {
-  *skin_pos = malloc(sizeof(double) * 3 * (size_t)topo->nweld);
-  *skin_faces = malloc(sizeof(int) * 3 * (size_t)topo->nface);
-  if (!*skin_pos || !*skin_faces) return SS_E_NOMEM;
-  for (int w = 0; w < topo->nweld; w++)
-    memcpy(*skin_pos + 3 * w, rest + 3 * topo->weld_rep[w], 3 * sizeof(double));
-  for (int i = 0; i < 3 * topo->nface; i++) (*skin_faces)[i] = topo->vert_weld[topo->face_vert[i]];
-  return SS_OK;
-}
-
 int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,
                 void *frame_user, ss_progress_fn progress, void *progress_user,
                 ss_run_stats *stats, char *err, int err_sz) {
@@ -95,23 +83,13 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
                            &settings->sim, err, err_sz);
   } else {
     /* welded skin (a no-op copy where the body has no seams) */
-    ss_topo *weld_topo = NULL;
-    double *weld_pos = NULL;
-    int *weld_faces = NULL;
-    status = ss_topo_create(&weld_topo, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
+    ss_weld *weld = NULL;
+    status = ss_weld_create(&weld, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
     if (status) return status;
-    status = weld_skin(weld_topo, body->rest, &weld_pos, &weld_faces);
-    ss_sim_mesh skin = {weld_topo->nweld, weld_pos, nface, weld_faces};
-    ss_topo_destroy(weld_topo);
-    if (status) {
-      free(weld_pos);
-      free(weld_faces);
-      return ss_fail(err, err_sz, status, "run: out of memory for the skin");
-    }
+    ss_sim_mesh skin = {weld->nweld, weld->pos, nface, weld->faces};
     status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, &skin, &settings->sim,
                            err, err_sz);
-    free(weld_pos);
-    free(weld_faces);
+    ss_weld_destroy(weld);
   }
   if (status) return status;
   const ss_topo *topo = ss_sim_body_topo(sim);

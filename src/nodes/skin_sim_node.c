@@ -6,21 +6,30 @@
  * skin_marker (visualization_msgs/Marker TRIANGLE_LIST coloured by how far
  * the skin has slid from where it was bound).
  *
+ * The skin is the received body welded at ~weld_tol (seam copies are one skin
+ * vertex), published in the body's own vertex layout, every copy from its
+ * welded vertex, so no seam can open.
+ *
  * The simulation is created on the first good mesh (its pose is the rest
- * shape) and again when topology_id changes, time goes backwards (a bag
- * looping) or the stamps jump forward by more than ~max_gap. The step length
+ * shape) and again when topology_id changes, or the INPUT's time goes
+ * backwards (a bag looping) or jumps forward by more than ~max_gap between
+ * consecutively published messages (ss_input_stream_arrive). The step length
  * comes from the stamps, never from the wall clock, so a replayed bag gives
- * the same output bit for bit. Bad messages (see ss_input.h) are rejected
- * with a throttled log line and counted; the last good state is kept. Received
- * meshes wait in a ring of ~queue_size slots (default 1: only the newest);
- * when it is full the oldest is dropped (counted), so nothing queues without
- * bound. roscpp's own queue holds ~queue_size + 32 (it only fills during one
- * step, as the node spins between steps); meshes it drops silently show as gaps
- * in header.seq and are counted too.
+ * the same output bit for bit: whole input periods since the skin's clock, in
+ * the substeps of one period (ss_input_plan_step). A node that falls behind
+ * steps the newest mesh once: the frames it skipped neither add substeps nor
+ * reset the skin. Bad messages (see ss_input.h) are rejected with a throttled
+ * log line and counted; the last good state is kept. Received meshes wait in a
+ * ring of ~queue_size slots (default 1: only the newest); when it is full the
+ * oldest is skipped (inputs_skipped), so nothing queues without bound.
+ * roscpp's own queue holds ~queue_size + 32 (it only fills during one step, as
+ * the node spins between steps); meshes lost before the callback show as gaps
+ * in header.seq and are counted as inputs_dropped.
  *
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
 #include "rosc/rosc.h"
 #include "skin_sim/ss_input.h"
+#include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_sim.h"
 
 #include <math.h>
@@ -32,6 +41,7 @@
 
 typedef struct params {
   ss_sim_settings set;
+  double weld_tol;    /* m; < 0 relative (ss_topo_create) */
   double max_gap;     /* s */
   double max_step;    /* s */
   int max_split;
@@ -44,6 +54,7 @@ typedef struct params {
 
 typedef struct mailbox {
   rosc_header header;
+  int disc;             /* SS_TIME_GAP / SS_TIME_BACKWARDS: the input jumped before it; else 0 */
   uint32_t topology_id;
   float *pos;
   size_t npos, cap_pos;
@@ -52,7 +63,7 @@ typedef struct mailbox {
 } mailbox;
 
 /* Received meshes waiting to be stepped: a ring of ~queue_size slots; when it is
- * full the oldest is dropped (counted). Slots keep their buffers, so a steady
+ * full the oldest is skipped (counted). Slots keep their buffers, so a steady
  * stream does not allocate. */
 typedef struct inbox {
   mailbox *slot;
@@ -67,6 +78,8 @@ typedef struct node {
   ss_sim *sim;
   uint32_t topology_id;
   int nvert, nface;
+  int nweld;              /* skin vertices: the body's welded */
+  int *vert_weld;         /* (nvert) skin vertex of each body vertex */
   int *faces;             /* (nface x 3) as received */
   uint32_t *tri_out;      /* (nface x 3) */
   unsigned char *mask;    /* (nface) or NULL */
@@ -77,12 +90,12 @@ typedef struct node {
   double *body, *body_prev, *body_sub; /* (nvert x 3) */
   float *pos_out;         /* (nvert x 3) */
   float *mk_pts, *mk_col; /* (nface x 3 x 3), (nface x 3 x 4) */
-  int64_t prev_ns;
-  int have_prev;
+  ss_input_stream stream; /* every arrival: seq gaps, the input's period, real jumps */
+  int64_t skin_ns;        /* the skin's clock (whole input periods from its creation) */
+  int prev_periods;       /* input periods of the last step (0: none since creation) */
+  int carry_disc;         /* a jump seen on a message that was rejected: reset on the next */
   /* counters */
-  uint32_t rejected, dropped, resets;
-  uint32_t last_seq;
-  int have_seq;
+  uint32_t rejected, dropped, skipped, resets, failures;
   unsigned long frames_in, frames_out, steps;
   double last_marker_wall;
 } node;
@@ -169,6 +182,7 @@ static int get_params(params *p)
       p->have_box = 1;
     }
   }
+  ok &= get_double("~weld_tol", &p->weld_tol, -1.0);
   ok &= get_double("~max_gap", &p->max_gap, 0.5);
   ok &= get_double("~max_step", &p->max_step, 0.05);
   ok &= get_int("~max_split", &p->max_split, 8);
@@ -219,22 +233,28 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   nd->frames_in++;
   /* roscpp numbers the messages of a publisher (header.seq): a gap means meshes lost
    * before they reached this callback (roscpp's queue overflowing during a stall, or
-   * the publisher's): counted as dropped too. A smaller seq is a new publisher. */
-  uint32_t seq = m->header.seq;
-  if (nd->have_seq && seq > nd->last_seq + 1 && seq - nd->last_seq <= 1000000u)
-    nd->dropped += seq - nd->last_seq - 1;
-  nd->last_seq = seq;
-  nd->have_seq = 1;
-  if (q->count == q->cap) { /* full: the oldest was never stepped */
+   * the publisher's): counted as dropped. A smaller seq is a new publisher. Every
+   * arrival is judged against the previous one in publication order: only a jump
+   * between consecutively published messages (or time going backwards) is the
+   * input's own and resets the skin; it is carried over the messages the node skips,
+   * to the one it steps. */
+  int kind = ss_input_stream_arrive(&nd->stream, m->header.seq, rosc_time_to_ns(m->header.stamp),
+                                    nd->p.max_gap);
+  int disc = (kind == SS_TIME_GAP || kind == SS_TIME_BACKWARDS) ? kind : 0;
+  if (q->count == q->cap) { /* full: the oldest was never stepped: skipped */
+    int carry = q->slot[q->head].disc;
     q->head = (q->head + 1) % q->cap;
     q->count--;
-    nd->dropped++;
+    nd->skipped++;
+    if (carry && q->count && !q->slot[q->head].disc) q->slot[q->head].disc = carry;
+    else if (carry && !q->count && !disc) disc = carry;
   }
   mailbox *b = &q->slot[(q->head + q->count) % q->cap];
   if (!grow((void **)&b->pos, &b->cap_pos, m->n_positions, sizeof(float)) ||
       !grow((void **)&b->tri, &b->cap_tri, m->n_triangles, sizeof(uint32_t))) {
     ROSC_ERROR_THROTTLE(2.0, "out of memory for a mesh of %zu values", m->n_positions);
     nd->dropped++;
+    if (disc) nd->carry_disc = disc;
     return;
   }
   if (m->n_positions) memcpy(b->pos, m->positions, m->n_positions * sizeof(float));
@@ -243,6 +263,7 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   b->ntri = m->n_triangles;
   b->header = m->header;
   b->topology_id = m->topology_id;
+  b->disc = disc;
   q->count++;
 }
 
@@ -260,6 +281,9 @@ static void free_sim(node *nd)
 {
   ss_sim_destroy(nd->sim);
   nd->sim = NULL;
+  free(nd->vert_weld);
+  nd->vert_weld = NULL;
+  nd->nweld = 0;
   free(nd->faces); free(nd->tri_out); free(nd->mask); free(nd->face0); free(nd->uv0);
   free(nd->slide); free(nd->body); free(nd->body_prev); free(nd->body_sub);
   free(nd->pos_out); free(nd->mk_pts); free(nd->mk_col);
@@ -267,7 +291,6 @@ static void free_sim(node *nd)
   nd->slide = NULL; nd->body = NULL; nd->body_prev = NULL; nd->body_sub = NULL;
   nd->pos_out = NULL; nd->mk_pts = NULL; nd->mk_col = NULL;
   nd->nvert = nd->nface = nd->nanchor = 0;
-  nd->have_prev = 0;
 }
 
 /* Creates the simulation with the mailbox's mesh as rest shape. 1 on success. */
@@ -316,7 +339,17 @@ static int create_sim(node *nd, const mailbox *b)
   char err[ERR_SZ] = "";
   double t0 = 0, t1 = 0;
   rosc_wall_now_s(&t0);
-  int st = ss_sim_create(&nd->sim, nv, nd->body, nf, nd->faces, NULL, &set, err, sizeof err);
+  /* the skin is the body welded: seam copies are one skin vertex, so no seam can open */
+  ss_weld *weld = NULL;
+  int st = ss_weld_create(&weld, nv, nd->body, nf, nd->faces, nd->p.weld_tol, err, sizeof err);
+  if (st == SS_OK) {
+    ss_sim_mesh skin = {weld->nweld, weld->pos, nf, weld->faces};
+    st = ss_sim_create(&nd->sim, nv, nd->body, nf, nd->faces, &skin, &set, err, sizeof err);
+    nd->vert_weld = weld->vert_weld; /* kept */
+    nd->nweld = weld->nweld;
+    weld->vert_weld = NULL;
+  }
+  ss_weld_destroy(weld);
   rosc_wall_now_s(&t1);
   if (st != SS_OK) {
     char why[ERR_SZ + 64];
@@ -340,9 +373,9 @@ static int create_sim(node *nd, const mailbox *b)
   memcpy(nd->uv0, ss_sim_anchor_uv(nd->sim), 2 * (size_t)nd->nanchor * sizeof(double));
   memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
   nd->topology_id = b->topology_id;
-  ROSC_INFO("skin created: %d vertices, %d triangles, %d anchors, %d unknowns (topology %u, "
-            "%.1f ms)", nv, nf, nd->nanchor, ss_sim_ndof(nd->sim), (unsigned)b->topology_id,
-            1e3 * (t1 - t0));
+  ROSC_INFO("skin created: %d vertices (%d received, welded at ~weld_tol %g), %d triangles, "
+            "%d anchors, %d unknowns (topology %u, %.1f ms)", nd->nweld, nv, nd->p.weld_tol, nf,
+            nd->nanchor, ss_sim_ndof(nd->sim), (unsigned)b->topology_id, 1e3 * (t1 - t0));
   return 1;
 }
 
@@ -350,9 +383,12 @@ static int create_sim(node *nd, const mailbox *b)
 static void publish(node *nd, const rosc_header *hdr, const ss_sim_stats *acc, double total_ms,
                     int substeps)
 {
+  /* in the body's layout: every seam copy from its welded skin vertex */
   const double *x = ss_sim_skin_positions(nd->sim);
   size_t n3 = 3 * (size_t)nd->nvert;
-  for (size_t i = 0; i < n3; i++) nd->pos_out[i] = (float)x[i];
+  for (int v = 0; v < nd->nvert; v++)
+    for (int d = 0; d < 3; d++)
+      nd->pos_out[3 * (size_t)v + d] = (float)x[3 * (size_t)nd->vert_weld[v] + d];
   rosc_skin_mesh out;
   memset(&out, 0, sizeof out);
   out.header = *hdr;
@@ -380,8 +416,13 @@ static void publish(node *nd, const rosc_header *hdr, const ss_sim_stats *acc, d
   s.anchors_at_crease = (uint32_t)acc->anchors_crease;
   s.max_slide = (float)max_slide;
   s.inputs_rejected = nd->rejected;
-  s.inputs_dropped = nd->dropped;
+  s.inputs_dropped = nd->dropped + (uint32_t)nd->stream.lost;
   s.resets = nd->resets;
+  s.inputs_skipped = nd->skipped;
+  s.failures = nd->failures;
+  rosc_time now_ros;
+  if (rosc_now(&now_ros) == ROSC_OK)
+    s.latency_ms = (float)(1e-6 * (double)(rosc_time_to_ns(now_ros) - rosc_time_to_ns(hdr->stamp)));
   rosc_publish_skin_stats(nd->pub_stats, &s);
 
   if (nd->p.marker_rate == 0.0) return;
@@ -397,8 +438,8 @@ static void publish(node *nd, const rosc_header *hdr, const ss_sim_stats *acc, d
       int v = nd->faces[3 * f + k];
       size_t c = 3 * (size_t)f + (size_t)k;
       for (int d = 0; d < 3; d++) nd->mk_pts[3 * c + d] = nd->pos_out[3 * (size_t)v + d];
-      /* vertex anchors come first: anchor v belongs to skin vertex v */
-      ss_input_slide_color(nd->slide[v], nd->p.slide_scale, nd->mk_col + 4 * c);
+      /* vertex anchors come first: anchor w belongs to skin (welded) vertex w */
+      ss_input_slide_color(nd->slide[nd->vert_weld[v]], nd->p.slide_scale, nd->mk_col + 4 * c);
     }
   }
   rosc_marker mk;
@@ -418,6 +459,7 @@ static void process(node *nd, const mailbox *b)
   char err[ERR_SZ] = "";
   int chk = ss_input_mesh_check(b->npos, b->pos, b->ntri, b->tri, err, sizeof err);
   if (chk != SS_OK) {
+    if (b->disc) nd->carry_disc = b->disc;
     reject(nd, chk == SS_E_NONFINITE ? "skin_sim.nonfinite" : "skin_sim.malformed", err);
     return;
   }
@@ -427,11 +469,18 @@ static void process(node *nd, const mailbox *b)
                               sizeof err)) {
     char why[ERR_SZ + 64];
     snprintf(why, sizeof why, "topology changed without a new topology_id (%s)", err);
+    if (b->disc) nd->carry_disc = b->disc;
     reject(nd, "skin_sim.topology", why);
     return;
   }
-  double dt = 0.0;
-  int kind = ss_input_classify_time(nd->sim != NULL, nd->prev_ns, now_ns, nd->p.max_gap, &dt);
+  /* the step covers whole input periods since the skin's clock, in the substeps of
+   * one period: frames the node skipped never add substeps nor reset the skin */
+  int disc = b->disc ? b->disc : nd->carry_disc;
+  nd->carry_disc = 0;
+  ss_input_plan plan;
+  int kind = ss_input_plan_step(&nd->stream, nd->sim != NULL, nd->skin_ns, now_ns, disc,
+                                nd->prev_periods, nd->p.max_step, nd->p.max_split, &plan);
+  double dt = plan.dt;
   ss_sim_stats acc;
   memset(&acc, 0, sizeof acc);
   double t0 = 0, t1 = 0;
@@ -444,15 +493,17 @@ static void process(node *nd, const mailbox *b)
                 (unsigned)b->topology_id);
     else if (nd->sim) {
       nd->resets++;
-      ROSC_WARN_THROTTLE(1.0, "time %s (%.3f s after %.3f s): skin reset (%u resets so far)",
-                         kind == SS_TIME_GAP ? "jumped forward" : "went backwards",
-                         1e-9 * (double)now_ns, 1e-9 * (double)nd->prev_ns, (unsigned)nd->resets);
+      ROSC_WARN_THROTTLE(1.0, "the input's time %s before the stamp %.3f s: skin reset (%u resets "
+                         "so far)", kind == SS_TIME_GAP ? "jumped forward" : "went backwards",
+                         1e-9 * (double)now_ns, (unsigned)nd->resets);
     }
     if (!create_sim(nd, b)) return;
+    nd->skin_ns = now_ns;
+    nd->prev_periods = 0;
   } else if (kind == SS_TIME_STEP) {
     size_t n3 = 3 * (size_t)nd->nvert;
     for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
-    nsplit = ss_input_split_steps(dt, nd->p.max_step, nd->p.max_split);
+    nsplit = plan.substeps;
     for (int k = 1; k <= nsplit; k++) {
       const double *pose = nd->body;
       if (k < nsplit) {
@@ -470,6 +521,7 @@ static void process(node *nd, const mailbox *b)
         }
         /* input the core refused: the state is untouched */
         memcpy(nd->body, nd->body_prev, n3 * sizeof(double));
+        nd->carry_disc = disc;
         reject(nd, "skin_sim.step", err);
         return;
       }
@@ -481,13 +533,16 @@ static void process(node *nd, const mailbox *b)
       acc.failures += st.failures;
       nd->steps++;
     }
-    if (acc.failures)
-      ROSC_WARN_THROTTLE(1.0, "%d substeps met non-finite values (last good state kept)",
-                         acc.failures);
+    if (acc.failures) {
+      nd->failures += (uint32_t)acc.failures;
+      ROSC_WARN_THROTTLE(1.0, "%d substeps met non-finite values (last good state kept; %u so "
+                         "far)", acc.failures, (unsigned)nd->failures);
+    }
     memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
+    nd->skin_ns = plan.skin_ns;
+    nd->prev_periods = plan.periods;
   }
   /* SS_TIME_SAME: nothing to step; the state is published again */
-  nd->prev_ns = now_ns;
   rosc_wall_now_s(&t1);
   publish(nd, &b->header, &acc, 1e3 * (t1 - t0), acc.substeps);
 }
@@ -532,9 +587,9 @@ int main(int argc, char **argv)
       nd->in.count--;
     }
   }
-  ROSC_INFO("skin_sim: %lu meshes in, %lu out, %u rejected, %u dropped, %u resets",
-            nd->frames_in, nd->frames_out, (unsigned)nd->rejected, (unsigned)nd->dropped,
-            (unsigned)nd->resets);
+  ROSC_INFO("skin_sim: %lu meshes in, %lu out, %u rejected, %u dropped, %u skipped, %u resets",
+            nd->frames_in, nd->frames_out, (unsigned)nd->rejected,
+            (unsigned)(nd->dropped + nd->stream.lost), (unsigned)nd->skipped, (unsigned)nd->resets);
   rosc_sub_destroy(sub);
   rosc_pub_destroy(nd->pub_mesh);
   rosc_pub_destroy(nd->pub_stats);

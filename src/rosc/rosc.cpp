@@ -290,6 +290,9 @@ struct rosc_sub {
     c.inputs_rejected = m.inputs_rejected;
     c.inputs_dropped = m.inputs_dropped;
     c.resets = m.resets;
+    c.inputs_skipped = m.inputs_skipped;
+    c.failures = m.failures;
+    c.latency_ms = m.latency_ms;
     stats_cb(&c, user);
   }
 
@@ -902,6 +905,9 @@ int rosc_publish_skin_stats(rosc_pub *pub, const rosc_skin_stats *msg)
     m.inputs_rejected = msg->inputs_rejected;
     m.inputs_dropped = msg->inputs_dropped;
     m.resets = msg->resets;
+    m.inputs_skipped = msg->inputs_skipped;
+    m.failures = msg->failures;
+    m.latency_ms = msg->latency_ms;
     pub->pub.publish(m);
     return ROSC_OK;
   });

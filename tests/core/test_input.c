@@ -101,6 +101,163 @@ static void test_slide(void)
   CHECK(c[2] > 0.9f);
 }
 
+/* A regular 30 Hz stream (stamps rounded to ns: 33333333 or 33333334 apart) */
+static int64_t stamp30(int i) { return (int64_t)1000000000 * 100 + ((int64_t)i * 1000000000 + 15) / 30; }
+
+static void test_stream(void)
+{
+  ss_input_stream s;
+  memset(&s, 0, sizeof s);
+  CHECK(ss_input_stream_arrive(&s, 5, stamp30(0), 0.5) == SS_TIME_FIRST);
+  for (int i = 1; i <= 20; i++) CHECK(ss_input_stream_arrive(&s, 5 + (uint32_t)i, stamp30(i), 0.5) == SS_TIME_STEP);
+  CHECK(s.period_us == 33333);
+  CHECK(s.lost == 0);
+  /* 3 messages lost in transport (seq gap): counted; the stamp gap is theirs, not a jump */
+  CHECK(ss_input_stream_arrive(&s, 29, stamp30(24), 0.5) == SS_TIME_STEP);
+  CHECK(s.lost == 3);
+  CHECK(s.period_us == 33333);
+  /* 20 lost over 0.7 s: 0.033 s per publication, no jump even if over max_gap */
+  CHECK(ss_input_stream_arrive(&s, 50, stamp30(45), 0.5) == SS_TIME_STEP);
+  CHECK(s.lost == 23);
+  /* consecutive messages 0.6 s apart: a real jump */
+  CHECK(ss_input_stream_arrive(&s, 51, stamp30(63), 0.5) == SS_TIME_GAP);
+  /* 1 lost, 2 s apart: 1 s per publication > 0.5: a real jump */
+  CHECK(ss_input_stream_arrive(&s, 53, stamp30(123), 0.5) == SS_TIME_GAP);
+  CHECK(ss_input_stream_arrive(&s, 54, stamp30(123), 0.5) == SS_TIME_SAME);
+  CHECK(ss_input_stream_arrive(&s, 55, stamp30(100), 0.5) == SS_TIME_BACKWARDS);
+  /* a new publisher (smaller seq): nothing counted lost */
+  CHECK(ss_input_stream_arrive(&s, 0, stamp30(101), 0.5) == SS_TIME_STEP);
+  CHECK(s.lost == 24);
+  /* the period follows a new rate, but not jitter under 10% */
+  memset(&s, 0, sizeof s);
+  int64_t t = 0;
+  ss_input_stream_arrive(&s, 0, t, 0.5);
+  const int jitter_us[6] = {16667, 17500, 15900, 16667, 16100, 17200};
+  for (int i = 1; i <= 30; i++) {
+    t += 1000 * (int64_t)jitter_us[i % 6];
+    ss_input_stream_arrive(&s, (uint32_t)i, t, 0.5);
+    if (i == 10) CHECK(s.period_us >= 15900 && s.period_us <= 17500);
+  }
+  int64_t p60 = s.period_us;
+  for (int i = 31; i <= 36; i++) {
+    t += 1000 * (int64_t)jitter_us[i % 6];
+    ss_input_stream_arrive(&s, (uint32_t)i, t, 0.5);
+    CHECK(s.period_us == p60); /* one value under jitter: one factorisation */
+  }
+  for (int i = 37; i <= 60; i++) {
+    t += 33333000;
+    ss_input_stream_arrive(&s, (uint32_t)i, t, 0.5);
+  }
+  CHECK(s.period_us == 33333);
+}
+
+static void test_plan(void)
+{
+  ss_input_stream s;
+  memset(&s, 0, sizeof s);
+  for (int i = 0; i <= 10; i++) ss_input_stream_arrive(&s, (uint32_t)i, stamp30(i), 0.5);
+  ss_input_plan p;
+  CHECK(ss_input_plan_step(&s, 0, 0, stamp30(10), 0, 0, 0.05, 8, &p) == SS_TIME_FIRST);
+  CHECK(p.skin_ns == stamp30(10));
+  int64_t skin = stamp30(10);
+  /* one frame: one period, one substep */
+  CHECK(ss_input_plan_step(&s, 1, skin, stamp30(11), 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == 1 && p.substeps == 1 && p.dt == 33333e-6);
+  skin = p.skin_ns;
+  /* the node fell 18 frames behind (0.6 s, over max_gap): 18 periods in
+   * ONE step of the same substep count, never a reset; dt a whole number of periods */
+  CHECK(ss_input_plan_step(&s, 1, skin, stamp30(29), 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == 18 && p.substeps == 1);
+  CHECK(p.dt == 1e-6 * (18 * 33333));
+  /* the skin's clock keeps the remainder: within half a period of the stamps */
+  int64_t off = stamp30(29) - p.skin_ns;
+  CHECK(off >= -16667000 && off <= 16667000);
+  skin = p.skin_ns;
+  /* many steps later the clock has not drifted */
+  int last = 29;
+  for (int i = 32; i < 3000; i += 3) {
+    CHECK(ss_input_plan_step(&s, 1, skin, stamp30(i), 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
+    CHECK(p.periods == 3 && p.dt == 1e-6 * (3 * 33333));
+    skin = p.skin_ns;
+    last = i;
+  }
+  off = stamp30(last) - skin;
+  CHECK(off >= -16667000 && off <= 16667000);
+  /* at or behind the skin's clock: nothing to step */
+  CHECK(ss_input_plan_step(&s, 1, skin, skin, 0, 0, 0.05, 8, &p) == SS_TIME_SAME && p.skin_ns == skin);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin - 5, 0, 0, 0.05, 8, &p) == SS_TIME_SAME);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin + 1000000, 0, 0, 0.05, 8, &p) == SS_TIME_SAME);
+  /* a real discontinuity carried over: reset on the stepped message */
+  CHECK(ss_input_plan_step(&s, 1, skin, skin + 33333000, SS_TIME_GAP, 0, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(p.skin_ns == skin + 33333000);
+  CHECK(ss_input_plan_step(&s, 1, skin, skin - 1000, SS_TIME_BACKWARDS, 0, 0.05, 8, &p) ==
+        SS_TIME_BACKWARDS);
+  /* substeps from the input's period: 10 Hz input with max_step 0.05 -> 2, late or not */
+  memset(&s, 0, sizeof s);
+  for (int i = 0; i <= 5; i++) ss_input_stream_arrive(&s, (uint32_t)i, (int64_t)i * 100000000, 0.5);
+  CHECK(ss_input_plan_step(&s, 1, 500000000, 600000000, 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.substeps == 2 && p.periods == 1);
+  CHECK(ss_input_plan_step(&s, 1, 500000000, 1400000000, 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.substeps == 2 && p.periods == 9);
+  CHECK(ss_input_plan_step(&s, 1, 500000000, 600000000, 0, 0, 0.01, 4, &p) == SS_TIME_STEP);
+  CHECK(p.substeps == 4);
+  /* hysteresis: the last step's periods are kept while the skin's clock stays within
+   * tol = max(1, k/4) periods of the stamps, nudged by one within 2 tol, else rounded */
+  memset(&s, 0, sizeof s);
+  for (int i = 0; i <= 10; i++) ss_input_stream_arrive(&s, (uint32_t)i, stamp30(i), 0.5);
+  const int64_t T = 33333000; /* ns */
+  CHECK(ss_input_plan_step(&s, 1, 0, 13 * T / 2, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 6);
+  CHECK(ss_input_plan_step(&s, 1, 0, 13 * T / 2, 0, 0, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 7);
+  CHECK(ss_input_plan_step(&s, 1, 0, 8 * T, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 7);
+  CHECK(ss_input_plan_step(&s, 1, 0, 10 * T, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 10);
+  CHECK(ss_input_plan_step(&s, 1, 0, 4 * T, 0, 6, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 5);
+  CHECK(ss_input_plan_step(&s, 1, 0, 19 * T / 10, 0, 1, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 1);
+  CHECK(ss_input_plan_step(&s, 1, 0, 22 * T / 10, 0, 1, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 2);
+  CHECK(ss_input_plan_step(&s, 1, 0, 3 * T / 10, 0, 1, 0.05, 8, &p) == SS_TIME_STEP && p.periods == 1);
+  /* a node 6 and 7 frames behind in turn (rounding would change dt every step): at
+   * most one step in four changes dt, and the clock stays within 2 periods */
+  {
+    int64_t clock = 0, stamp = 0;
+    int prev = 0, changes = 0;
+    int64_t worst = 0;
+    for (int i = 0; i < 200; i++) {
+      stamp += (i % 2) ? 7 * T : 6 * T;
+      CHECK(ss_input_plan_step(&s, 1, clock, stamp, 0, prev, 0.05, 8, &p) == SS_TIME_STEP);
+      if (i > 0 && p.periods != prev) changes++;
+      prev = p.periods;
+      clock = p.skin_ns;
+      int64_t d = stamp - clock;
+      if (d < 0) d = -d;
+      if (d > worst) worst = d;
+    }
+    CHECK_MSG(changes * 4 <= 200, "%d dt changes in 200 steps", changes);
+    CHECK_MSG(worst <= 2 * T, "clock within %lld ns of the stamps", (long long)worst);
+  }
+  /* extreme stamps: no overflow (UBSan), sane answers */
+  memset(&s, 0, sizeof s);
+  CHECK(ss_input_stream_arrive(&s, 0, INT64_MIN, 0.5) == SS_TIME_FIRST);
+  CHECK(ss_input_stream_arrive(&s, 1, INT64_MAX, 0.5) == SS_TIME_GAP);
+  CHECK(ss_input_stream_arrive(&s, 2, INT64_MIN, 0.5) == SS_TIME_BACKWARDS);
+  CHECK(ss_input_stream_arrive(&s, 3, INT64_MIN + 1, 1e30) == SS_TIME_SAME); /* both clamped */
+  CHECK(ss_input_stream_arrive(&s, 4, INT64_MAX, 1e30) == SS_TIME_STEP);
+  CHECK(s.period_us > 0);
+  CHECK(ss_input_plan_step(&s, 1, INT64_MIN, INT64_MAX, 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, 0, ((int64_t)1 << 59), 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, INT64_MAX - 5, INT64_MAX, 0, INT32_MAX, 0.05, 8, &p) ==
+        SS_TIME_SAME);
+  memset(&s, 0, sizeof s);
+  ss_input_stream_arrive(&s, 0, 0, 1e30);
+  ss_input_stream_arrive(&s, 1, (int64_t)1 << 55, 1e30); /* a period of 1.1 years */
+  CHECK(ss_input_plan_step(&s, 1, 0, (int64_t)1 << 59, 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_GAP);
+  CHECK(ss_input_plan_step(&s, 1, 0, (int64_t)1 << 53, 0, INT32_MAX, 0.05, 8, &p) == SS_TIME_SAME);
+  /* period unknown (one message so far): the elapsed time is one period */
+  memset(&s, 0, sizeof s);
+  ss_input_stream_arrive(&s, 0, 0, 0.5);
+  CHECK(ss_input_plan_step(&s, 1, 0, 40000000, 0, 0, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == 1 && p.dt == 0.04);
+  CHECK(ss_input_plan_step(NULL, 1, 0, 40000400, 0, 0, 0.05, 8, &p) == SS_TIME_STEP && p.dt == 0.04);
+}
+
 int main(void)
 {
   test_mesh_check();
@@ -108,5 +265,7 @@ int main(void)
   test_time();
   test_split();
   test_slide();
+  test_stream();
+  test_plan();
   return ss_test_finish("test_input");
 }

@@ -335,6 +335,9 @@ static void make_messages(outbox *o)
     s->inputs_rejected = 4294967295u - (uint32_t)i;
     s->inputs_dropped = (uint32_t)i;
     s->resets = 2u * (uint32_t)i;
+    s->inputs_skipped = 7u * (uint32_t)i + 1u;
+    s->failures = 4294967294u - (uint32_t)i;
+    s->latency_ms = 0.5f + 3.25f * (float)i;
 
     /* JointState: names (UTF-8, empty name), arrays of different lengths */
     joints_copy *j = &o->joints[i];

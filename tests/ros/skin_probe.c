@@ -7,7 +7,8 @@
  *                            for each; skin_marker (TRIANGLE_LIST, a colour per point).
  *                            Prints the latency (publish to skin_mesh arrival).
  *   skin_probe burst N       N meshes back to back: the newest is stepped last, and
- *                            every mesh is either stepped or counted as dropped.
+ *                            every mesh is either stepped or counted as skipped (the
+ *                            node was busy) or dropped (lost before the node got it).
  *   skin_probe await NS T    waits (T s at most) for the skin_stats stamped NS: a replay's
  *                            last frame has been stepped.
  *   skin_probe bad           good meshes interleaved with every kind of bad one (sizes
@@ -231,6 +232,7 @@ static int run_stream(int n, double hz)
     if (g.stats_stamp_ns[i] != T0 + i * period) stats_order = 0;
   CHECK_MSG(stats_order, "skin_stats stamps follow the frames");
   CHECK_MSG(g.last_stats.inputs_rejected == 0 && g.last_stats.inputs_dropped == 0 &&
+                g.last_stats.inputs_skipped == 0 &&
                 g.last_stats.resets == 0, "rejected %u dropped %u resets %u",
             g.last_stats.inputs_rejected, g.last_stats.inputs_dropped, g.last_stats.resets);
   CHECK_MSG(g.last_stats.iterations > 0 && g.last_stats.substeps >= 1, "stats of a real step");
@@ -293,15 +295,16 @@ static int run_burst(int n)
     rosc_spin_for(0.05);
   rosc_spin_for(0.3);
   CHECK_MSG(g.n > 0 && g.stamp_ns[g.n - 1] == last, "the newest mesh is stepped last");
-  uint32_t dropped = g.last_stats.inputs_dropped;
-  CHECK_MSG((uint32_t)g.n + dropped == (uint32_t)n + 1,
-            "every mesh is either stepped (%d) or counted as dropped (%u), of %d", g.n, dropped,
-            n + 1);
+  uint32_t dropped = g.last_stats.inputs_dropped, skipped = g.last_stats.inputs_skipped;
+  CHECK_MSG((uint32_t)g.n + dropped + skipped == (uint32_t)n + 1,
+            "every mesh is either stepped (%d) or counted as skipped (%u) or dropped (%u), of %d",
+            g.n, skipped, dropped, n + 1);
+  CHECK_MSG(g.last_stats.resets == 0, "a burst is no jump: %u resets", g.last_stats.resets);
   int in_order = 1;
   for (int i = 1; i < g.n; i++) in_order &= g.stamp_ns[i] > g.stamp_ns[i - 1];
   CHECK_MSG(in_order, "what is stepped comes out in order");
-  printf("burst: %d meshes back to back; %d stepped, %u dropped (oldest first)\n", n + 1, g.n,
-         dropped);
+  printf("burst: %d meshes back to back; %d stepped, %u skipped (oldest first), %u dropped\n",
+         n + 1, g.n, skipped, dropped);
   return finish();
 }
 

@@ -6,7 +6,7 @@
 #  - bad: every kind of bad SkinMesh is rejected and counted while the good ones around
 #    it come through; a new topology_id makes a new skin;
 #  - burst: 41 meshes back to back into the default queue of 1: the newest is stepped
-#    last, every other is stepped or counted as dropped;
+#    last, every other is stepped or counted as skipped or dropped; no reset;
 #  - jump: time going backwards and a gap over ~max_gap each reset the skin (counted).
 # Each part gets a fresh skin node. Usage: test_skin_node.sh BUILD_DIR [SOURCE_DIR].
 set -u
@@ -43,7 +43,7 @@ run_part() {
 # a queue long enough for the whole stream: every mesh is stepped even where the skin
 # is slower than 30 Hz (sanitizer builds); the latency printed says how it kept up
 run_part stream 120 stream 90 30
-# the default queue of 1 under a burst: the newest is stepped, the others counted as dropped
+# the default queue of 1 under a burst: the newest is stepped, the others counted as skipped/dropped
 run_part burst 1 burst 40
 run_part bad 120 bad
 l="$ROS_ENV_DIR/launch_bad.log"
