@@ -31,6 +31,7 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   ss_run_settings r = *run;
   const ss_sim_settings def = ss_sim_default_settings();
   r.skin = NULL;
+  r.settle = 0.0; /* the reference covers the motion's frames only */
   r.sim.solver = SS_SOLVER_NEWTON;
   r.sim.substeps = run->sim.substeps > SS_REFERENCE_SUBSTEPS ? run->sim.substeps
                                                              : SS_REFERENCE_SUBSTEPS;

@@ -143,6 +143,9 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--asset-scale") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-9, 1e9, &av.asset_scale))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--settle") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.settle))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--reference") == 0) {
       reference = 1;
     } else if (strcmp(a, "--cache") == 0) {
@@ -227,6 +230,13 @@ int cmd_run(int argc, char **argv) {
            st.triangles, st.frames, st.ms_per_frame_median, st.walk_ms_per_frame_median,
            100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
            st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
+  if (!json_path || strcmp(json_path, "-") != 0)
+    printf("inverted faces max %d, inside max %.3f edges, slide max %.3f edges (%.4g m)\n",
+           st.inverted_faces_max, st.inside_max, st.slide_max, st.slide_max_m);
+  if (s.settle > 0.0 && (!json_path || strcmp(json_path, "-") != 0))
+    printf("rest return after %.3g s settle (%d frames): rms %.4f max %.4f edges (%.4g m)\n",
+           s.settle, st.settle_frames, st.rest_error_rms, st.rest_error_max,
+           st.rest_error_max_m);
   if (reference && (!json_path || strcmp(json_path, "-") != 0))
     printf("error vs reference %.4g mean edge lengths (reference %016llx, %s, %.0f ms)\n",
            res.error_vs_reference, res.reference_key,

@@ -139,6 +139,22 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "hug_rms", st->hug_rms);
   json_num(j, "hug_max", st->hug_max);
   json_num(j, "mean_edge_length", st->mean_edge_length);
+  json_int(j, "inverted_faces_max", st->inverted_faces_max);
+  json_num(j, "inside_max", st->inside_max);
+  json_num(j, "slide_max", st->slide_max);
+  json_num(j, "slide_max_m", st->slide_max_m);
+  json_num(j, "settle", s->settle);
+  if (s->settle > 0.0) {
+    json_int(j, "settle_frames", st->settle_frames);
+    json_num(j, "rest_error_rms", st->rest_error_rms);
+    json_num(j, "rest_error_max", st->rest_error_max);
+    json_num(j, "rest_error_max_m", st->rest_error_max_m);
+  } else if (j->mode != JSON_OBJECT) {
+    json_null(j, "settle_frames");
+    json_null(j, "rest_error_rms");
+    json_null(j, "rest_error_max");
+    json_null(j, "rest_error_max_m");
+  }
   json_num(j, "young", s->sim.young);
   json_num(j, "poisson", s->sim.poisson);
   json_num(j, "anchor_stiffness", s->sim.anchor_stiffness);
