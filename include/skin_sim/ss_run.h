@@ -87,6 +87,8 @@ typedef struct ss_run_stats {
   double rest_error_rms, rest_error_max; /* after settling: skin vertex to its rest position,
                                             mean edge lengths (0 without settle) */
   double rest_error_max_m;         /* the same maximum in metres */
+  double rest_slide_max;           /* after settling: farthest anchor from where it was bound,
+                                      mean edge lengths */
   unsigned long long final_hash;
 } ss_run_stats;
 

@@ -75,6 +75,13 @@ typedef struct ss_sim_settings {
                             in one substep (a* = a0 + slide (p - a0), then walked there):
                             1 frictionless sliding, 0 glued to the body; default 0.5. Per
                             substep, so the sliding resistance depends on the step size. */
+  double tether;         /* 1/s, >= 0: the connective tissue under the skin. After its slide, each
+                            anchor WALKS back along the body surface (the walk, whatever the
+                            method, so it cannot jump across a gap) towards the point where it
+                            was bound, a fraction 1 - exp(-tether h) of the straight way there
+                            in a substep of h seconds: a relaxation rate independent of the step
+                            (a time constant of 1/tether s). 0 = the paper's free sliding;
+                            default 0 */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   int threads;           /* threads for per-face energies and anchor walks (OpenMP), 1..64;
                             default 1. The results are the same bits for any count; 2 pays

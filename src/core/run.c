@@ -360,10 +360,12 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
       char step_err[256] = "";
       int step_status = ss_sim_step(sim, pos, dt, &st, step_err, sizeof step_err);
       int frame_failed = step_status != SS_OK || st.failures > 0;
+      stats->slide_max_m = 0.0;
       frame_failed |= measure_frame(&m, sim, pos, settings, stats);
       stats->failures += frame_failed;
       stats->settle_frames++;
     }
+    stats->rest_slide_max = stats->slide_max_m / edge; /* the last frame's: the anchors at rest */
     stats->slide_max_m = slide_max_m;
     stats->hug_max = hug_max;
     m.hug_sum2 = hug_sum2;

@@ -110,6 +110,7 @@ static int get_params(params *p)
   rosc_param_get_double("~poisson", &p->set.poisson, p->set.poisson, NULL);
   rosc_param_get_double("~density", &p->set.density, p->set.density, NULL);
   rosc_param_get_double("~slide", &p->set.slide, p->set.slide, NULL);
+  rosc_param_get_double("~tether", &p->set.tether, p->set.tether, NULL);
   rosc_param_get_int("~substeps", &p->set.substeps, p->set.substeps, NULL);
   rosc_param_get_int("~iterations", &p->set.iterations, p->set.iterations, NULL);
   rosc_param_get_double("~tol", &p->set.tol, p->set.tol, NULL);

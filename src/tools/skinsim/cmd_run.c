@@ -143,6 +143,9 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--asset-scale") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-9, 1e9, &av.asset_scale))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--tether") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tether))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--settle") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.settle))
         return EXIT_USAGE;
@@ -234,9 +237,10 @@ int cmd_run(int argc, char **argv) {
     printf("inverted faces max %d, inside max %.3f edges, slide max %.3f edges (%.4g m)\n",
            st.inverted_faces_max, st.inside_max, st.slide_max, st.slide_max_m);
   if (s.settle > 0.0 && (!json_path || strcmp(json_path, "-") != 0))
-    printf("rest return after %.3g s settle (%d frames): rms %.4f max %.4f edges (%.4g m)\n",
+    printf("rest return after %.3g s settle (%d frames): rms %.4f max %.4f edges (%.4g m), "
+           "anchors at most %.4f edges from home\n",
            s.settle, st.settle_frames, st.rest_error_rms, st.rest_error_max,
-           st.rest_error_max_m);
+           st.rest_error_max_m, st.rest_slide_max);
   if (reference && (!json_path || strcmp(json_path, "-") != 0))
     printf("error vs reference %.4g mean edge lengths (reference %016llx, %s, %.0f ms)\n",
            res.error_vs_reference, res.reference_key,

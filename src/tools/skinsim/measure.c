@@ -149,11 +149,13 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
     json_num(j, "rest_error_rms", st->rest_error_rms);
     json_num(j, "rest_error_max", st->rest_error_max);
     json_num(j, "rest_error_max_m", st->rest_error_max_m);
+    json_num(j, "rest_slide_max", st->rest_slide_max);
   } else if (j->mode != JSON_OBJECT) {
     json_null(j, "settle_frames");
     json_null(j, "rest_error_rms");
     json_null(j, "rest_error_max");
     json_null(j, "rest_error_max_m");
+    json_null(j, "rest_slide_max");
   }
   json_num(j, "young", s->sim.young);
   json_num(j, "poisson", s->sim.poisson);
@@ -163,6 +165,7 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "gravity", s->sim.gravity[2] != 0.0 ? -s->sim.gravity[2] : 0.0);
   json_num(j, "damping", s->sim.damping);
   json_num(j, "slide", s->sim.slide);
+  json_num(j, "tether", s->sim.tether);
   json_hex(j, "final_hash", st->final_hash);
   if (r->has_reference) {
     json_num(j, "error_vs_reference", r->error_vs_reference);
