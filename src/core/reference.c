@@ -51,6 +51,22 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   return r;
 }
 
+ss_run_settings ss_truth_settings(const ss_run_settings *run) {
+  ss_run_settings t = *run;
+  t.sim.mover = ss_mover_default_settings();
+  if (t.sim.substeps > SS_REFERENCE_SUBSTEPS && t.sim.slide < 1.0) {
+    /* as one substep with the same share of the way per frame, which
+     * ss_reference_settings then converts to its substeps as for any run */
+    char text[64];
+    snprintf(text, sizeof text, "%.12g", 1.0 - pow(1.0 - run->sim.slide, run->sim.substeps));
+    t.sim.slide = strtod(text, NULL);
+    t.sim.substeps = 1;
+  } else if (t.sim.substeps > SS_REFERENCE_SUBSTEPS) {
+    t.sim.substeps = SS_REFERENCE_SUBSTEPS;
+  }
+  return ss_reference_settings(&t);
+}
+
 /* ---- the key ----------------------------------------------------------------- */
 
 typedef struct text_buf {

@@ -281,7 +281,7 @@ static int run_case(bench_ctx *ctx, const bench_case *c, int index, int count, d
   base.sim.face_mask = NULL;
   if (!status)
     status = measure_run(&body, &s, c->sweep[0] == 'o' ? &base : NULL,
-                         c->reference ? ctx->cache_dir : NULL, NULL, NULL, NULL, NULL, &res, err,
+                         c->reference ? ctx->cache_dir : NULL, c->reference, NULL, NULL, NULL, NULL, &res, err,
                          sizeof err);
   int rc = 0;
   if (status) {

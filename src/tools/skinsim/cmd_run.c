@@ -58,7 +58,7 @@ static int write_frame(void *user, int frame, const ss_sim *sim, const double *b
 
 int cmd_run(int argc, char **argv) {
   const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL, *cache_opt = NULL;
-  int tris = 0, reference = 0;
+  int tris = 0, reference = 0, truth = 0;
   avatar_args av = {0};
   ss_run_settings s = ss_run_default_settings();
   for (int i = 1; i < argc; i++) {
@@ -151,6 +151,8 @@ int cmd_run(int argc, char **argv) {
         return EXIT_USAGE;
     } else if (strcmp(a, "--reference") == 0) {
       reference = 1;
+    } else if (strcmp(a, "--truth") == 0) {
+      reference = truth = 1;
     } else if (strcmp(a, "--cache") == 0) {
       if (!(cache_opt = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--json") == 0) {
@@ -201,7 +203,7 @@ int cmd_run(int argc, char **argv) {
   progress bar;
   progress_begin(&bar, scene_name ? scene_name : "avatar");
   measure_result res;
-  int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, out_dir ? write_frame : NULL,
+  int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, truth, out_dir ? write_frame : NULL,
                            &writer, progress_update, &bar, &res, err, sizeof err);
   const ss_run_stats st = res.st;
   progress_end(&bar);
@@ -245,6 +247,10 @@ int cmd_run(int argc, char **argv) {
     printf("error vs reference %.4g mean edge lengths (reference %016llx, %s, %.0f ms)\n",
            res.error_vs_reference, res.reference_key,
            res.reference_cache_hit ? "from the cache" : "computed", res.reference_ms);
+  if (truth && (!json_path || strcmp(json_path, "-") != 0))
+    printf("error vs truth %.4g mean edge lengths (truth %016llx, %s, %.0f ms)\n",
+           res.error_vs_truth, res.truth_key, res.truth_cache_hit ? "from the cache" : "computed",
+           res.truth_ms);
   avatar_body_close(ab);
   return 0;
 }
