@@ -40,30 +40,13 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   r.sim.lbfgs_history = def.lbfgs_history; /* unused by Newton: keeps keys equal */
   r.sim.dt = def.dt;                       /* a run steps 1 / fps whatever dt says */
   if (r.sim.mover.method != SS_METHOD_NRING) r.sim.mover.nring_rings = def.mover.nring_rings;
-  if (run->sim.substeps != r.sim.substeps && run->sim.slide < 1.0) {
-    /* the same share of the way per frame, rounded so that runs meaning the
-     * same slide with different substeps share one reference */
-    char text[64];
-    snprintf(text, sizeof text, "%.12g", pow(1.0 - run->sim.slide, run->sim.substeps));
-    double keep = strtod(text, NULL);
-    r.sim.slide = 1.0 - pow(keep, 1.0 / r.sim.substeps);
-  }
   return r;
 }
 
 ss_run_settings ss_truth_settings(const ss_run_settings *run) {
   ss_run_settings t = *run;
   t.sim.mover = ss_mover_default_settings();
-  if (t.sim.substeps > SS_REFERENCE_SUBSTEPS && t.sim.slide < 1.0) {
-    /* as one substep with the same share of the way per frame, which
-     * ss_reference_settings then converts to its substeps as for any run */
-    char text[64];
-    snprintf(text, sizeof text, "%.12g", 1.0 - pow(1.0 - run->sim.slide, run->sim.substeps));
-    t.sim.slide = strtod(text, NULL);
-    t.sim.substeps = 1;
-  } else if (t.sim.substeps > SS_REFERENCE_SUBSTEPS) {
-    t.sim.substeps = SS_REFERENCE_SUBSTEPS;
-  }
+  t.sim.substeps = SS_REFERENCE_SUBSTEPS;
   return ss_reference_settings(&t);
 }
 

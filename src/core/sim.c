@@ -10,7 +10,9 @@
  *               (solver_*.c);
  *   3. velocity v = (x - x_n) / h;
  *   4. anchors  the spring force drags each anchor of a free point towards the
- *               skin point it holds: a* = a0 + slide (p - a0), then the mover
+ *               skin point it holds: a* = a0 + (1 - exp(-slide h)) (p - a0)
+ *               (slide a rate per second, so any substep count converges to
+ *               one relaxation), then the mover
  *               carries (face, u, v) over the body to a* (walk / project /
  *               nring, ss_anchor.h).
  * A solve that meets a non-finite value keeps the last finite state and is
@@ -62,7 +64,7 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.barycenter_anchors = 1;
   s.bending = 0.0;
   s.damping = 0.0;
-  s.slide = 0.5;
+  s.slide = 30.0 * log(2.0); /* half the way per 1/30 s frame: the former per-substep 0.5 */
   s.tether = 0.0;
   s.mover = ss_mover_default_settings();
   s.threads = 1;
@@ -96,8 +98,8 @@ static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
     return ss_fail(err, err_sz, SS_E_ARG, "bending must be >= 0 (got %g)", s->bending);
   if (!(isfinite(s->damping) && s->damping >= 0.0))
     return ss_fail(err, err_sz, SS_E_ARG, "damping must be >= 0 (got %g)", s->damping);
-  if (!(s->slide >= 0.0 && s->slide <= 1.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "slide must be in [0, 1] (got %g)", s->slide);
+  if (!(s->slide >= 0.0)) /* +inf: frictionless */
+    return ss_fail(err, err_sz, SS_E_ARG, "slide must be a rate >= 0 per second (got %g)", s->slide);
   if (!(isfinite(s->tether) && s->tether >= 0.0))
     return ss_fail(err, err_sz, SS_E_ARG, "tether must be a finite rate >= 0 per second (got %g)", s->tether);
   for (int i = 0; i < 3; i++)
@@ -550,7 +552,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     for (size_t i = 0; i < nv3; i++) sim->v[i] = (sim->x[i] - sim->x_prev[i]) / h;
     if (status != SS_OK) break;
     /* 4. anchors: the fractions of the way of this substep */
-    sim->slide_frac = sim->set.slide;
+    sim->slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0;
     sim->tether_frac = sim->set.tether > 0.0 ? -expm1(-sim->set.tether * h) : 0.0;
     t0 = ss_now_ms();
     move_anchors(sim, st);

@@ -4,11 +4,16 @@
  * skin vertex comes back to within 0.1 mean edge lengths of its rest
  * position, with no snag and no failure; settling does not change the
  * motion's final_hash; without settle the rest fields stay 0. */
+#include <math.h>
 #include <stdio.h>
 
 #include "skin_sim/ss_run.h"
 #include "skin_sim/ss_scene.h"
 #include "ss_test.h"
+
+/* slide -30 ln(1 - share): that share of the way per 1/30 s frame */
+#define SLIDE_DEFAULT (ss_sim_default_settings().slide)
+#define SLIDE_SLOW (-30.0 * log(0.9)) /* a tenth of the way per frame: 3.16 /s */
 
 static ss_run_stats run(const ss_scene *scene, double settle, double tether, double slide) {
   ss_run_settings s = ss_run_default_settings();
@@ -30,17 +35,17 @@ int main(void) {
     fprintf(stderr, "test_rest_return: %s\n", err);
     return 1;
   }
-  ss_run_stats plain = run(scene, 0.0, 0.0, 0.5);
+  ss_run_stats plain = run(scene, 0.0, 0.0, SLIDE_DEFAULT);
   CHECK(plain.settle_frames == 0 && plain.rest_error_max == 0.0 && plain.rest_error_rms == 0.0);
   CHECK(plain.slide_max > 0.0 && plain.slide_max_m > 0.0);
-  ss_run_stats settled = run(scene, 3.0, 0.0, 0.5);
+  ss_run_stats settled = run(scene, 3.0, 0.0, SLIDE_DEFAULT);
   CHECK(settled.final_hash == plain.final_hash); /* the motion's skin, before settling */
   CHECK(settled.settle_frames == 30 + 90);       /* 1 s blend + 3 s hold at 30 fps */
   CHECK(settled.rest_error_max_m > 0.0);
   CHECK_NEAR(settled.rest_error_max, settled.rest_error_max_m / settled.mean_edge_length, 1e-12);
-  ss_run_stats tethered = run(scene, 3.0, 3.0, 0.1);
+  ss_run_stats tethered = run(scene, 3.0, 3.0, SLIDE_SLOW);
   printf("test_rest_return: elbow, rest error rms / max (edges): free %.4f / %.4f, "
-         "tether 3/s slide 0.1 %.4f / %.4f; slide max %.3f / %.3f edges\n",
+         "tether 3/s slide 3.16/s %.4f / %.4f; slide max %.3f / %.3f edges\n",
          settled.rest_error_rms, settled.rest_error_max, tethered.rest_error_rms,
          tethered.rest_error_max, settled.slide_max, tethered.slide_max);
   CHECK(tethered.slide_max > 0.1); /* it still slides during the motion */

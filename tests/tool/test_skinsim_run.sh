@@ -51,7 +51,7 @@ bad() { # bad <description> <args...>: exit 2, one line on stderr naming the pro
 bad "run without scene" run
 bad "run unknown solver" run --scene fold --solver magic
 bad "run negative dt" run --scene fold --dt -1
-bad "run slide out of range" run --scene fold --slide 2
+bad "run slide out of range" run --scene fold --slide -1
 bad "run substeps zero" run --scene fold --substeps 0
 bad "run NaN tol" run --scene fold --tol nan
 bad "run unknown scene" run --scene nowhere

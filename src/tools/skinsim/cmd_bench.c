@@ -8,8 +8,7 @@
  * walk: the defaults) varied one axis at a time, not the cartesian product:
  *  - methods:  every body x {walk, project, nring 1, 2, 4}          (stability, Pareto)
  *  - solvers:  a few scenes x {newton, quasi-newton} x iterations {1, 2, 4, 8, converged}
- *  - substeps: the same scenes x substeps {2, 4}, slide per substep chosen so that an
- *              anchor slides the same share of its way per frame as with 1 substep
+ *  - substeps: the same scenes x substeps {2, 4} (slide is a rate: the same physics)
  *  - scaling:  the quadruped at growing sizes, walk and project (no reference)
  *  - options:  a few scenes: barycenter anchors off, bending on, gravity on, a region
  *              mask, a coarser skin than the body
@@ -222,8 +221,6 @@ static int run_case(bench_ctx *ctx, const bench_case *c, int index, int count, d
   s.sim.iterations = c->iterations;
   s.sim.tol = c->tol;
   s.sim.substeps = c->substeps;
-  if (c->substeps > 1) /* the same share of the way per frame as one substep */
-    s.sim.slide = 1.0 - pow(1.0 - s.sim.slide, 1.0 / c->substeps);
   int status = SS_OK;
   const char *label = c->body;
   if (c->avatar == 0) {

@@ -96,7 +96,7 @@ int cmd_run(int argc, char **argv) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.bending))
         return EXIT_USAGE;
     } else if (strcmp(a, "--slide") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1.0, &s.sim.slide))
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e9, &s.sim.slide))
         return EXIT_USAGE;
     } else if (strcmp(a, "--young") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.young))

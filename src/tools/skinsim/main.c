@@ -22,7 +22,7 @@ static void usage(FILE *f) {
       "  run BODY [--frames N] [--method walk|project|nring] [--rings N]\n"
       "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
       "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
-      "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide R]\n"
+      "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide RATE]\n"
       "        [--tether RATE] [--settle SECONDS]\n"
       "        [--threads N] [--reference [--cache DIR]] [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
