@@ -109,7 +109,8 @@ typedef struct ss_body {
 ss_body ss_body_of_scene(const ss_scene *scene);
 
 /* Called after each frame with the simulation (for output); returning
- * non-zero stops the run. */
+ * non-zero stops the run. Settle frames (ss_run_settings.settle) follow as
+ * frames + 1, frames + 2, ... */
 typedef int (*ss_frame_fn)(void *user, int frame, const ss_sim *sim, const double *body_pos);
 
 /* Runs the skin over a body. The skin is settings->skin, or else a copy of

@@ -364,6 +364,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
       frame_failed |= measure_frame(&m, sim, pos, settings, stats);
       stats->failures += frame_failed;
       stats->settle_frames++;
+      if (on_frame && on_frame(frame_user, frames + k, sim, pos)) break;
     }
     stats->rest_slide_max = stats->slide_max_m / edge; /* the last frame's: the anchors at rest */
     stats->slide_max_m = slide_max_m;
