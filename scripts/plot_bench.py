@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Charts of `skinsim bench`: reads DIR/results.csv, writes into DIR
-pareto.png, stability.png + stability.md, scaling.png, breakdown.png,
-options.png + options.md (matplotlib, Agg backend, no display).
+pareto.png (ms per frame against error_vs_truth: every method against one truth),
+pareto_reference.png (the same against each method's own reference),
+stability.png + stability.md, scaling.png, breakdown.png, options.png + options.md,
+rest_return.png (matplotlib, Agg backend, no display).
 
 usage: /usr/bin/python3 scripts/plot_bench.py DIR
 """
@@ -60,22 +62,22 @@ def config_label(row):
                                    row["substeps"])
 
 
-def plot_pareto(rows, out):
-    """ms per frame against error, per scene with the solver/substeps sweep."""
+def plot_pareto(rows, out, field="error_vs_truth", name="pareto.png"):
+    """ms per frame against error (field), per scene with the solver/substeps sweep."""
     scenes = []
     for r in rows:
         if r["sweep"] in ("solvers", "substeps") and r["scene"] not in scenes:
             scenes.append(r["scene"])
     if not scenes:
-        scenes = sorted({r["scene"] for r in rows if num(r, "error_vs_reference") is not None})[:3]
+        scenes = sorted({r["scene"] for r in rows if num(r, field) is not None})[:3]
     fig, axes = plt.subplots(1, len(scenes), figsize=(5.2 * len(scenes), 4.4), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
         pts = [r for r in rows if r["scene"] == scene and r["sweep"] in
                ("methods", "solvers", "substeps")
-               and num(r, "error_vs_reference") is not None]
+               and num(r, field) is not None]
         seen = set()
         for r in pts:
-            ms, err = num(r, "ms_per_frame_median"), num(r, "error_vs_reference")
+            ms, err = num(r, "ms_per_frame_median"), num(r, field)
             m, solver = method_label(r), r["solver"]
             key = (m, solver)
             face = COLORS.get(m, "gray") if solver == "quasi-newton" else "none"
@@ -87,7 +89,7 @@ def plot_pareto(rows, out):
                 tag = ("it %s" % r["variant"]) if r["sweep"] == "solvers" else ("sub %s" % r["variant"])
                 ax.annotate(tag, (ms, max(err, 1e-6)), fontsize=6, xytext=(3, 3),
                             textcoords="offset points")
-        front = pareto_front([(num(r, "ms_per_frame_median"), max(num(r, "error_vs_reference"), 1e-6))
+        front = pareto_front([(num(r, "ms_per_frame_median"), max(num(r, field), 1e-6))
                               for r in pts])
         if front:
             ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k",
@@ -97,12 +99,16 @@ def plot_pareto(rows, out):
         tri = pts[0]["triangles"] if pts else "?"
         ax.set_title("%s (%s triangles)" % (scene, tri), fontsize=10)
         ax.set_xlabel("ms per frame (median)")
-        ax.set_ylabel("error vs reference (mean edge lengths)")
+        ax.set_ylabel(("error vs truth" if field == "error_vs_truth" else
+                       "error vs its own method's reference") + " (mean edge lengths)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=6, loc="best")
-    fig.suptitle("Speed against accuracy\n(filled: quasi-Newton, hollow: Newton; "
-                 "labels: iterations / substeps)", fontsize=9)
-    save(fig, out, "pareto.png")
+    what = ("against ONE truth (walk, Newton to 1e-6, 16 substeps): snags count"
+            if field == "error_vs_truth" else
+            "against each method's OWN reference (a snagging method's reference snags too)")
+    fig.suptitle("Speed against accuracy, %s\n(filled: quasi-Newton, hollow: Newton; "
+                 "labels: iterations / substeps)" % what, fontsize=9)
+    save(fig, out, name)
 
 
 def plot_stability(rows, out):
@@ -116,26 +122,36 @@ def plot_stability(rows, out):
              "Per scene and anchor method (quasi-Newton, 8 iterations, 1 substep): snags "
              "(anchor jumps across a gap), failures (frames with NaN/Inf, an area ratio "
              "outside [0.05, 20] or a failed step), hug RMS / max (skin to body distance, "
-             "mean edge lengths), error vs reference (mean edge lengths; the reference uses "
-             "the same method).", "",
+             "mean edge lengths), inverted faces (the most skin faces in one frame turned "
+             "against the body where anchored), inside (deepest skin vertex under the body, "
+             "mean edge lengths), error vs truth (one truth for every method: walk, Newton "
+             "to 1e-6, 16 substeps) and vs the method's own reference (mean edge lengths).", "",
              "| scene | triangles | frames | method | snags | failures | hug rms | hug max "
-             "| error | ms/frame |", "|---|---|---|---|---|---|---|---|---|---|"]
+             "| inverted | inside | error vs truth | error vs own ref | ms/frame |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for s in scenes:
         for m in METHODS:
             r = cell.get((s, m))
             if not r:
                 continue
             e = num(r, "error_vs_reference")
-            lines.append("| %s | %s | %s | %s | %s | %s | %.3f | %.3f | %s | %.2f |" % (
+            t = num(r, "error_vs_truth")
+            lines.append("| %s | %s | %s | %s | %s | %s | %.3f | %.3f | %s | %.3f | %s | %s "
+                         "| %.2f |" % (
                 s, r["triangles"], r["frames"], m, r["snags"], r["failures"],
                 num(r, "hug_rms") or 0.0, num(r, "hug_max") or 0.0,
+                r.get("inverted_faces_max", "-"), num(r, "inside_max") or 0.0,
+                "%.3g" % t if t is not None else "-",
                 "%.3g" % e if e is not None else "-", num(r, "ms_per_frame_median") or 0.0))
     with open(os.path.join(out, "stability.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 0.42 * len(scenes) + 1.8))
+    fig, axes = plt.subplots(1, 6, figsize=(28, 0.42 * len(scenes) + 1.8))
     keys = [("snags", "snags (count)"), ("failures", "failed frames"),
-            ("hug_rms", "hug RMS (edge lengths)")]
+            ("inverted_faces_max", "inverted faces (most in a frame)"),
+            ("inside_max", "inside the body (edge lengths)"),
+            ("hug_rms", "hug RMS (edge lengths)"),
+            ("error_vs_truth", "error vs truth (edge lengths)")]
     for ax, (key, title) in zip(axes, keys):
         data = [[num(cell[(s, m)], key) if (s, m) in cell else float("nan") for m in METHODS]
                 for s in scenes]
@@ -147,7 +163,7 @@ def plot_stability(rows, out):
             for j, v in enumerate(row):
                 if v is None or math.isnan(v):
                     continue
-                txt = ("%d" % v) if key != "hug_rms" else ("%.3f" % v)
+                txt = ("%d" % v) if key in ("snags", "failures", "inverted_faces_max") else ("%.3f" % v)
                 ax.text(j, i, txt, ha="center", va="center", fontsize=7,
                         color="white" if vmax > 0 and v > 0.6 * vmax else "black")
         ax.set_xticks(range(len(METHODS)))
@@ -309,6 +325,45 @@ def plot_options(rows, out):
     save(fig, out, "options.png")
 
 
+def plot_rest_return(rows, out):
+    """Rest error after settling against the tether, per body, walk and project."""
+    rrows = [r for r in rows if r["sweep"] == "rest" and num(r, "rest_error_max") is not None]
+    if not rrows:
+        return
+    bodies = []
+    for r in rrows:
+        if r["scene"] not in bodies:
+            bodies.append(r["scene"])
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.6))
+    keys = [("rest_error_rms", "rest error RMS (edge lengths)"),
+            ("rest_error_max", "rest error max (edge lengths)"),
+            ("slide_max", "max slide during the motion (edge lengths)")]
+    cmap = plt.get_cmap("tab10")
+    for ax, (key, title) in zip(axes, keys):
+        for i, b in enumerate(bodies):
+            for m, ls in (("walk", "-"), ("project", ":")):
+                pts = sorted((num(r, "tether"), num(r, key)) for r in rrows
+                             if r["scene"] == b and r["method"] == m
+                             and num(r, "tether") is not None and num(r, key) is not None)
+                if not pts:
+                    continue
+                xs = [max(x, 0.03) for x, _ in pts]  # tether 0 drawn at the left edge
+                ax.plot(xs, [max(y, 1e-4) for _, y in pts], ls=ls, marker="o", ms=3,
+                        color=cmap(i % 10), label="%s, %s" % (os.path.basename(b), m))
+        if key != "slide_max":
+            ax.axhline(0.1 if key == "rest_error_max" else 0.02, color="k", lw=0.8, ls="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("tether (1/s; 0 drawn at 0.03)")
+        ax.set_title(title, fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=6, loc="best")
+    fig.suptitle("Rest return: after the motion the body blends back to rest over 1 s and "
+                 "holds still (settle); solid walk, dotted project; dashed: the goals 0.02 rms, "
+                 "0.1 max", fontsize=9)
+    save(fig, out, "rest_return.png")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.stderr.write(__doc__)
@@ -319,6 +374,8 @@ def main():
         sys.stderr.write("plot_bench: %s/results.csv has no rows\n" % out)
         return 1
     plot_pareto(rows, out)
+    plot_pareto(rows, out, "error_vs_reference", "pareto_reference.png")
+    plot_rest_return(rows, out)
     plot_stability(rows, out)
     plot_scaling(rows, out)
     plot_breakdown(rows, out)

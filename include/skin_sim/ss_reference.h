@@ -34,13 +34,23 @@
 extern "C" {
 #endif
 
-#define SS_REFERENCE_VERSION 1      /* bump when the simulation's results change */
+#define SS_REFERENCE_VERSION 2      /* bump when the simulation's results change */
 #define SS_REFERENCE_SUBSTEPS 16
 #define SS_REFERENCE_ITERATIONS 100
 #define SS_REFERENCE_TOL 1e-6
 
 /* The settings of the reference of run (skin NULL: the body's own welded skin). */
 ss_run_settings ss_reference_settings(const ss_run_settings *run);
+
+/* The TRUTH of run: one run per body, motion and physical settings that every
+ * anchor method and solver setting is measured against (DESIGN.md,
+ * "Accuracy"): the paper's model at convergence, i.e. the reference of run
+ * with the default `walk` anchor update (ss_mover_default_settings) and
+ * exactly SS_REFERENCE_SUBSTEPS substeps, whatever the run's method, solver, iterations, tolerance and
+ * substeps. It is a reference like any other (ss_reference_get of these
+ * settings: the same key, cache file and checks), so the truth of a walk run
+ * with 16 substeps or fewer is its own reference. */
+ss_run_settings ss_truth_settings(const ss_run_settings *run);
 
 typedef struct ss_reference {
   int frames;            /* frames 1..frames */

@@ -17,8 +17,26 @@
  *  - hugging: the distance of every skin vertex to the body surface, RMS and
  *    maximum over all frames, in mean edge lengths (the silhouette must
  *    follow the animation);
- *  - final_hash: FNV-1a of the bytes of the final skin positions, so that
- *    determinism can be checked across runs and machines. */
+ *  - inverted faces: simulated skin faces whose normal points against the
+ *    body's normal where the face is anchored (its barycenter anchor's body
+ *    face, else the sum over its vertices' anchor faces; a skin of its own
+ *    wound the other way at rest is judged against its rest orientation):
+ *    the most in one frame. A face can turn over at full area, which the
+ *    area ratios do not see;
+ *  - inside: how deep a skin vertex goes under the body surface (behind the
+ *    plane of the closest body face), the deepest over all frames, in mean
+ *    edge lengths;
+ *  - slide: the largest distance of an anchor from where it was bound,
+ *    measured in the current pose, over the motion's frames;
+ *  - rest return (settle > 0): after the last frame the body blends linearly
+ *    back to its rest pose over one second, then holds still for `settle`
+ *    seconds while the skin keeps stepping; then each skin vertex's distance
+ *    to its own rest position (RMS and maximum). Failures, snags, inversions
+ *    and depth count the settle frames too; times, hug and slide are the
+ *    motion's;
+ *  - final_hash: FNV-1a of the bytes of the skin positions after the last
+ *    motion frame (before any settling), so that determinism can be checked
+ *    across runs and machines. */
 #ifndef SKIN_SIM_SS_RUN_H
 #define SKIN_SIM_SS_RUN_H
 
@@ -36,6 +54,8 @@ typedef struct ss_run_settings {
   ss_sim_settings sim; /* ss_sim_default_settings() */
   int frames;          /* 0: the scene's default */
   double snag_factor;  /* default 3 */
+  double settle;       /* s: after the motion, blend the body back to rest over 1 s, then hold
+                          it still this long and measure the rest return; 0 (default): no */
   const ss_sim_mesh *skin; /* a skin mesh of its own (e.g. coarser than the body), placed
                               on the body at rest; NULL (default): a welded copy of the body */
 } ss_run_settings;
@@ -59,6 +79,16 @@ typedef struct ss_run_stats {
   double min_area_ratio, max_area_ratio; /* over all frames and simulated faces */
   double hug_rms, hug_max;         /* mean edge lengths */
   double mean_edge_length;         /* body at rest, metres */
+  int inverted_faces_max;          /* most simulated skin faces turned against the body in a frame */
+  double inside_max;               /* deepest skin vertex under the body surface, mean edge lengths */
+  double slide_max, slide_max_m;   /* farthest anchor from where it was bound during the motion:
+                                      mean edge lengths, metres */
+  int settle_frames;               /* frames stepped after the motion (blend + hold) */
+  double rest_error_rms, rest_error_max; /* after settling: skin vertex to its rest position,
+                                            mean edge lengths (0 without settle) */
+  double rest_error_max_m;         /* the same maximum in metres */
+  double rest_slide_max;           /* after settling: farthest anchor from where it was bound,
+                                      mean edge lengths */
   unsigned long long final_hash;
 } ss_run_stats;
 
@@ -79,7 +109,8 @@ typedef struct ss_body {
 ss_body ss_body_of_scene(const ss_scene *scene);
 
 /* Called after each frame with the simulation (for output); returning
- * non-zero stops the run. */
+ * non-zero stops the run. Settle frames (ss_run_settings.settle) follow as
+ * frames + 1, frames + 2, ... */
 typedef int (*ss_frame_fn)(void *user, int frame, const ss_sim *sim, const double *body_pos);
 
 /* Runs the skin over a body. The skin is settings->skin, or else a copy of

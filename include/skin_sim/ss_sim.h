@@ -71,10 +71,21 @@ typedef struct ss_sim_settings {
   double bending;        /* hinge bending stiffness k (N m); 0 = off (default) */
   double gravity[3];     /* m/s^2; default 0 (off) */
   double damping;        /* 1/s: mass-proportional damping; default 0 */
-  double slide;          /* in [0, 1]: how far an anchor moves towards the skin point it holds
-                            in one substep (a* = a0 + slide (p - a0), then walked there):
-                            1 frictionless sliding, 0 glued to the body; default 0.5. Per
-                            substep, so the sliding resistance depends on the step size. */
+  double slide;          /* 1/s, >= 0: how fast an anchor follows the skin point it holds. In a
+                            substep of h seconds it goes a fraction 1 - exp(-slide h) of the
+                            way (a* = a0 + that (p - a0), then carried there by the mover): a
+                            relaxation with time constant 1/slide s, the same physics at any
+                            substep count. 0 glues the skin to the body, +inf (INFINITY)
+                            is frictionless (the whole way every substep). Default 30 ln 2
+                            = 20.79 /s: half the way per 1/30 s frame (the former per-substep
+                            fraction 0.5 at one substep, bit for bit) */
+  double tether;         /* 1/s, >= 0: the connective tissue under the skin. After its slide, each
+                            anchor WALKS back along the body surface (the walk, whatever the
+                            method, so it cannot jump across a gap) towards the point where it
+                            was bound, a fraction 1 - exp(-tether h) of the straight way there
+                            in a substep of h seconds: a relaxation rate independent of the step
+                            (a time constant of 1/tether s). 0 = the paper's free sliding;
+                            default 0 */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   int threads;           /* threads for per-face energies and anchor walks (OpenMP), 1..64;
                             default 1. The results are the same bits for any count; 2 pays

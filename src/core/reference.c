@@ -31,6 +31,7 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   ss_run_settings r = *run;
   const ss_sim_settings def = ss_sim_default_settings();
   r.skin = NULL;
+  r.settle = 0.0; /* the reference covers the motion's frames only */
   r.sim.solver = SS_SOLVER_NEWTON;
   r.sim.substeps = run->sim.substeps > SS_REFERENCE_SUBSTEPS ? run->sim.substeps
                                                              : SS_REFERENCE_SUBSTEPS;
@@ -39,15 +40,14 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   r.sim.lbfgs_history = def.lbfgs_history; /* unused by Newton: keeps keys equal */
   r.sim.dt = def.dt;                       /* a run steps 1 / fps whatever dt says */
   if (r.sim.mover.method != SS_METHOD_NRING) r.sim.mover.nring_rings = def.mover.nring_rings;
-  if (run->sim.substeps != r.sim.substeps && run->sim.slide < 1.0) {
-    /* the same share of the way per frame, rounded so that runs meaning the
-     * same slide with different substeps share one reference */
-    char text[64];
-    snprintf(text, sizeof text, "%.12g", pow(1.0 - run->sim.slide, run->sim.substeps));
-    double keep = strtod(text, NULL);
-    r.sim.slide = 1.0 - pow(keep, 1.0 / r.sim.substeps);
-  }
   return r;
+}
+
+ss_run_settings ss_truth_settings(const ss_run_settings *run) {
+  ss_run_settings t = *run;
+  t.sim.mover = ss_mover_default_settings();
+  t.sim.substeps = SS_REFERENCE_SUBSTEPS;
+  return ss_reference_settings(&t);
 }
 
 /* ---- the key ----------------------------------------------------------------- */
@@ -125,6 +125,7 @@ int ss_reference_key(const ss_body *body, const ss_run_settings *run, unsigned l
            s->poisson, s->density, s->anchor_stiffness, s->barycenter_anchors, s->bending);
   text_add(&t, "gravity %a %a %a damping %a slide %a\n", s->gravity[0], s->gravity[1],
            s->gravity[2], s->damping, s->slide);
+  if (s->tether != 0.0) text_add(&t, "tether %a\n", s->tether); /* absent: keys of before */
   text_add(&t, "mover %d steps %d rings %d\n", s->mover.method, s->mover.walk_max_steps,
            s->mover.nring_rings);
   if (s->face_mask)

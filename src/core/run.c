@@ -20,6 +20,7 @@ ss_run_settings ss_run_default_settings(void) {
   s.sim = ss_sim_default_settings();
   s.frames = 0;
   s.snag_factor = 3.0;
+  s.settle = 0.0;
   s.skin = NULL;
   return s;
 }
@@ -62,6 +63,126 @@ int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_fram
                      err_sz);
 }
 
+/* What the run measures outside the timed step, shared by the motion and the
+ * settle frames. */
+typedef struct run_meas {
+  const ss_topo *topo;
+  ss_frames *fr;
+  ss_bvh *bvh;
+  snag_judge judge;
+  int nanchor, skin_nvert, skin_nface;
+  const int *skin_faces;
+  double *rest_area;        /* (skin_nface) */
+  signed char *face_sign;   /* (skin_nface) orientation of the skin face against the body at
+                               rest: +1, -1 (a skin of its own wound the other way), 0 not judged */
+  int *old_face, *face0;    /* (nanchor) before this frame; bound at create */
+  double *old_uv, *uv0;     /* (nanchor x 2) */
+  double edge;
+  double hug_sum2;
+  long long hug_count;
+} run_meas;
+
+/* The body normal under skin face f where it is anchored: the barycenter
+ * anchor's face, else the sum over its vertices' anchor faces. */
+static void anchored_normal(const run_meas *m, const ss_sim *sim, int f, double n[3]) {
+  const int *af = ss_sim_anchor_faces(sim);
+  const int nv = m->skin_nvert;
+  n[0] = n[1] = n[2] = 0.0;
+  if (ss_sim_nanchors(sim) > nv && af[nv + f] >= 0) {
+    memcpy(n, m->fr->normal + 3 * af[nv + f], 3 * sizeof(double));
+    return;
+  }
+  for (int c = 0; c < 3; c++) {
+    int b = af[m->skin_faces[3 * f + c]];
+    if (b < 0) continue;
+    for (int k = 0; k < 3; k++) n[k] += m->fr->normal[3 * b + k];
+  }
+}
+
+/* Skin face f's (unnormalised) normal and its area ratio. */
+static double face_normal(const run_meas *m, const double *x, int f, double n[3]) {
+  const int *fv = m->skin_faces + 3 * f;
+  const double *a = x + 3 * fv[0], *b = x + 3 * fv[1], *c = x + 3 * fv[2];
+  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / m->rest_area[f];
+}
+
+/* The untimed measurements of a frame in the body pose pos; returns 1 if the
+ * frame failed (area ratio out of range, non-finite distance). */
+static int measure_frame(run_meas *m, const ss_sim *sim, const double *pos,
+                         const ss_run_settings *settings, ss_run_stats *stats) {
+  int frame_failed = 0;
+  const ss_topo *topo = m->topo;
+  const double edge = m->edge;
+  ss_frames_update(m->fr, topo, pos);
+  ss_bvh_refit(m->bvh, pos);
+  const double *x = ss_sim_skin_positions(sim);
+  int inverted = 0;
+  for (int f = 0; f < m->skin_nface; f++) {
+    /* faces outside the simulated region are the body's own: not judged */
+    if (!(m->rest_area[f] > 0.0) || (settings->sim.face_mask && !settings->sim.face_mask[f]))
+      continue;
+    double n[3], nb[3];
+    double ratio = face_normal(m, x, f, n);
+    if (!isfinite(ratio)) ratio = INFINITY;
+    if (ratio < stats->min_area_ratio) stats->min_area_ratio = ratio;
+    if (ratio > stats->max_area_ratio) stats->max_area_ratio = ratio;
+    if (!(ratio >= AREA_RATIO_MIN && ratio <= AREA_RATIO_MAX)) frame_failed = 1;
+    anchored_normal(m, sim, f, nb);
+    if (m->face_sign[f] * (n[0] * nb[0] + n[1] * nb[1] + n[2] * nb[2]) < 0.0) inverted++;
+  }
+  if (inverted > stats->inverted_faces_max) stats->inverted_faces_max = inverted;
+  for (int v = 0; v < m->skin_nvert; v++) {
+    int face;
+    double uv[2], c[3];
+    const double *p = x + 3 * v;
+    double d2 = ss_bvh_closest(m->bvh, pos, p, &face, uv);
+    double d = sqrt(d2) / edge;
+    if (!isfinite(d)) frame_failed = 1;
+    m->hug_sum2 += d * d;
+    m->hug_count++;
+    if (d > stats->hug_max) stats->hug_max = d;
+    /* below the surface: behind the closest face's plane */
+    ss_anchor_position(m->fr, face, uv, c);
+    const double *nf = m->fr->normal + 3 * face;
+    double depth = -((p[0] - c[0]) * nf[0] + (p[1] - c[1]) * nf[1] + (p[2] - c[2]) * nf[2]) / edge;
+    if (depth > stats->inside_max) stats->inside_max = depth;
+  }
+  const int *new_face = ss_sim_anchor_faces(sim);
+  const double *new_uv = ss_sim_anchor_uv(sim);
+  const double *pull = ss_sim_anchor_pull(sim), *path = ss_sim_anchor_path(sim);
+  const int walked = settings->sim.mover.method == SS_METHOD_WALK;
+  for (int i = 0; i < m->nanchor; i++) {
+    if (new_face[i] == m->old_face[i] && new_uv[2 * i] == m->old_uv[2 * i] &&
+        new_uv[2 * i + 1] == m->old_uv[2 * i + 1])
+      continue;
+    double limit = settings->snag_factor * pull[i] + edge;
+    if (snag_is(&m->judge, topo, m->fr, pos, m->old_face[i], m->old_uv + 2 * i, new_face[i],
+                new_uv + 2 * i, walked ? path[i] : -1.0, limit))
+      stats->snags++;
+  }
+  /* slide: how far each anchor is from where it was bound, in this pose */
+  for (int i = 0; i < m->nanchor; i++) {
+    if (new_face[i] < 0 || m->face0[i] < 0) continue;
+    double a[3], b[3];
+    ss_anchor_position(m->fr, new_face[i], new_uv + 2 * i, a);
+    ss_anchor_position(m->fr, m->face0[i], m->uv0 + 2 * i, b);
+    double s = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                    (a[2] - b[2]) * (a[2] - b[2]));
+    if (s > stats->slide_max_m) stats->slide_max_m = s;
+  }
+  return frame_failed;
+}
+
+/* Before a frame: the anchors as they are, for the snag test. */
+static void remember_anchors(run_meas *m, const ss_sim *sim) {
+  memcpy(m->old_face, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)m->nanchor);
+  memcpy(m->old_uv, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)m->nanchor);
+}
+
 int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,
                 void *frame_user, ss_progress_fn progress, void *progress_user,
                 ss_run_stats *stats, char *err, int err_sz) {
@@ -71,6 +192,9 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   if (!(settings->snag_factor > 0.0 && isfinite(settings->snag_factor)))
     return ss_fail(err, err_sz, SS_E_ARG, "run: snag factor must be a finite number > 0");
   if (settings->frames < 0) return ss_fail(err, err_sz, SS_E_ARG, "run: frames must be >= 0");
+  if (!(settings->settle >= 0.0 && settings->settle <= 1e6))
+    return ss_fail(err, err_sz, SS_E_ARG, "run: settle must be in [0, 1e6] s (got %g)",
+                   settings->settle);
   memset(stats, 0, sizeof *stats);
   const int nvert = body->nvert, nface = body->nface;
   const int frames = settings->frames > 0 ? settings->frames : (body->frames > 0 ? body->frames : 1);
@@ -95,18 +219,31 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   const ss_topo *topo = ss_sim_body_topo(sim);
   const int nanchor = ss_sim_nanchors(sim), skin_nvert = ss_sim_skin_nvert(sim);
   const int skin_nface = ss_sim_skin_nface(sim);
-  ss_frames *fr = NULL;
-  ss_bvh *bvh = NULL;
-  snag_judge judge = {0};
-  status = ss_frames_create(&fr, nface);
-  if (!status) status = ss_bvh_create(&bvh, topo);
-  if (!status) status = snag_judge_init(&judge, topo);
+  /* settle: one second blending back to rest, then settle seconds at rest */
+  const int blend_frames = settings->settle > 0.0 ? (int)ceil(body->fps - 1e-9) : 0;
+  const int hold_frames = settings->settle > 0.0 ? (int)ceil(settings->settle * body->fps - 1e-9) : 0;
+  run_meas m;
+  memset(&m, 0, sizeof m);
+  m.topo = topo;
+  m.nanchor = nanchor;
+  m.skin_nvert = skin_nvert;
+  m.skin_nface = skin_nface;
+  m.skin_faces = ss_sim_skin_faces(sim);
+  m.edge = topo->mean_edge_length;
+  status = ss_frames_create(&m.fr, nface);
+  if (!status) status = ss_bvh_create(&m.bvh, topo);
+  if (!status) status = snag_judge_init(&m.judge, topo);
   double *pos = malloc(sizeof(double) * 3 * (size_t)nvert);
-  int *old_face = malloc(sizeof(int) * (size_t)nanchor);
-  double *old_uv = malloc(sizeof(double) * 2 * (size_t)nanchor);
-  double *rest_area = malloc(sizeof(double) * (size_t)skin_nface);
+  double *last = blend_frames ? malloc(sizeof(double) * 3 * (size_t)nvert) : NULL;
+  m.old_face = malloc(sizeof(int) * (size_t)nanchor);
+  m.old_uv = malloc(sizeof(double) * 2 * (size_t)nanchor);
+  m.face0 = malloc(sizeof(int) * (size_t)nanchor);
+  m.uv0 = malloc(sizeof(double) * 2 * (size_t)nanchor);
+  m.rest_area = malloc(sizeof(double) * (size_t)skin_nface);
+  m.face_sign = malloc((size_t)skin_nface + 1);
   double *ms = malloc(sizeof(double) * 5 * (size_t)(frames > 0 ? frames : 1));
-  if (!status && !(pos && old_face && old_uv && rest_area && ms))
+  if (!status && !(pos && m.old_face && m.old_uv && m.face0 && m.uv0 && m.rest_area &&
+                   m.face_sign && ms && (last || !blend_frames)))
     status = SS_E_NOMEM;
   if (status) {
     ss_fail(err, err_sz, status, "run: out of memory for %d anchors", nanchor);
@@ -129,24 +266,24 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   stats->min_area_ratio = INFINITY;
   stats->max_area_ratio = 0.0;
   const double edge = topo->mean_edge_length;
-  const int *skin_faces = ss_sim_skin_faces(sim);
   const double *skin_rest = ss_sim_skin_rest(sim);
+  memcpy(m.face0, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)nanchor);
+  memcpy(m.uv0, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)nanchor);
+  ss_frames_update(m.fr, topo, body->rest);
   for (int f = 0; f < skin_nface; f++) {
-    const double *a = skin_rest + 3 * skin_faces[3 * f], *b = skin_rest + 3 * skin_faces[3 * f + 1],
-                 *c = skin_rest + 3 * skin_faces[3 * f + 2];
-    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                   e1[0] * e2[1] - e1[1] * e2[0]};
-    rest_area[f] = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double n[3], nb[3];
+    m.rest_area[f] = 1.0;
+    m.rest_area[f] = face_normal(&m, skin_rest, f, n);
+    anchored_normal(&m, sim, f, nb);
+    double d = n[0] * nb[0] + n[1] * nb[1] + n[2] * nb[2];
+    m.face_sign[f] = (signed char)(d > 0.0 ? 1 : d < 0.0 ? -1 : 0);
   }
 
-  double hug_sum2 = 0.0;
-  long long hug_count = 0, iterations = 0, walk_steps = 0, anchor_updates = 0;
+  long long iterations = 0, walk_steps = 0, anchor_updates = 0;
   double walk_total = 0.0, step_total = 0.0;
-  int done_frames = 0;
+  int done_frames = 0, stopped = 0;
   for (int frame = 1; frame <= frames; frame++) {
-    memcpy(old_face, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)nanchor);
-    memcpy(old_uv, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)nanchor);
+    remember_anchors(&m, sim);
     status = body->pose(body->user, (double)frame, pos);
     if (status) {
       ss_fail(err, err_sz, status, "run: the body's pose at frame %d failed (%s)", frame,
@@ -173,54 +310,59 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
     stats->anchors_at_crease += st.anchors_crease;
     stats->anchors_at_step_limit += st.anchors_step_limit;
 
-    /* untimed measurements in the new pose */
-    ss_frames_update(fr, topo, pos);
-    ss_bvh_refit(bvh, pos);
-    const double *x = ss_sim_skin_positions(sim);
-    for (int f = 0; f < skin_nface; f++) {
-      /* faces outside the simulated region are the body's own: not judged */
-      if (!(rest_area[f] > 0.0) || (settings->sim.face_mask && !settings->sim.face_mask[f]))
-        continue;
-      const double *a = x + 3 * skin_faces[3 * f], *b = x + 3 * skin_faces[3 * f + 1],
-                   *c = x + 3 * skin_faces[3 * f + 2];
-      double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
-             e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                     e1[0] * e2[1] - e1[1] * e2[0]};
-      double ratio = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / rest_area[f];
-      if (!isfinite(ratio)) ratio = INFINITY;
-      if (ratio < stats->min_area_ratio) stats->min_area_ratio = ratio;
-      if (ratio > stats->max_area_ratio) stats->max_area_ratio = ratio;
-      if (!(ratio >= AREA_RATIO_MIN && ratio <= AREA_RATIO_MAX)) frame_failed = 1;
-    }
-    for (int v = 0; v < skin_nvert; v++) {
-      int face;
-      double uv[2];
-      double d2 = ss_bvh_closest(bvh, pos, x + 3 * v, &face, uv);
-      double d = sqrt(d2) / edge;
-      if (!isfinite(d)) frame_failed = 1;
-      hug_sum2 += d * d;
-      hug_count++;
-      if (d > stats->hug_max) stats->hug_max = d;
-    }
-    const int *new_face = ss_sim_anchor_faces(sim);
-    const double *new_uv = ss_sim_anchor_uv(sim);
-    const double *pull = ss_sim_anchor_pull(sim), *path = ss_sim_anchor_path(sim);
-    const int walked = settings->sim.mover.method == SS_METHOD_WALK;
-    for (int i = 0; i < nanchor; i++) {
-      if (new_face[i] == old_face[i] && new_uv[2 * i] == old_uv[2 * i] &&
-          new_uv[2 * i + 1] == old_uv[2 * i + 1])
-        continue;
-      double limit = settings->snag_factor * pull[i] + edge;
-      if (snag_is(&judge, topo, fr, pos, old_face[i], old_uv + 2 * i, new_face[i],
-                  new_uv + 2 * i, walked ? path[i] : -1.0, limit))
-        stats->snags++;
-    }
+    frame_failed |= measure_frame(&m, sim, pos, settings, stats);
     stats->failures += frame_failed;
     done_frames++;
-    if (on_frame && on_frame(frame_user, frame, sim, pos)) break;
-    if (progress && progress(progress_user, frame, frames)) break;
+    if (on_frame && on_frame(frame_user, frame, sim, pos)) { stopped = 1; break; }
+    if (progress && progress(progress_user, frame, frames)) { stopped = 1; break; }
   }
+  /* the skin after the motion (before any settling) */
+  stats->final_hash =
+      ss_hash_bytes(ss_sim_skin_positions(sim), sizeof(double) * 3 * (size_t)skin_nvert);
+  if (!status && !stopped && done_frames == frames && blend_frames > 0) {
+    /* settle: the body blends linearly from its last pose back to rest over
+     * one second, then holds still while the skin keeps stepping. Failures,
+     * snags, inversions and depth are counted; slide, hug and times are the
+     * motion's. */
+    memcpy(last, pos, sizeof(double) * 3 * (size_t)nvert);
+    const double slide_max_m = stats->slide_max_m, hug_max = stats->hug_max;
+    const double hug_sum2 = m.hug_sum2;
+    const long long hug_count = m.hug_count;
+    for (int k = 1; k <= blend_frames + hold_frames && !status; k++) {
+      double w = k >= blend_frames ? 1.0 : (double)k / blend_frames;
+      for (int i = 0; i < 3 * nvert; i++) pos[i] = last[i] + w * (body->rest[i] - last[i]);
+      if (k >= blend_frames) memcpy(pos, body->rest, sizeof(double) * 3 * (size_t)nvert);
+      remember_anchors(&m, sim);
+      ss_sim_stats st;
+      char step_err[256] = "";
+      int step_status = ss_sim_step(sim, pos, dt, &st, step_err, sizeof step_err);
+      int frame_failed = step_status != SS_OK || st.failures > 0;
+      stats->slide_max_m = 0.0;
+      frame_failed |= measure_frame(&m, sim, pos, settings, stats);
+      stats->failures += frame_failed;
+      stats->settle_frames++;
+      if (on_frame && on_frame(frame_user, frames + k, sim, pos)) break;
+    }
+    stats->rest_slide_max = stats->slide_max_m / edge; /* the last frame's: the anchors at rest */
+    stats->slide_max_m = slide_max_m;
+    stats->hug_max = hug_max;
+    m.hug_sum2 = hug_sum2;
+    m.hug_count = hug_count;
+    const double *x = ss_sim_skin_positions(sim);
+    double sum2 = 0.0, worst = 0.0;
+    for (int v = 0; v < skin_nvert; v++) {
+      const double *p = x + 3 * v, *r = skin_rest + 3 * v;
+      double d2 = (p[0] - r[0]) * (p[0] - r[0]) + (p[1] - r[1]) * (p[1] - r[1]) +
+                  (p[2] - r[2]) * (p[2] - r[2]);
+      sum2 += d2;
+      if (d2 > worst) worst = d2;
+    }
+    stats->rest_error_max_m = sqrt(worst);
+    stats->rest_error_rms = skin_nvert ? sqrt(sum2 / skin_nvert) / edge : 0.0;
+    stats->rest_error_max = stats->rest_error_max_m / edge;
+  }
+  stats->slide_max = stats->slide_max_m / edge;
+  stats->hug_rms = m.hug_count ? sqrt(m.hug_sum2 / (double)m.hug_count) : 0.0;
 
   stats->frames = done_frames;
   stats->iterations_mean = done_frames ? (double)iterations / done_frames : 0.0;
@@ -231,20 +373,20 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   stats->assemble_ms_per_frame_median = ss_median(ms_asm, done_frames);
   stats->factor_ms_per_frame_median = ss_median(ms_factor, done_frames);
   stats->solve_ms_per_frame_median = ss_median(ms_solve, done_frames);
-  stats->hug_rms = hug_count ? sqrt(hug_sum2 / (double)hug_count) : 0.0;
   if (!isfinite(stats->min_area_ratio)) stats->min_area_ratio = 0.0;
-  stats->final_hash =
-      ss_hash_bytes(ss_sim_skin_positions(sim), sizeof(double) * 3 * (size_t)skin_nvert);
-
 done:
   free(pos);
-  free(old_face);
-  free(old_uv);
-  free(rest_area);
+  free(last);
+  free(m.old_face);
+  free(m.old_uv);
+  free(m.face0);
+  free(m.uv0);
+  free(m.rest_area);
+  free(m.face_sign);
   free(ms);
-  snag_judge_free(&judge);
-  ss_bvh_destroy(bvh);
-  ss_frames_destroy(fr);
+  snag_judge_free(&m.judge);
+  ss_bvh_destroy(m.bvh);
+  ss_frames_destroy(m.fr);
   ss_sim_destroy(sim);
   return status;
 }

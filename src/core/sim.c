@@ -10,7 +10,9 @@
  *               (solver_*.c);
  *   3. velocity v = (x - x_n) / h;
  *   4. anchors  the spring force drags each anchor of a free point towards the
- *               skin point it holds: a* = a0 + slide (p - a0), then the mover
+ *               skin point it holds: a* = a0 + (1 - exp(-slide h)) (p - a0)
+ *               (slide a rate per second, so any substep count converges to
+ *               one relaxation), then the mover
  *               carries (face, u, v) over the body to a* (walk / project /
  *               nring, ss_anchor.h).
  * A solve that meets a non-finite value keeps the last finite state and is
@@ -62,7 +64,8 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.barycenter_anchors = 1;
   s.bending = 0.0;
   s.damping = 0.0;
-  s.slide = 0.5;
+  s.slide = 30.0 * log(2.0); /* half the way per 1/30 s frame: the former per-substep 0.5 */
+  s.tether = 0.0;
   s.mover = ss_mover_default_settings();
   s.threads = 1;
   s.face_mask = NULL;
@@ -95,8 +98,10 @@ static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
     return ss_fail(err, err_sz, SS_E_ARG, "bending must be >= 0 (got %g)", s->bending);
   if (!(isfinite(s->damping) && s->damping >= 0.0))
     return ss_fail(err, err_sz, SS_E_ARG, "damping must be >= 0 (got %g)", s->damping);
-  if (!(s->slide >= 0.0 && s->slide <= 1.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "slide must be in [0, 1] (got %g)", s->slide);
+  if (!(s->slide >= 0.0)) /* +inf: frictionless */
+    return ss_fail(err, err_sz, SS_E_ARG, "slide must be a rate >= 0 per second (got %g)", s->slide);
+  if (!(isfinite(s->tether) && s->tether >= 0.0))
+    return ss_fail(err, err_sz, SS_E_ARG, "tether must be a finite rate >= 0 per second (got %g)", s->tether);
   for (int i = 0; i < 3; i++)
     if (!isfinite(s->gravity[i])) return ss_fail(err, err_sz, SS_E_ARG, "gravity must be finite");
   if (s->threads < 1 || s->threads > 64)
@@ -355,25 +360,56 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
       p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) / 3.0;
   }
   if (sim->anchor_face[a] < 0) return;
-  const double slide = sim->set.slide;
+  const double slide = sim->slide_frac;
   const double *a0 = sim->anchor_pos + 3 * a;
   double target[3];
-  for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-  ss_walk_result res;
-  if (walker)
-    ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
-                       &res);
-  else
-    ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
-  double pull2 = 0.0;
-  for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
-  sim->anchor_pull[a] += sqrt(pull2);
-  sim->anchor_path[a] += res.length;
+  ss_walk_result res = {0};
+  res.face = sim->anchor_face[a];
+  res.uv[0] = sim->anchor_uv[2 * a];
+  res.uv[1] = sim->anchor_uv[2 * a + 1];
+  if (slide > 0.0) {
+    for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
+    if (walker)
+      ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
+                         &res);
+    else
+      ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
+    double pull2 = 0.0;
+    for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
+    sim->anchor_pull[a] += sqrt(pull2);
+    sim->anchor_path[a] += res.length;
+    c->steps += res.steps;
+  }
+  if (sim->tether_frac > 0.0 && sim->anchor_face0[a] >= 0) {
+    /* the tether: walk back along the surface towards where the anchor was
+     * bound (always the walk, whatever the method: it cannot jump a gap) */
+    const ss_frames *fr = ss_mover_frames(sim->mover);
+    double here[3], home[3];
+    ss_anchor_position(fr, res.face, res.uv, here);
+    ss_anchor_position(fr, sim->anchor_face0[a], sim->anchor_uv0 + 2 * a, home);
+    double pull2 = 0.0;
+    for (int i = 0; i < 3; i++) {
+      target[i] = here[i] + sim->tether_frac * (home[i] - here[i]);
+      pull2 += (target[i] - here[i]) * (target[i] - here[i]);
+    }
+    if (pull2 > 0.0) {
+      const int face = res.face;
+      const double uv[2] = {res.uv[0], res.uv[1]};
+      ss_walk_result back;
+      ss_walk(walker ? walker : sim->walkers[0], sim->btopo, fr, face, uv, target,
+              sim->set.mover.walk_max_steps, &back);
+      res.face = back.face;
+      res.uv[0] = back.uv[0];
+      res.uv[1] = back.uv[1];
+      sim->anchor_pull[a] += sqrt(pull2);
+      sim->anchor_path[a] += back.length;
+      c->steps += back.steps;
+    }
+  }
   sim->anchor_face[a] = res.face;
   sim->anchor_uv[2 * a] = res.uv[0];
   sim->anchor_uv[2 * a + 1] = res.uv[1];
   c->moved++;
-  c->steps += res.steps;
   c->boundary += res.stop == SS_STOP_BOUNDARY;
   c->crease += res.stop == SS_STOP_CREASE;
   c->step_limit += res.stop == SS_STOP_STEP_LIMIT;
@@ -385,7 +421,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
  * anchors, each thread with its own walker: the same bits whatever the
  * thread count. */
 static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
-  if (sim->set.slide <= 0.0) return;
+  if (sim->slide_frac <= 0.0 && sim->tether_frac <= 0.0) return;
   const int nanchor = sim->nanchor;
   anchor_counts c = {0, 0, 0, 0, 0};
 #ifdef _OPENMP
@@ -515,7 +551,9 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     /* 3. velocities */
     for (size_t i = 0; i < nv3; i++) sim->v[i] = (sim->x[i] - sim->x_prev[i]) / h;
     if (status != SS_OK) break;
-    /* 4. anchors */
+    /* 4. anchors: the fractions of the way of this substep */
+    sim->slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0;
+    sim->tether_frac = sim->set.tether > 0.0 ? -expm1(-sim->set.tether * h) : 0.0;
     t0 = ss_now_ms();
     move_anchors(sim, st);
     st->walk_ms += ss_now_ms() - t0;

@@ -85,6 +85,8 @@ struct ss_sim {
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
+  double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
+  double tether_frac;         /* share of the way back home it walks this substep */
   double *mi;                 /* (ndof) inertia weight: mass (1/h^2 + damping/h) */
   double *diag_const;         /* (ndof) diagonal of the scalar matrix without inertia */
   double *target;             /* (ndof x 3) inertia target (prediction, damping, gravity) */

@@ -22,10 +22,10 @@ echo "bench --quick: exit $rc in $(( $(date +%s) - start )) s"
 check "bench --quick exits 0" "[ $rc -eq 0 ]" || tail -n 20 "$tmp/err"
 check "a progress line per run on stderr" "grep -q '^\[1/' '$tmp/err'"
 for f in results.csv pareto.png stability.png stability.md scaling.png breakdown.png \
-         options.png options.md; do
+         options.png options.md pareto_reference.png rest_return.png; do
   check "$f written and not empty" "[ -s '$tmp/out/$f' ]"
 done
-for f in pareto stability scaling breakdown options; do
+for f in pareto pareto_reference stability scaling breakdown options rest_return; do
   check "$f.png is a PNG" "head -c 8 '$tmp/out/$f.png' | od -An -c | grep -q 'P   N   G'"
 done
 scenes=$("$exe" scenes | awk 'NR > 1 {print $1}' | tr '\n' ' ')
@@ -44,14 +44,24 @@ missing = [(b, m) for b in bodies for m in methods if (b, m) not in have]
 need = ['sweep', 'scene', 'method', 'solver', 'triangles', 'frames', 'substeps', 'iterations',
         'ms_per_frame_median', 'walk_ms_per_frame_median', 'assemble_ms_per_frame_median',
         'factor_ms_per_frame_median', 'solve_ms_per_frame_median', 'snags', 'failures',
-        'hug_rms', 'hug_max', 'final_hash', 'error_vs_reference', 'reference_cache_hit']
+        'hug_rms', 'hug_max', 'final_hash', 'error_vs_reference', 'reference_cache_hit',
+        'error_vs_truth', 'inverted_faces_max', 'inside_max', 'slide_max', 'tether',
+        'rest_error_rms', 'rest_error_max', 'rest_error_max_m']
 absent = [k for k in need if k not in rows[0]]
-noerr = [(r['scene'], label(r)) for r in rows if r['sweep'] == 'methods' and not r['error_vs_reference']]
+noerr = [(r['scene'], label(r)) for r in rows if r['sweep'] == 'methods' and
+         (not r['error_vs_reference'] or not r['error_vs_truth'])]
+# one truth per body: every method of a body has the same truth key
+keys = {}
+for r in rows:
+    if r['sweep'] == 'methods':
+        keys.setdefault(r['scene'], set()).add(r['truth_key'])
+noerr += [(b, 'truth keys') for b, k in keys.items() if len(k) != 1]
+noerr += [(r['scene'], 'rest') for r in rows if r['sweep'] == 'rest' and not r['rest_error_max']]
 sweeps = {r['sweep'] for r in rows}
 solvers = {r['solver'] for r in rows}
 print('rows', len(rows), 'missing', missing, 'absent', absent, 'no error', noerr, sweeps, solvers)
 ok = not missing and not absent and not noerr and solvers == {'newton', 'quasi-newton'} and \
-    sweeps == {'methods', 'solvers', 'substeps', 'scaling', 'options'}
+    sweeps == {'methods', 'solvers', 'substeps', 'scaling', 'options', 'rest'}
 sys.exit(0 if ok else 1)
 PY"
 # a run whose frames fail is kept (its row, failures > 0) and the sweep goes on; the summary

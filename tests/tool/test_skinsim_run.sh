@@ -16,7 +16,7 @@ py=/usr/bin/python3
 check "run exits 0" "[ $rc -eq 0 ]"
 for k in scene method triangles vertices anchors frames ms_per_frame_median walk_ms_per_frame_median \
          walk_share solver iterations_mean snags failures min_area_ratio max_area_ratio hug_rms \
-         hug_max final_hash; do
+         hug_max final_hash inverted_faces_max inside_max slide_max slide_max_m tether settle; do
   check "run JSON has $k" "grep -q '\"$k\":' '$tmp/a.json'"
 done
 check "run JSON: 6 frames of walk with quasi-newton, finite numbers" \
@@ -42,6 +42,12 @@ d = json.load(open(sys.argv[2]))
 assert nv == d['vertices'] and nf == d['triangles']
 PY"
 
+"$exe" run --scene fold --tris 300 --frames 4 --settle 0.5 --tether 3 --json "$tmp/r.json" \
+  --out "$tmp/rout" > /dev/null; rc=$?
+check "--settle: rest return fields, 1 s blend + 0.5 s hold = 45 frames, walk clean" \
+  "[ $rc -eq 0 ] && $py -c 'import json,sys; d=json.load(open(\"$tmp/r.json\")); sys.exit(0 if d[\"settle_frames\"]==45 and d[\"rest_error_max\"]>=d[\"rest_error_rms\"]>=0 and d[\"rest_error_max_m\"]>=0 and d[\"tether\"]==3 and d[\"snags\"]==0 and d[\"failures\"]==0 else 1)'"
+check "--out with --settle writes the settling frames too" "[ -s '$tmp/rout/skin_0049.ply' ]"
+
 bad() { # bad <description> <args...>: exit 2, one line on stderr naming the problem
   local what="$1"; shift
   "$exe" "$@" > /dev/null 2> "$tmp/err"; local rc=$?
@@ -51,8 +57,10 @@ bad() { # bad <description> <args...>: exit 2, one line on stderr naming the pro
 bad "run without scene" run
 bad "run unknown solver" run --scene fold --solver magic
 bad "run negative dt" run --scene fold --dt -1
-bad "run slide out of range" run --scene fold --slide 2
+bad "run slide out of range" run --scene fold --slide -1
 bad "run substeps zero" run --scene fold --substeps 0
+bad "run negative tether" run --scene fold --tether -1
+bad "run negative settle" run --scene fold --settle -2
 bad "run NaN tol" run --scene fold --tol nan
 bad "run unknown scene" run --scene nowhere
 bad "run unwritable out" run --scene fold --frames 1 --out /proc/no/such/dir

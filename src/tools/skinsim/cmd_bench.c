@@ -8,11 +8,14 @@
  * walk: the defaults) varied one axis at a time, not the cartesian product:
  *  - methods:  every body x {walk, project, nring 1, 2, 4}          (stability, Pareto)
  *  - solvers:  a few scenes x {newton, quasi-newton} x iterations {1, 2, 4, 8, converged}
- *  - substeps: the same scenes x substeps {2, 4}, slide per substep chosen so that an
- *              anchor slides the same share of its way per frame as with 1 substep
+ *  - substeps: the same scenes x substeps {2, 4} (slide is a rate: the same physics)
  *  - scaling:  the quadruped at growing sizes, walk and project (no reference)
  *  - options:  a few scenes: barycenter anchors off, bending on, gravity on, a region
  *              mask, a coarser skin than the body
+ *  - rest:     every scene and the demo x tether {0, 1, 3, 10} /s x {walk, project}, with
+ *              a 3 s settle after the motion (rest return; no reference)
+ * Every run with a reference is also measured against the truth (ss_truth_settings:
+ * one per body, motion and physical settings, whatever the method).
  * --quick shrinks sizes and frame counts (and the lists) to finish in minutes. */
 #include <errno.h>
 #include <math.h>
@@ -51,6 +54,8 @@ typedef struct bench_case {
   int option;
   int reference;
   const char *variant; /* short label of what was varied */
+  double tether;       /* 1/s (rest sweep) */
+  double settle;       /* s: rest return measured after the motion (rest sweep); 0 none */
 } bench_case;
 
 typedef struct case_list {
@@ -74,7 +79,7 @@ static bench_case base_case(const char *sweep, const char *body, int avatar, int
                             int frames) {
   ss_sim_settings d = ss_sim_default_settings();
   bench_case c = {sweep, body, avatar, tris, frames, SS_METHOD_WALK, d.mover.nring_rings,
-                  d.solver, d.iterations, 1, d.tol, OPT_NONE, 1, "base"};
+                  d.solver, d.iterations, 1, d.tol, OPT_NONE, 1, "base", 0.0, 0.0};
   return c;
 }
 
@@ -158,6 +163,30 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
       bad |= add_case(l, c);
     }
   }
+  /* rest return against the tether, with and without the walk */
+  static const double tethers[] = {0.0, 1.0, 3.0, 10.0};
+  static const char *const tether_labels[] = {"tether 0", "tether 1", "tether 3", "tether 10"};
+  for (int b = 0; b < nscene + 1; b++) {
+    const int avatar = b == nscene;
+#ifndef SS_HAVE_AVATAR
+    if (avatar) continue;
+#endif
+    if (quick && !avatar && strcmp(ss_scene_name(b), "elbow") != 0) continue;
+    for (int t = 0; t < 4; t++) {
+      if (quick && (t == 1 || t == 3)) continue;
+      for (int m = 0; m < 2; m++) {
+        bench_case c = base_case("rest", avatar ? "demo" : ss_scene_name(b), avatar,
+                                 avatar ? demo_tris : scene_tris,
+                                 avatar ? (quick ? 1 : 120) : frames);
+        c.method = m ? SS_METHOD_PROJECT : SS_METHOD_WALK;
+        c.reference = 0;
+        c.tether = tethers[t];
+        c.settle = quick ? 1.0 : 3.0;
+        c.variant = tether_labels[t];
+        bad |= add_case(l, c);
+      }
+    }
+  }
   return bad ? -1 : 0;
 }
 
@@ -223,8 +252,8 @@ static int run_case(bench_ctx *ctx, const bench_case *c, int index, int count, d
   s.sim.iterations = c->iterations;
   s.sim.tol = c->tol;
   s.sim.substeps = c->substeps;
-  if (c->substeps > 1) /* the same share of the way per frame as one substep */
-    s.sim.slide = 1.0 - pow(1.0 - s.sim.slide, 1.0 / c->substeps);
+  s.sim.tether = c->tether;
+  s.settle = c->settle;
   int status = SS_OK;
   const char *label = c->body;
   if (c->avatar == 0) {
@@ -282,7 +311,7 @@ static int run_case(bench_ctx *ctx, const bench_case *c, int index, int count, d
   base.sim.face_mask = NULL;
   if (!status)
     status = measure_run(&body, &s, c->sweep[0] == 'o' ? &base : NULL,
-                         c->reference ? ctx->cache_dir : NULL, NULL, NULL, NULL, NULL, &res, err,
+                         c->reference ? ctx->cache_dir : NULL, c->reference, NULL, NULL, NULL, NULL, &res, err,
                          sizeof err);
   int rc = 0;
   if (status) {

@@ -79,7 +79,7 @@ static int check_out_dir(const char *dir) {
 
 int cmd_run(int argc, char **argv) {
   const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL, *cache_opt = NULL;
-  int tris = 0, reference = 0;
+  int tris = 0, reference = 0, truth = 0;
   avatar_args av = {0};
   ss_run_settings s = ss_run_default_settings();
   for (int i = 1; i < argc; i++) {
@@ -117,7 +117,7 @@ int cmd_run(int argc, char **argv) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.bending))
         return EXIT_USAGE;
     } else if (strcmp(a, "--slide") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1.0, &s.sim.slide))
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e9, &s.sim.slide))
         return EXIT_USAGE;
     } else if (strcmp(a, "--young") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.young))
@@ -175,8 +175,16 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--primitive-edge") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-4, 10.0, &av.primitive_edge))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--tether") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tether))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--settle") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.settle))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--reference") == 0) {
       reference = 1;
+    } else if (strcmp(a, "--truth") == 0) {
+      reference = truth = 1;
     } else if (strcmp(a, "--cache") == 0) {
       if (!(cache_opt = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--json") == 0) {
@@ -224,7 +232,7 @@ int cmd_run(int argc, char **argv) {
   progress bar;
   progress_begin(&bar, scene_name ? scene_name : "avatar");
   measure_result res;
-  int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, out_dir ? write_frame : NULL,
+  int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, truth, out_dir ? write_frame : NULL,
                            &writer, progress_update, &bar, &res, err, sizeof err);
   const ss_run_stats st = res.st;
   progress_end(&bar);
@@ -256,10 +264,22 @@ int cmd_run(int argc, char **argv) {
            st.triangles, st.frames, st.ms_per_frame_median, st.walk_ms_per_frame_median,
            100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
            st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
+  if (!json_path || strcmp(json_path, "-") != 0)
+    printf("inverted faces max %d, inside max %.3f edges, slide max %.3f edges (%.4g m)\n",
+           st.inverted_faces_max, st.inside_max, st.slide_max, st.slide_max_m);
+  if (s.settle > 0.0 && (!json_path || strcmp(json_path, "-") != 0))
+    printf("rest return after %.3g s settle (%d frames): rms %.4f max %.4f edges (%.4g m), "
+           "anchors at most %.4f edges from home\n",
+           s.settle, st.settle_frames, st.rest_error_rms, st.rest_error_max,
+           st.rest_error_max_m, st.rest_slide_max);
   if (reference && (!json_path || strcmp(json_path, "-") != 0))
     printf("error vs reference %.4g mean edge lengths (reference %016llx, %s, %.0f ms)\n",
            res.error_vs_reference, res.reference_key,
            res.reference_cache_hit ? "from the cache" : "computed", res.reference_ms);
+  if (truth && (!json_path || strcmp(json_path, "-") != 0))
+    printf("error vs truth %.4g mean edge lengths (truth %016llx, %s, %.0f ms)\n",
+           res.error_vs_truth, res.truth_key, res.truth_cache_hit ? "from the cache" : "computed",
+           res.truth_ms);
   avatar_body_close(ab);
   if (st.failures > 0) {
     cli_error("run failed: %lld of %d frames failed (a non-finite value, a triangle squeezed or "

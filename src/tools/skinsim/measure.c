@@ -39,8 +39,8 @@ int measure_cache_dir(const char *dir, char *out, int out_sz) {
 }
 
 typedef struct error_frame {
-  const ss_reference *ref[2];
-  ss_ref_error *err[2];
+  const ss_reference *ref[3];
+  ss_ref_error *err[3];
   int status;
   char msg[256];
   ss_frame_fn next;
@@ -49,7 +49,7 @@ typedef struct error_frame {
 
 static int error_on_frame(void *user, int frame, const ss_sim *sim, const double *body_pos) {
   error_frame *e = user;
-  for (int k = 0; k < 2 && !e->status; k++) {
+  for (int k = 0; k < 3 && !e->status; k++) {
     if (!e->ref[k]) continue;
     if (!e->err[k])
       e->status = ss_ref_error_create(&e->err[k], e->ref[k], ss_sim_skin_nvert(sim),
@@ -61,7 +61,7 @@ static int error_on_frame(void *user, int frame, const ss_sim *sim, const double
 }
 
 int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_settings *base,
-                const char *cache_dir, ss_frame_fn on_frame, void *frame_user,
+                const char *cache_dir, int truth, ss_frame_fn on_frame, void *frame_user,
                 ss_progress_fn progress_fn, void *progress_user, measure_result *res, char *err,
                 int err_sz) {
   memset(res, 0, sizeof *res);
@@ -69,13 +69,25 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   if (!cache_dir)
     return ss_run_body(body, s, on_frame, frame_user, progress_fn, progress_user, &res->st, err,
                        err_sz);
-  ss_reference *ref = NULL, *base_ref = NULL;
+  ss_reference *ref = NULL, *base_ref = NULL, *truth_ref = NULL;
   int status = ss_reference_get(&ref, body, s, cache_dir, NULL, NULL, err, err_sz);
   if (!status && base)
     status = ss_reference_get(&base_ref, body, base, cache_dir, NULL, NULL, err, err_sz);
+  if (!status && truth) {
+    /* the truth is the reference of its own settings (their reference is themselves) */
+    const ss_run_settings ts = ss_truth_settings(s);
+    status = ss_reference_get(&truth_ref, body, &ts, cache_dir, NULL, NULL, err, err_sz);
+  }
   if (status) {
     ss_reference_destroy(ref);
+    ss_reference_destroy(base_ref);
     return status;
+  }
+  if (truth_ref) {
+    res->has_truth = 1;
+    res->truth_cache_hit = truth_ref->cache_hit;
+    res->truth_ms = truth_ref->ms;
+    res->truth_key = truth_ref->key;
   }
   res->has_reference = 1;
   res->has_base = base != NULL;
@@ -84,7 +96,7 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   res->reference_ms = ref->ms;
   res->reference_key = ref->key;
   res->reference_substeps = ss_reference_settings(s).sim.substeps;
-  error_frame e = {{ref, base_ref}, {NULL, NULL}, 0, "", on_frame, frame_user};
+  error_frame e = {{ref, base_ref, truth_ref}, {NULL, NULL, NULL}, 0, "", on_frame, frame_user};
   status = ss_run_body(body, s, error_on_frame, &e, progress_fn, progress_user, &res->st, err,
                        err_sz);
   if (!status && e.status) {
@@ -93,7 +105,9 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   }
   res->error_vs_reference = ss_ref_error_value(e.err[0]);
   res->error_vs_base_reference = ss_ref_error_value(e.err[1]);
-  for (int k = 0; k < 2; k++) ss_ref_error_destroy(e.err[k]);
+  res->error_vs_truth = ss_ref_error_value(e.err[2]);
+  for (int k = 0; k < 3; k++) ss_ref_error_destroy(e.err[k]);
+  ss_reference_destroy(truth_ref);
   ss_reference_destroy(ref);
   ss_reference_destroy(base_ref);
   return status;
@@ -139,6 +153,24 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "hug_rms", st->hug_rms);
   json_num(j, "hug_max", st->hug_max);
   json_num(j, "mean_edge_length", st->mean_edge_length);
+  json_int(j, "inverted_faces_max", st->inverted_faces_max);
+  json_num(j, "inside_max", st->inside_max);
+  json_num(j, "slide_max", st->slide_max);
+  json_num(j, "slide_max_m", st->slide_max_m);
+  json_num(j, "settle", s->settle);
+  if (s->settle > 0.0) {
+    json_int(j, "settle_frames", st->settle_frames);
+    json_num(j, "rest_error_rms", st->rest_error_rms);
+    json_num(j, "rest_error_max", st->rest_error_max);
+    json_num(j, "rest_error_max_m", st->rest_error_max_m);
+    json_num(j, "rest_slide_max", st->rest_slide_max);
+  } else if (j->mode != JSON_OBJECT) {
+    json_null(j, "settle_frames");
+    json_null(j, "rest_error_rms");
+    json_null(j, "rest_error_max");
+    json_null(j, "rest_error_max_m");
+    json_null(j, "rest_slide_max");
+  }
   json_num(j, "young", s->sim.young);
   json_num(j, "poisson", s->sim.poisson);
   json_num(j, "anchor_stiffness", s->sim.anchor_stiffness);
@@ -147,6 +179,7 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "gravity", s->sim.gravity[2] != 0.0 ? -s->sim.gravity[2] : 0.0);
   json_num(j, "damping", s->sim.damping);
   json_num(j, "slide", s->sim.slide);
+  json_num(j, "tether", s->sim.tether);
   json_hex(j, "final_hash", st->final_hash);
   if (r->has_reference) {
     json_num(j, "error_vs_reference", r->error_vs_reference);
@@ -157,6 +190,17 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
     json_hex(j, "reference_key", r->reference_key);
     if (r->has_base) json_num(j, "error_vs_base_reference", r->error_vs_base_reference);
     else json_null(j, "error_vs_base_reference");
+    if (r->has_truth) {
+      json_num(j, "error_vs_truth", r->error_vs_truth);
+      json_int(j, "truth_cache_hit", r->truth_cache_hit);
+      json_num(j, "truth_ms", r->truth_ms);
+      json_hex(j, "truth_key", r->truth_key);
+    } else if (j->mode != JSON_OBJECT) {
+      json_null(j, "error_vs_truth");
+      json_null(j, "truth_cache_hit");
+      json_null(j, "truth_ms");
+      json_null(j, "truth_key");
+    }
   } else if (j->mode != JSON_OBJECT) {
     json_null(j, "error_vs_reference");
     json_null(j, "reference_cache_hit");
@@ -165,5 +209,9 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
     json_null(j, "reference_ms");
     json_null(j, "reference_key");
     json_null(j, "error_vs_base_reference");
+    json_null(j, "error_vs_truth");
+    json_null(j, "truth_cache_hit");
+    json_null(j, "truth_ms");
+    json_null(j, "truth_key");
   }
 }

@@ -17,6 +17,11 @@ typedef struct measure_result {
   int reference_substeps;
   double reference_ms;       /* computing or reading the reference */
   unsigned long long reference_key;
+  int has_truth;
+  double error_vs_truth;     /* against the truth (ss_truth_settings), mean edge lengths */
+  int truth_cache_hit;
+  double truth_ms;
+  unsigned long long truth_key;
   int has_base;
   double error_vs_base_reference; /* against the reference of the base model (see measure_run) */
 } measure_result;
@@ -29,11 +34,13 @@ int measure_cache_dir(const char *dir, char *out, int out_sz);
 /* Runs s over body. With cache_dir non-NULL the run is compared with its
  * reference (computed or read from cache_dir first), and with base non-NULL
  * also with the reference of the model base (e.g. the default model, to see
- * what an option changes). on_frame (may be NULL)
+ * what an option changes), and with truth non-zero also with the truth
+ * (ss_truth_settings: walk, Newton converged, 16 substeps; the same for every
+ * method and solver setting). on_frame (may be NULL)
  * is called after each frame as ss_run_body does. Returns SS_OK or an error
  * with a message in err. */
 int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_settings *base,
-                const char *cache_dir,
+                const char *cache_dir, int truth,
                 ss_frame_fn on_frame, void *frame_user, ss_progress_fn progress_fn,
                 void *progress_user, measure_result *res, char *err, int err_sz);
 
