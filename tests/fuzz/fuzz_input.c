@@ -17,7 +17,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   char err[128];
   /* stamps */
   int64_t prev = (int64_t)fz_u64(&f), now = (int64_t)fz_u64(&f);
-  if (fz_u8(&f) & 1) now = prev + (int64_t)(fz_u32(&f) % 100000000u); /* near: no overflow here */
+  if (fz_u8(&f) & 1) now = (int64_t)((uint64_t)prev + fz_u32(&f) % 100000000u); /* near (wraps, no UB) */
   double max_gap = fz_double(&f, 1.0), dt = -1.0;
   int kind = ss_input_classify_time(fz_u8(&f) & 1, prev, now, max_gap, &dt);
   assert(kind >= SS_TIME_FIRST && kind <= SS_TIME_GAP);
