@@ -11,6 +11,7 @@ PKGS=(
   libsuitesparse-dev libopenblas0-pthread liburdfdom-dev libassimp-dev
   assimp-testmodels python3-matplotlib python3-numpy
   ros-robot-state-publisher rviz xvfb xauth imagemagick joint-state-publisher-gui
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

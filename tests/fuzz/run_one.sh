@@ -17,7 +17,7 @@ art="${FUZZ_ARTIFACTS:-$work/artifacts}"
 mkdir -p "$work/corpus" "$art"
 # leaks inside assimp's and urdfdom's own importers are theirs (the harnesses
 # suppress them); ours are findings.
-export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}:allocator_may_return_null=1"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 "$bin" -runs="$runs" -max_total_time="$secs" -timeout=30 -rss_limit_mb=2560 -max_len=4096 \
   -artifact_prefix="$art/" -print_final_stats=1 "$work/corpus" "$seeds" 2>&1 |
