@@ -221,7 +221,11 @@ static double current_vsize(void) {
 
 static void child_import(int fd, const char *path, unsigned flags,
                          const struct aiPropertyStore *props, double as_bytes, double timeout_s) {
-  signal(SIGPIPE, SIG_DFL);
+  /* The host's handlers (a crash reporter, a fuzzer's, the sanitizers') are
+   * not the child's business: a crash or a limit ends it with its signal. */
+  static const int sigs[] = {SIGPIPE, SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGINT,
+                             SIGTERM, SIGXCPU, SIGXFSZ, SIGALRM, SIGUSR1, SIGUSR2};
+  for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) signal(sigs[i], SIG_DFL);
   struct rlimit rl;
   rl.rlim_cur = rl.rlim_max = 0;
   setrlimit(RLIMIT_CORE, &rl);
