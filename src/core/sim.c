@@ -456,7 +456,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
      * before anything of the state changes. */
     const double h_sub = dt / sim->set.substeps, lim = 0.25 * DBL_MAX * h_sub;
     for (size_t i = 0; i < 3 * (size_t)sim->nbvert; i++)
-      if (!(fabs(body_pos[i] - sim->body_prev[i]) <= lim))
+      if (!isfinite(body_pos[i] - sim->body_prev[i]) || !(fabs(body_pos[i] - sim->body_prev[i]) <= lim))
         return ss_fail(err, err_sz, SS_E_NONFINITE,
                        "body vertex %d moves %g in %g s: its velocity overflows; step refused",
                        (int)(i / 3), body_pos[i] - sim->body_prev[i], dt);

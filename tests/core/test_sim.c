@@ -589,6 +589,17 @@ static void test_jump_velocity_overflow(void) {
     CHECK_MSG(strstr(err, "velocity overflows") != NULL, "message: %s", err);
     CHECK(memcmp(before, ss_sim_skin_positions(sim), n3 * sizeof(double)) == 0);
     CHECK(memcmp(before + n3, ss_sim_skin_velocities(sim), n3 * sizeof(double)) == 0);
+    /* a move that overflows by itself, over a long dt */
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? -1.7e308 : 0.0);
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 100.0, &st, err, sizeof err), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 3 * g.nvert));
+    CHECK(all_finite(ss_sim_skin_velocities(sim), 3 * g.nvert));
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? 1.7e308 : 0.0);
+    status = ss_sim_step(sim, pose, 100.0, &st, err, sizeof err);
+    CHECK_MSG(status == SS_E_NONFINITE, "a move beyond double range: status %d", status);
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i];
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 100.0, &st, err, sizeof err), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 3 * g.nvert));
     /* huge but representable: accepted, every value finite */
     for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? 1e290 : 0.0);
     CHECK_EQ_INT(ss_sim_step(sim, pose, 1e-12, &st, err, sizeof err), SS_OK);
