@@ -65,10 +65,16 @@ find_pids() {
 }
 rss_kb() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status" 2> /dev/null || echo 0; }
 # one SkinStats message as "rejected dropped resets seq" (empty if none came)
+# (rostopic starts slowly on a loaded machine: up to three tries of 60 s)
 read_stats() {
-  timeout 20 rostopic echo -n 1 "$1" 2> /dev/null |
-    awk '/^  seq:/ {s=$2} /^inputs_rejected:/ {r=$2} /^inputs_dropped:/ {d=$2} /^resets:/ {x=$2}
-         END {if (s != "") print r, d, x, s}' || true
+  local out=""
+  for _ in 1 2 3; do
+    out=$(timeout 60 rostopic echo -n 1 "$1" 2> /dev/null |
+      awk '/^  seq:/ {s=$2} /^inputs_rejected:/ {r=$2} /^inputs_dropped:/ {d=$2} /^resets:/ {x=$2}
+           END {if (s != "") print r, d, x, s}' || true)
+    [ -n "$out" ] && break
+  done
+  echo "$out"
 }
 
 for _ in $(seq 1 60); do
@@ -84,7 +90,7 @@ fi
 skin0=$(read_stats skin_stats)
 avatar0=$(read_stats avatar_stats)
 if [ -z "$skin0" ]; then
-  echo "soak.sh: no skin_stats within 20 s; the launch log ($log) ends with:" >&2
+  echo "soak.sh: no skin_stats read within 3 minutes; the launch log ($log) ends with:" >&2
   tail -n 30 "$log" >&2
   exit 1
 fi
