@@ -47,8 +47,8 @@ status=0
 printf "%-16s %12s %10s %8s  %s\n" harness executions exec/s corpus finding
 for n in "${names[@]}"; do
   [ -f "$bld/$n.status" ] || continue
-  ex=$(awk -F: '/number_of_executed_units/ {gsub(/ /, "", $3); print $3}' "$bld/$n.log")
-  rate=$(awk -F: '/average_exec_per_sec/ {gsub(/ /, "", $3); print $3}' "$bld/$n.log")
+  ex=$(awk '/number_of_executed_units/ {print $2}' "$bld/$n.log" | tail -n 1)
+  rate=$(awk '/average_exec_per_sec/ {print $2}' "$bld/$n.log" | tail -n 1)
   cs=$(find "$bld/corpus/$n" -type f | wc -l)
   finding="none"
   if [ "$(cat "$bld/$n.status")" != 0 ]; then
