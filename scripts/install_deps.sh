@@ -12,6 +12,7 @@ PKGS=(
   assimp-testmodels python3-matplotlib python3-numpy
   ros-robot-state-publisher rviz xvfb xauth imagemagick joint-state-publisher-gui
   python3-visualization-msgs catkin-tools catkin-lint
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

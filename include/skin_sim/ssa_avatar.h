@@ -145,9 +145,13 @@ typedef struct ssa_asset_opts {
                          (Y-up to Z-up is +90 degrees about X: (x,y,z) -> (x,-z,y)); 0: keep */
   int ignore_up_axis; /* 1: take the coordinates as written, ignoring a Collada up_axis (used
                          for URDF visual meshes, whose frame the URDF already gives) */
+  /* Hostile files (0 or unset: the default): */
+  double max_file_mb;      /* larger mesh files are refused; default 256 MB; negative: no cap */
+  double import_timeout_s; /* the import (run in a child process) is stopped after this; 60 s */
+  double import_mem_mb;    /* address space the import may add; default 4096 MB */
 } ssa_asset_opts;
 
-/* Defaults: scale from the file, z_up 1, ignore_up_axis 0. */
+/* Defaults: scale from the file, z_up 1, ignore_up_axis 0, limits 0 (their defaults). */
 ssa_asset_opts ssa_asset_default_opts(void);
 
 typedef struct ssa_asset {

@@ -17,6 +17,7 @@
 #include <assimp/scene.h>
 
 #include "skin_sim/ssa_avatar.h"
+#include "safe_import.h"
 #include "ssa_util.h"
 
 ssa_asset_opts ssa_asset_default_opts(void) {
@@ -24,6 +25,7 @@ ssa_asset_opts ssa_asset_default_opts(void) {
   o.scale = 0.0;
   o.z_up = 1;
   o.ignore_up_axis = 0;
+  o.max_file_mb = o.import_timeout_s = o.import_mem_mb = 0.0; /* defaults: safe_import.h */
   return o;
 }
 
@@ -546,9 +548,8 @@ int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts
   *out = NULL;
   if (!path) return ssa_fail(err, err_sz, SS_E_ARG, "no asset path given");
   ssa_asset_opts o = opts ? *opts : ssa_asset_default_opts();
-  FILE *f = fopen(path, "rb");
-  if (!f) return ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be opened", path);
-  fclose(f);
+  int st0 = ssa_check_mesh_file(path, &o, err, err_sz); /* before anything opens it */
+  if (st0 != SS_OK) return st0;
   struct aiPropertyStore *props = aiCreatePropertyStore();
   if (!props) return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
   aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
@@ -556,9 +557,10 @@ int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts
   if (o.ignore_up_axis) aiSetImportPropertyInteger(props, AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, 1);
   /* NaN would be hidden by JoinIdenticalVertices (it merges a NaN vertex into
      another one): check positions first, then join. */
-  const struct aiScene *sc = aiImportFileExWithProperties(
-      path, aiProcess_Triangulate | aiProcess_SortByPType, NULL, props);
+  const struct aiScene *sc = ssa_safe_import( /* in a child: no hang, no bloat */
+      path, aiProcess_Triangulate | aiProcess_SortByPType, props, &o, &st0, err, err_sz);
   aiReleasePropertyStore(props);
+  if (!sc) return st0;
   if (sc) {
     for (unsigned m = 0; m < sc->mNumMeshes; m++) {
       const struct aiMesh *me = sc->mMeshes[m];

@@ -12,12 +12,14 @@
 #include <sys/stat.h>
 
 #include "skin_sim/ssa_avatar.h"
+#include "safe_import.h"
 #include "ssa_util.h"
 #include "urdf_parse.h"
 
 /* ---------------------------------------------------------------- files */
 
 char *ssa_read_text_file(const char *path, const char *what, char *err, int err_sz) {
+  if (ssa_check_input_file(path, what, SSA_MAX_FILE_MB_DEFAULT, err, err_sz) != SS_OK) return NULL;
   FILE *f = fopen(path, "rb");
   if (!f) {
     ssa_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be opened: %s", what, path, strerror(errno));

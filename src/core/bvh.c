@@ -212,6 +212,7 @@ double ss_bvh_closest(const ss_bvh *b, const double *pos, const double p[3], int
   *face = 0;
   uv[0] = uv[1] = 1.0 / 3.0;
   if (b->nnode == 0) return best;
+  if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) return best; /* no closest point */
   int stack[MAX_DEPTH * 2 + 2];
   int top = 0;
   stack[top++] = 0;

@@ -7,6 +7,13 @@
  * region tests can divide by zero, so there the closest point of the three
  * edge segments is taken instead: finite for every finite input.
  *
+ * Every path writes uv. Coordinates are brought near 1 by an exact power-of-
+ * two scale before any subtraction or product when they are large enough for
+ * a squared distance to overflow (a far but finite query point), so the region
+ * tests stay meaningful and only the returned squared distance may round to
+ * infinity; a non-finite corner or query point gets uv = the barycenter and
+ * an infinite distance (never nearer than any finite candidate).
+ *
  * The n-ring search ("geodesic distance in a limited N-ring", the paper's
  * section 1, after Saito and Yuen 2017) takes the Euclidean closest point
  * among the faces within N vertex rings of the anchor's face. */
@@ -46,9 +53,11 @@ static double closest_on_edges(const double p[3], const double a[3], const doubl
   double t0 = segment_param(p, a, b), t1 = segment_param(p, b, c), t2 = segment_param(p, c, a);
   double cand[3][2] = {{t0, 0.0}, {1.0 - t1, t1}, {0.0, 1.0 - t2}};
   double best = INFINITY;
+  uv[0] = cand[0][0];
+  uv[1] = cand[0][1];
   for (int k = 0; k < 3; k++) {
     double d2 = dist2_at(p, a, b, c, cand[k][0], cand[k][1]);
-    if (d2 < best) {
+    if (k == 0 || d2 < best) {
       best = d2;
       uv[0] = cand[k][0];
       uv[1] = cand[k][1];
@@ -57,8 +66,43 @@ static double closest_on_edges(const double p[3], const double a[3], const doubl
   return best;
 }
 
+static double closest_unscaled(const double p[3], const double a[3], const double b[3],
+                               const double c[3], double uv[2]);
+
+/* Above this magnitude a coordinate difference squared can overflow. */
+#define SS_CLOSEST_BIG 0x1p+500
+
 double ss_closest_point_triangle(const double p[3], const double a[3], const double b[3],
                                  const double c[3], double uv[2]) {
+  double m = 0.0;
+  for (int i = 0; i < 3; i++) {
+    m = fmax(m, fabs(p[i]));
+    m = fmax(m, fabs(a[i]));
+    m = fmax(m, fabs(b[i]));
+    m = fmax(m, fabs(c[i]));
+  }
+  int finite = isfinite(m);
+  for (int i = 0; i < 3 && finite; i++) /* fmax drops NaN: check each */
+    finite = isfinite(p[i]) && isfinite(a[i]) && isfinite(b[i]) && isfinite(c[i]);
+  if (!finite) {
+    uv[0] = uv[1] = 1.0 / 3.0;
+    return INFINITY;
+  }
+  if (!(m > SS_CLOSEST_BIG)) return closest_unscaled(p, a, b, c, uv);
+  int e;
+  frexp(m, &e);
+  double sp[3], sa[3], sb[3], sc[3];
+  for (int i = 0; i < 3; i++) { /* exact: scaling by a power of two */
+    sp[i] = ldexp(p[i], -e);
+    sa[i] = ldexp(a[i], -e);
+    sb[i] = ldexp(b[i], -e);
+    sc[i] = ldexp(c[i], -e);
+  }
+  return ldexp(closest_unscaled(sp, sa, sb, sc, uv), 2 * e);
+}
+
+static double closest_unscaled(const double p[3], const double a[3], const double b[3],
+                               const double c[3], double uv[2]) {
   double ab[3], ac[3], ap[3], n[3];
   for (int i = 0; i < 3; i++) {
     ab[i] = b[i] - a[i];

@@ -91,11 +91,14 @@ int ss_input_classify_time(int have_prev, int64_t prev_ns, int64_t now_ns, doubl
   if (!have_prev) return SS_TIME_FIRST;
   if (now_ns < prev_ns) return SS_TIME_BACKWARDS;
   if (now_ns == prev_ns) return SS_TIME_SAME;
-  int64_t d_ns = now_ns - prev_ns;
+  /* now > prev, so the difference is exact in unsigned 64 bits whatever the
+   * stamps (a signed difference or rounding can overflow: UB); a NaN max_gap
+   * lets nothing through. */
+  uint64_t d_ns = (uint64_t)now_ns - (uint64_t)prev_ns;
   double d = 1e-9 * (double)d_ns;
-  if (d > max_gap_s) return SS_TIME_GAP;
-  int64_t us = (d_ns + 500) / 1000;
-  if (us <= 0) return SS_TIME_SAME; /* under half a microsecond: nothing to step */
+  if (!(d <= max_gap_s)) return SS_TIME_GAP;
+  uint64_t us = d_ns / 1000 + (d_ns % 1000 >= 500);
+  if (us == 0) return SS_TIME_SAME; /* under half a microsecond: nothing to step */
   if (dt) *dt = 1e-6 * (double)us;
   return SS_TIME_STEP;
 }

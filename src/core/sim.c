@@ -17,6 +17,7 @@
  *               nring, ss_anchor.h).
  * A solve that meets a non-finite value keeps the last finite state and is
  * counted in the statistics; nothing non-finite ever enters the state. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -485,6 +486,17 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     for (int i = 0; i < 3; i++)
       if (!isfinite(body_pos[3 * v + i]))
         return ss_fail(err, err_sz, SS_E_NONFINITE, "body vertex %d has a non-finite coordinate", v);
+  {
+    /* Vertices that follow the body take its velocity (a convex combination
+     * of vertex moves / h): refuse a move whose velocity would overflow,
+     * before anything of the state changes. */
+    const double h_sub = dt / sim->set.substeps, lim = 0.25 * DBL_MAX * h_sub;
+    for (size_t i = 0; i < 3 * (size_t)sim->nbvert; i++)
+      if (!isfinite(body_pos[i] - sim->body_prev[i]) || !(fabs(body_pos[i] - sim->body_prev[i]) <= lim))
+        return ss_fail(err, err_sz, SS_E_NONFINITE,
+                       "body vertex %d moves %g in %g s: its velocity overflows; step refused",
+                       (int)(i / 3), body_pos[i] - sim->body_prev[i], dt);
+  }
   double t_start = ss_now_ms();
   sim->st = st;
   memset(sim->anchor_pull, 0, (size_t)sim->nanchor * sizeof(double));
@@ -549,7 +561,12 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     st->stalled += stalled;
     st->failures += nonfinite != 0;
     /* 3. velocities */
-    for (size_t i = 0; i < nv3; i++) sim->v[i] = (sim->x[i] - sim->x_prev[i]) / h;
+    int v_overflow = 0; /* never Inf in the state (only reachable after ss_sim_set_state) */
+    for (size_t i = 0; i < nv3; i++) {
+      sim->v[i] = (sim->x[i] - sim->x_prev[i]) / h;
+      if (!isfinite(sim->v[i])) sim->v[i] = 0.0, v_overflow = 1;
+    }
+    st->failures += v_overflow;
     if (status != SS_OK) break;
     /* 4. anchors: the fractions of the way of this substep */
     sim->slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0;

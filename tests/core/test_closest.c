@@ -221,11 +221,75 @@ static void test_surface_distance_across_gap(void) {
   test_mesh_free(&g);
 }
 
+/* Regression (issue 14, found by fuzzing): a degenerate triangle and a far
+ * finite point made every squared distance overflow to inf and left uv
+ * unwritten; the n-ring search and the BVH then read uninitialised stack. Every
+ * path now writes uv, far points are scaled before the arithmetic, non-finite
+ * points get the barycenter and an infinite distance. */
+static void test_far_and_nonfinite_points(void) {
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {2, 0, 0}; /* collinear */
+  const double far[3] = {1e300, -1e300, 3e299};
+  double uv[2] = {NAN, NAN};
+  double d2 = ss_closest_point_triangle(far, a, b, c, uv);
+  CHECK_MSG(isfinite(uv[0]) && isfinite(uv[1]) && uv[0] >= 0 && uv[1] >= 0 && uv[0] + uv[1] <= 1 + 1e-12,
+            "degenerate triangle, far point: uv (%g, %g)", uv[0], uv[1]);
+  CHECK(!(d2 < 1e300)); /* the true squared distance is beyond double range */
+  /* far from a unit triangle (beyond double resolution: any point of it) */
+  const double b2[3] = {1, 0, 0}, c2[3] = {0, 1, 0}, px[3] = {1e200, 0, 0};
+  uv[0] = uv[1] = NAN;
+  CHECK(isinf(ss_closest_point_triangle(px, a, b2, c2, uv)));
+  CHECK_MSG(uv[0] >= 0 && uv[1] >= 0 && uv[0] + uv[1] <= 1 + 1e-12, "far +x: uv (%g, %g)", uv[0], uv[1]);
+  /* a huge scene (products would overflow): the answer of the same scene at unit scale */
+  const double p2[3] = {3, 1, -2}, a3[3] = {0.1, 0.2, 0.3};
+  const double *unit[4] = {p2, a3, b2, c2};
+  double big[4][3];
+  for (int k = 0; k < 4; k++)
+    for (int i = 0; i < 3; i++) big[k][i] = 1e300 * unit[k][i];
+  double uv1[2], uv2[2];
+  double d2big = ss_closest_point_triangle(big[0], big[1], big[2], big[3], uv1);
+  double d2unit = ss_closest_point_triangle(p2, a3, b2, c2, uv2);
+  CHECK(isinf(d2big) && isfinite(d2unit));
+  CHECK_NEAR(uv1[0], uv2[0], 1e-9);
+  CHECK_NEAR(uv1[1], uv2[1], 1e-9);
+  const double nanp[3] = {NAN, 0, 0}, infp[3] = {0, INFINITY, 0};
+  uv[0] = uv[1] = NAN;
+  CHECK(isinf(ss_closest_point_triangle(nanp, a, b, c, uv)) && uv[0] == 1.0 / 3.0 && uv[1] == 1.0 / 3.0);
+  uv[0] = uv[1] = NAN;
+  CHECK(isinf(ss_closest_point_triangle(infp, a, b2, c2, uv)) && isfinite(uv[0]) && isfinite(uv[1]));
+  /* a strip whose every face is degenerate (all on the x axis): n-ring and BVH */
+  double pos[3 * 6];
+  int faces[3 * 4] = {0, 1, 2, 1, 3, 2, 2, 3, 4, 3, 5, 4};
+  for (int v = 0; v < 6; v++) pos[3 * v] = v, pos[3 * v + 1] = pos[3 * v + 2] = 0.0;
+  ss_topo *t = NULL;
+  char err[256];
+  CHECK(ss_topo_create(&t, 6, pos, 4, faces, -1.0, err, sizeof err) == SS_OK);
+  if (!t) return;
+  ss_nring *r = NULL;
+  ss_bvh *bvh = NULL;
+  CHECK(ss_nring_create(&r, t) == SS_OK && ss_bvh_create(&bvh, t) == SS_OK);
+  ss_bvh_refit(bvh, pos);
+  const double *qs[3] = {far, nanp, infp};
+  for (int k = 0; k < 3; k++) {
+    int f = -1;
+    uv[0] = uv[1] = NAN;
+    ss_nring_closest(r, t, pos, 1, 2, qs[k], &f, uv);
+    CHECK_MSG(f >= 0 && f < 4 && isfinite(uv[0]) && isfinite(uv[1]), "n-ring, query %d", k);
+    f = -1;
+    uv[0] = uv[1] = NAN;
+    ss_bvh_closest(bvh, pos, qs[k], &f, uv);
+    CHECK_MSG(f >= 0 && f < 4 && isfinite(uv[0]) && isfinite(uv[1]), "BVH, query %d", k);
+  }
+  ss_bvh_destroy(bvh);
+  ss_nring_destroy(r);
+  ss_topo_destroy(t);
+}
+
 int main(void) {
   test_triangle_vs_sampling();
   test_bvh_vs_brute();
   test_nring();
   test_surface_distance();
   test_surface_distance_across_gap();
+  test_far_and_nonfinite_points();
   return ss_test_finish("test_closest");
 }

@@ -258,6 +258,8 @@ static void test_plan(void)
   CHECK(ss_input_plan_step(NULL, 1, 0, 40000400, 0, 0, 0.05, 8, &p) == SS_TIME_STEP && p.dt == 0.04);
 }
 
+static void test_time_wild(void);
+
 int main(void)
 {
   test_mesh_check();
@@ -267,5 +269,27 @@ int main(void)
   test_slide();
   test_stream();
   test_plan();
+  test_time_wild();
   return ss_test_finish("test_input");
+}
+
+/* Regression (issue 14, found by fuzzing): a wild stamp difference overflowed
+ * signed arithmetic (UBSan: 9223372036854775807 + 500 in the rounding to
+ * microseconds). Any pair of stamps is now classified without UB. */
+static void test_time_wild(void)
+{
+  double dt = -1.0;
+  CHECK(ss_input_classify_time(1, 0, INT64_MAX, 1e30, &dt) == SS_TIME_STEP);
+  CHECK(isfinite(dt) && dt > 9.2e9 && dt < 9.3e9);
+  CHECK(ss_input_classify_time(1, INT64_MIN, INT64_MAX, 1e30, &dt) == SS_TIME_STEP);
+  CHECK(isfinite(dt) && dt > 1.8e10 && dt < 1.9e10);
+  CHECK(ss_input_classify_time(1, INT64_MIN, INT64_MAX, INFINITY, &dt) == SS_TIME_STEP);
+  CHECK(ss_input_classify_time(1, INT64_MIN, INT64_MAX, 0.5, &dt) == SS_TIME_GAP && dt == 0.0);
+  CHECK(ss_input_classify_time(1, INT64_MAX, INT64_MIN, 0.5, &dt) == SS_TIME_BACKWARDS);
+  CHECK(ss_input_classify_time(1, -1, INT64_MAX, 0.5, &dt) == SS_TIME_GAP);
+  CHECK(ss_input_classify_time(1, INT64_MAX - 1499, INT64_MAX, 0.5, &dt) == SS_TIME_STEP);
+  CHECK(dt == 1e-6);
+  CHECK(ss_input_classify_time(1, INT64_MAX - 499, INT64_MAX, 0.5, &dt) == SS_TIME_SAME);
+  /* a NaN gap bound lets no stamp through as a step */
+  CHECK(ss_input_classify_time(1, 0, 33333333, NAN, &dt) == SS_TIME_GAP);
 }

@@ -561,6 +561,58 @@ static void test_determinism(void) {
   fx_free(&g);
 }
 
+/* Regression (issue 14, found by fuzzing): the body jumping by a huge finite
+ * distance over a tiny legal dt gave the vertices that follow the body
+ * (outside the face mask, and the pinned border) v = jump / h = +-inf with
+ * SS_OK. Now the step is refused, naming the problem, with the state untouched;
+ * a huge but representable jump keeps every velocity finite. */
+static void test_jump_velocity_overflow(void) {
+  fx_mesh g = fx_grid(6, 6, 1.0, 1.0, 0.1);
+  unsigned char *mask = calloc((size_t)g.nface, 1);
+  for (int f = 0; f < g.nface / 2; f++) mask[f] = 1;
+  double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
+  double *before = malloc(6 * (size_t)g.nvert * sizeof(double));
+  for (int solver = 0; solver < 2; solver++) {
+    ss_sim_settings set = ss_sim_default_settings();
+    set.solver = solver;
+    set.face_mask = mask;
+    ss_sim *sim = make_sim(&g, &set);
+    if (!sim) continue;
+    size_t n3 = 3 * (size_t)g.nvert;
+    memcpy(before, ss_sim_skin_positions(sim), n3 * sizeof(double));
+    memcpy(before + n3, ss_sim_skin_velocities(sim), n3 * sizeof(double));
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? 1e300 : 0.0);
+    char err[256] = "";
+    ss_sim_stats st;
+    int status = ss_sim_step(sim, pose, 1e-12, &st, err, sizeof err);
+    CHECK_MSG(status == SS_E_NONFINITE, "huge jump over a tiny dt: status %d", status);
+    CHECK_MSG(strstr(err, "velocity overflows") != NULL, "message: %s", err);
+    CHECK(memcmp(before, ss_sim_skin_positions(sim), n3 * sizeof(double)) == 0);
+    CHECK(memcmp(before + n3, ss_sim_skin_velocities(sim), n3 * sizeof(double)) == 0);
+    /* a move that overflows by itself, over a long dt */
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? -1.7e308 : 0.0);
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 100.0, &st, err, sizeof err), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 3 * g.nvert));
+    CHECK(all_finite(ss_sim_skin_velocities(sim), 3 * g.nvert));
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? 1.7e308 : 0.0);
+    status = ss_sim_step(sim, pose, 100.0, &st, err, sizeof err);
+    CHECK_MSG(status == SS_E_NONFINITE, "a move beyond double range: status %d", status);
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i];
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 100.0, &st, err, sizeof err), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 3 * g.nvert));
+    /* huge but representable: accepted, every value finite */
+    for (size_t i = 0; i < n3; i++) pose[i] = g.pos[i] + (i % 3 == 0 ? 1e290 : 0.0);
+    CHECK_EQ_INT(ss_sim_step(sim, pose, 1e-12, &st, err, sizeof err), SS_OK);
+    CHECK(all_finite(ss_sim_skin_positions(sim), 3 * g.nvert));
+    CHECK(all_finite(ss_sim_skin_velocities(sim), 3 * g.nvert));
+    ss_sim_destroy(sim);
+  }
+  free(before);
+  free(pose);
+  free(mask);
+  fx_free(&g);
+}
+
 int main(void) {
   test_rest_stays_put();
   test_stretched_returns();
@@ -575,5 +627,6 @@ int main(void) {
   test_small_meshes();
   test_violent_motion();
   test_determinism();
+  test_jump_velocity_overflow();
   return ss_test_finish("test_sim");
 }
