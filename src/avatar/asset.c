@@ -172,17 +172,6 @@ static double meta_number(const struct aiMetadata *md, const char *key, double d
   return dflt;
 }
 
-static int has_ext(const char *path, const char *ext) {
-  size_t n = strlen(path), e = strlen(ext);
-  if (n < e) return 0;
-  for (size_t i = 0; i < e; i++) {
-    char c = path[n - e + i];
-    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-    if (c != ext[i]) return 0;
-  }
-  return 1;
-}
-
 /* The rotation taking the file's up axis (0 x, 1 y, 2 z; sign) onto +Z. */
 static void up_to_z(int axis, int sign, double *m) {
   m4_identity(m);
@@ -203,7 +192,7 @@ static void up_to_z(int axis, int sign, double *m) {
 static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_opts *o,
                       const char *path, char *err, int err_sz) {
   /* ---- root fix */
-  int is_fbx = has_ext(path, ".fbx");
+  int is_fbx = ssa_has_ext(path, ".fbx");
   double scale = o->scale;
   if (!(scale > 0)) {
     int found = 0;

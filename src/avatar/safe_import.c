@@ -64,17 +64,6 @@ int ssa_check_input_file(const char *path, const char *what, double max_mb, char
 
 /* ---------------------------------------------------------------- header checks */
 
-static int ext_is(const char *path, const char *ext) {
-  size_t n = strlen(path), e = strlen(ext);
-  if (n < e) return 0;
-  for (size_t i = 0; i < e; i++) {
-    char c = path[n - e + i];
-    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
-    if (c != ext[i]) return 0;
-  }
-  return 1;
-}
-
 /* Next token of the header text at *p (skipping blanks and # comments). */
 static int next_token(const char **p, const char *end, char *tok, size_t tok_sz) {
   const char *s = *p;
@@ -169,7 +158,7 @@ int ssa_check_mesh_file(const char *path, const ssa_asset_opts *opts, char *err,
   if (!(max_mb < 0.0)) max_mb = pick(max_mb, SSA_MAX_FILE_MB_DEFAULT); /* negative: no cap */
   int st = ssa_check_input_file(path, "mesh file", max_mb, err, err_sz);
   if (st != SS_OK) return st;
-  int is_off = ext_is(path, ".off"), is_ply = ext_is(path, ".ply");
+  int is_off = ssa_has_ext(path, ".off"), is_ply = ssa_has_ext(path, ".ply");
   if (!is_off && !is_ply) return SS_OK;
   int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0)

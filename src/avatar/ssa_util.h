@@ -48,6 +48,18 @@ static inline void ssa_free_strs(char **s, int n) {
   free(s);
 }
 
+/* 1 if path ends with ext (".fbx"), ignoring the case of path's letters (ext lower case). */
+static inline int ssa_has_ext(const char *path, const char *ext) {
+  size_t n = strlen(path), e = strlen(ext);
+  if (n < e) return 0;
+  for (size_t i = 0; i < e; i++) {
+    char c = path[n - e + i];
+    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+    if (c != ext[i]) return 0;
+  }
+  return 1;
+}
+
 static inline void m4_identity(double *m) {
   memset(m, 0, 16 * sizeof(double));
   m[0] = m[5] = m[10] = m[15] = 1.0;

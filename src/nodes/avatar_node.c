@@ -20,6 +20,7 @@
  * warning naming the joint and its limits, or with ~strict_limits the
  * message is rejected. Parameters of the wrong type or out of range stop the
  * node at start (exit 2) with one message naming the parameter. */
+#include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ssa_avatar.h"
 
@@ -152,17 +153,6 @@ static void on_joints(const rosc_joint_state *m, void *user)
   s.inputs_rejected = nd->rejected;
   s.inputs_dropped = nd->unknown_names;
   rosc_publish_skin_stats(nd->pub_stats, &s);
-}
-
-/* 1 if a getter read its parameter (or its default); else logs why (a wrong type
- * names the parameter, the type wanted and the value given) and returns 0. */
-static int param_ok(int status, const char *name, const char *expected)
-{
-  if (status == ROSC_OK) return 1;
-  char why[ERR_SZ];
-  rosc_param_explain(status, name, expected, why, sizeof why);
-  ROSC_ERROR("%s", why);
-  return 0;
 }
 
 static void on_avatar_warning(void *user, const char *msg)

@@ -10,6 +10,7 @@
  * ever) ends the node after that long. A parameter of the wrong type or out of
  * range, or a motion that moves no joint of robot_description, stops the node
  * at start (exit 2) with one message. */
+#include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ssa_avatar.h"
 
@@ -17,17 +18,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* 1 if a getter read its parameter (or its default); else logs why (a wrong type
- * names the parameter, the type wanted and the value given) and returns 0. */
-static int param_ok(int status, const char *name, const char *expected)
-{
-  if (status == ROSC_OK) return 1;
-  char why[512];
-  rosc_param_explain(status, name, expected, why, sizeof why);
-  ROSC_ERROR("%s", why);
-  return 0;
-}
 
 int main(int argc, char **argv)
 {

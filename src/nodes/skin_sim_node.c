@@ -27,6 +27,7 @@
  * in header.seq and are counted as inputs_dropped.
  *
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
+#include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ss_input.h"
 #include "skin_sim/ss_mesh.h"
@@ -101,42 +102,6 @@ typedef struct node {
 } node;
 
 /* ------------------------------------------------------------------ parameters */
-/* 1 if a getter read its parameter (or its default); else logs why (a wrong type
- * names the parameter, the type wanted and the value given) and returns 0. */
-static int param_ok(int status, const char *name, const char *expected)
-{
-  if (status == ROSC_OK) return 1;
-  char why[ERR_SZ];
-  rosc_param_explain(status, name, expected, why, sizeof why);
-  ROSC_ERROR("%s", why);
-  return 0;
-}
-
-static int get_int(const char *name, int *v, int def)
-{
-  return param_ok(rosc_param_get_int(name, v, def, NULL), name, "an int");
-}
-static int get_double(const char *name, double *v, double def)
-{
-  return param_ok(rosc_param_get_double(name, v, def, NULL), name, "a double (or an int)");
-}
-static int get_bool(const char *name, int *v, int def)
-{
-  return param_ok(rosc_param_get_bool(name, v, def, NULL), name, "a bool");
-}
-static int get_string(const char *name, char *buf, size_t size, const char *def)
-{
-  return param_ok(rosc_param_get_string(name, buf, size, def, NULL), name, "a string");
-}
-
-/* 1 if an int parameter is within [lo, hi]; else logs it and returns 0 (never clamped). */
-static int param_range(const char *name, int v, int lo, int hi)
-{
-  if (v >= lo && v <= hi) return 1;
-  ROSC_ERROR("%s = %d is out of range [%d, %d]", name, v, lo, hi);
-  return 0;
-}
-
 static int get_params(params *p)
 {
   char buf[256];
