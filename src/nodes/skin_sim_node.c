@@ -26,6 +26,10 @@
  * the node spins between steps); meshes lost before the callback show as gaps
  * in header.seq and are counted as inputs_dropped.
  *
+ * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
+ * core from the window's figures: ss_input_health); the ~reset service
+ * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
+ *
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
 #include "node_params.h"
 #include "rosc/rosc.h"
