@@ -13,6 +13,7 @@ PKGS=(
   ros-robot-state-publisher rviz xvfb xauth imagemagick joint-state-publisher-gui
   python3-visualization-msgs catkin-tools catkin-lint
   clang libclang-rt-14-dev
+  libdiagnostic-updater-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs
 )
 missing=()
 for p in "${PKGS[@]}"; do

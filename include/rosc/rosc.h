@@ -317,6 +317,37 @@ int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out);
 int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
+/* ------------------------------------------------------------------ services */
+/* A std_srvs/Empty service (e.g. "~reset"). cb(user) runs inside rosc_spin_*, in the
+ * spinning thread like every callback; it returns 0 for success, anything else makes
+ * the call fail (the caller sees a service error). Implemented in src/rosc/rosc_srv.cpp. */
+typedef struct rosc_srv rosc_srv;
+typedef int (*rosc_empty_cb)(void *user);
+int rosc_srv_empty(rosc_srv **out, const char *name, rosc_empty_cb cb, void *user);
+/* The fully resolved service name. */
+int rosc_srv_name(const rosc_srv *srv, char *buf, size_t buf_size);
+int rosc_srv_destroy(rosc_srv *srv);   /* unadvertises; NULL is fine */
+/* Calls the std_srvs/Empty service `name` (tests and tools), waiting up to timeout_s
+ * (wall clock) for it to exist. ROSC_OK when the server answered success,
+ * ROSC_E_TIMEOUT when it did not appear, ROSC_E_ROS when the call failed. */
+int rosc_call_empty(const char *name, double timeout_s);
+
+/* ------------------------------------------------------------------ diagnostics */
+/* Health on /diagnostics (diagnostic_msgs/DiagnosticArray) through
+ * diagnostic_updater: one status named "<node name>: <task>" for hardware_id.
+ * The node decides the level and the figures; rosc only publishes them. */
+enum { ROSC_DIAG_OK = 0, ROSC_DIAG_WARN = 1, ROSC_DIAG_ERROR = 2, ROSC_DIAG_STALE = 3 };
+typedef struct rosc_diag rosc_diag;
+typedef struct rosc_kv { const char *key, *value; } rosc_kv;
+int rosc_diag_create(rosc_diag **out, const char *hardware_id, const char *task);
+/* The publishing period in seconds: the private parameter ~diagnostic_period of
+ * diagnostic_updater (default 1 s), read again at every update. */
+int rosc_diag_period(rosc_diag *d, double *out);
+/* Publishes the status now: level (ROSC_DIAG_*), a one-line message and n key/value
+ * pairs (kv may be NULL with n 0; NULL keys or values are ROSC_E_INVALID). */
+int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv *kv, size_t n);
+int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
+
 /* ------------------------------------------------------------------ logging */
 /* Levels as rosconsole's. Messages go to the console and, once the node runs, to
  * /rosout (logger "ros.skin_sim"); the level threshold is rosconsole's (DEBUG is

@@ -137,6 +137,31 @@ double ss_input_slide(int n, const int *face, const double *uv, const int *face0
  * opaque; rgba gets 4 floats in [0, 1]. scale <= 0 or d not finite: blue. */
 void ss_input_slide_color(double d, double scale, float rgba[4]);
 
+/* ---- health over a window (for /diagnostics) -------------------------------
+ *
+ * What a node did in the last window (diagnostic period), judged into one
+ * level and one sentence. Counts are of this window only. Thresholds:
+ * - ERROR: a substep failed (non-finite values, last good state kept); or
+ *   inputs arrived and every one was rejected (nothing stepped); or the mean
+ *   step took more than twice the input period (the node cannot keep up).
+ * - WARN: no input in the window; some inputs rejected; inputs dropped
+ *   (lost before the callback) or skipped (the node fell behind); the skin
+ *   was reset (the input's time jumped or went backwards, or ~reset); or the
+ *   mean step took more than SS_HEALTH_BUDGET (0.8) of the input period.
+ * - OK otherwise. Step times are compared only when the period is known. */
+#define SS_HEALTH_BUDGET 0.8
+enum { SS_HEALTH_OK = 0, SS_HEALTH_WARN = 1, SS_HEALTH_ERROR = 2 };
+typedef struct ss_input_window {
+  uint32_t arrived;     /* meshes that reached the node */
+  uint32_t stepped;     /* meshes processed (created, stepped or republished) */
+  uint32_t rejected, dropped, skipped, resets, failures;
+  double step_ms_mean;  /* mean processing time per stepped mesh, ms (0 if none) */
+  double period_ms;     /* the input's period, ms (0: unknown) */
+} ss_input_window;
+/* Returns SS_HEALTH_OK / WARN / ERROR for w, with a sentence naming the worst
+ * reason (or "stepping normally") in msg (may be NULL). */
+int ss_input_health(const ss_input_window *w, char *msg, int msg_sz);
+
 #ifdef __cplusplus
 }
 #endif

@@ -247,3 +247,52 @@ void ss_input_slide_color(double d, double scale, float rgba[4])
   rgba[2] = (float)(0.15 + 0.85 * b);
   rgba[3] = 1.0f;
 }
+
+/* ------------------------------------------------------------------ health */
+int ss_input_health(const ss_input_window *w, char *msg, int msg_sz)
+{
+  char tmp[8];
+  if (!msg || msg_sz <= 0) { msg = tmp; msg_sz = (int)sizeof tmp; }
+  size_t n = (size_t)msg_sz;
+  double period = (w->period_ms > 0.0 && isfinite(w->period_ms)) ? w->period_ms : 0.0;
+  double step = (w->stepped > 0 && isfinite(w->step_ms_mean)) ? w->step_ms_mean : 0.0;
+  /* errors first: the worst reason is the one named */
+  if (w->failures > 0) {
+    snprintf(msg, n, "%u substeps failed (non-finite values), last good state kept",
+             (unsigned)w->failures);
+    return SS_HEALTH_ERROR;
+  }
+  if (w->rejected > 0 && w->stepped == 0) {
+    snprintf(msg, n, "every input rejected (%u), the skin is not stepped", (unsigned)w->rejected);
+    return SS_HEALTH_ERROR;
+  }
+  if (period > 0.0 && step > 2.0 * period) {
+    snprintf(msg, n, "step %.1f ms over twice the input period %.1f ms: cannot keep up", step,
+             period);
+    return SS_HEALTH_ERROR;
+  }
+  if (w->arrived == 0) {
+    snprintf(msg, n, "no kinematic_mesh received");
+    return SS_HEALTH_WARN;
+  }
+  if (w->rejected > 0) {
+    snprintf(msg, n, "%u inputs rejected", (unsigned)w->rejected);
+    return SS_HEALTH_WARN;
+  }
+  if (w->resets > 0) {
+    snprintf(msg, n, "skin reset %u times", (unsigned)w->resets);
+    return SS_HEALTH_WARN;
+  }
+  if (w->dropped + w->skipped > 0) {
+    snprintf(msg, n, "%u inputs dropped, %u skipped (falling behind)", (unsigned)w->dropped,
+             (unsigned)w->skipped);
+    return SS_HEALTH_WARN;
+  }
+  if (period > 0.0 && step > SS_HEALTH_BUDGET * period) {
+    snprintf(msg, n, "step %.1f ms over %.0f%% of the input period %.1f ms", step,
+             100.0 * SS_HEALTH_BUDGET, period);
+    return SS_HEALTH_WARN;
+  }
+  snprintf(msg, n, "stepping normally");
+  return SS_HEALTH_OK;
+}

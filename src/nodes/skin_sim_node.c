@@ -26,6 +26,10 @@
  * the node spins between steps); meshes lost before the callback show as gaps
  * in header.seq and are counted as inputs_dropped.
  *
+ * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
+ * core from the window's figures: ss_input_health); the ~reset service
+ * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
+ *
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
 #include "node_params.h"
 #include "rosc/rosc.h"
@@ -99,6 +103,16 @@ typedef struct node {
   uint32_t rejected, dropped, skipped, resets, failures;
   unsigned long frames_in, frames_out, steps;
   double last_marker_wall;
+  /* ~reset (std_srvs/Empty): the next mesh creates the skin again on its pose */
+  int reset_req;
+  /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
+  rosc_diag *diag;
+  double diag_wall;       /* wall time of the last status */
+  unsigned long processed; /* meshes processed (skin created, stepped or republished) */
+  unsigned long nstep_ms;  /* of which stepped (timed) */
+  double step_ms_sum, step_ms_max;
+  struct { unsigned long in, processed, nstep_ms; double step_ms_sum;
+           uint32_t rejected, dropped, skipped, resets, failures; } win; /* at the window start */
 } node;
 
 /* ------------------------------------------------------------------ parameters */
@@ -130,6 +144,7 @@ static int get_params(params *p)
   ok &= get_double("~tol", &p->set.tol, p->set.tol);
   ok &= get_int("~lbfgs_history", &p->set.lbfgs_history, p->set.lbfgs_history);
   ok &= get_double("~bending", &p->set.bending, p->set.bending);
+  ok &= get_int("~threads", &p->set.threads, p->set.threads);
   ok &= get_double("~damping", &p->set.damping, p->set.damping);
   ok &= get_bool("~barycenters", &p->set.barycenter_anchors, p->set.barycenter_anchors);
   ok &= get_string("~gravity", buf, sizeof buf, "0 0 0");
@@ -453,8 +468,12 @@ static void process(node *nd, const mailbox *b)
   rosc_wall_now_s(&t0);
   int nsplit = 0;
   if (!nd->sim || b->topology_id != nd->topology_id || kind == SS_TIME_BACKWARDS ||
-      kind == SS_TIME_GAP) {
-    if (nd->sim && b->topology_id != nd->topology_id)
+      kind == SS_TIME_GAP || nd->reset_req) {
+    if (nd->sim && nd->reset_req) {
+      nd->resets++;
+      ROSC_INFO("~reset: skin created again on the body's pose at %.3f s (%u resets so far)",
+                1e-9 * (double)now_ns, (unsigned)nd->resets);
+    } else if (nd->sim && b->topology_id != nd->topology_id)
       ROSC_INFO("topology_id %u -> %u: new skin", (unsigned)nd->topology_id,
                 (unsigned)b->topology_id);
     else if (nd->sim) {
@@ -463,6 +482,7 @@ static void process(node *nd, const mailbox *b)
                          "so far)", kind == SS_TIME_GAP ? "jumped forward" : "went backwards",
                          1e-9 * (double)now_ns, (unsigned)nd->resets);
     }
+    nd->reset_req = 0;
     if (!create_sim(nd, b)) return;
     nd->skin_ns = now_ns;
     nd->prev_periods = 0;
@@ -510,7 +530,82 @@ static void process(node *nd, const mailbox *b)
   }
   /* SS_TIME_SAME: nothing to step; the state is published again */
   rosc_wall_now_s(&t1);
+  nd->processed++;
+  if (kind == SS_TIME_STEP && nsplit > 0) { /* creations are not steps: not timed here */
+    double ms = 1e3 * (t1 - t0);
+    nd->nstep_ms++;
+    nd->step_ms_sum += ms;
+    if (ms > nd->step_ms_max) nd->step_ms_max = ms;
+  }
   publish(nd, &b->header, &acc, 1e3 * (t1 - t0), acc.substeps);
+}
+
+/* ------------------------------------------------------------------ services, health */
+static int on_reset(void *user)
+{
+  node *nd = user;
+  nd->reset_req = 1;
+  ROSC_INFO("~reset: the skin is created again on the next kinematic_mesh");
+  return 0;
+}
+
+/* Publishes the status of the last window on /diagnostics when ~diagnostic_period has
+ * passed; the level is the core's judgement of the window's figures (ss_input_health). */
+static void diagnose(node *nd)
+{
+  double now = 0, period = 1.0;
+  rosc_wall_now_s(&now);
+  rosc_diag_period(nd->diag, &period);
+  if (now - nd->diag_wall < period) return;
+  double window_s = now - nd->diag_wall;
+  nd->diag_wall = now;
+  uint32_t dropped = nd->dropped + (uint32_t)nd->stream.lost;
+  ss_input_window w;
+  w.arrived = (uint32_t)(nd->frames_in - nd->win.in);
+  w.stepped = (uint32_t)(nd->processed - nd->win.processed);
+  w.rejected = nd->rejected - nd->win.rejected;
+  w.dropped = dropped - nd->win.dropped;
+  w.skipped = nd->skipped - nd->win.skipped;
+  w.resets = nd->resets - nd->win.resets;
+  w.failures = nd->failures - nd->win.failures;
+  unsigned long nstep = nd->nstep_ms - nd->win.nstep_ms;
+  w.step_ms_mean = nstep ? (nd->step_ms_sum - nd->win.step_ms_sum) / (double)nstep : 0.0;
+  w.period_ms = 1e-3 * (double)nd->stream.period_us;
+  char msg[256];
+  int level = ss_input_health(&w, msg, sizeof msg);
+  char v[16][32];
+  snprintf(v[0], sizeof v[0], "%.1f", window_s);
+  snprintf(v[1], sizeof v[1], "%.2f", w.step_ms_mean);
+  snprintf(v[2], sizeof v[2], "%.2f", nd->step_ms_max);
+  snprintf(v[3], sizeof v[3], "%.2f", w.period_ms);
+  snprintf(v[4], sizeof v[4], "%.2f", SS_HEALTH_BUDGET * w.period_ms);
+  snprintf(v[5], sizeof v[5], "%u", (unsigned)w.arrived);
+  snprintf(v[6], sizeof v[6], "%u", (unsigned)w.stepped);
+  snprintf(v[7], sizeof v[7], "%u", (unsigned)w.rejected);
+  snprintf(v[8], sizeof v[8], "%u", (unsigned)w.dropped);
+  snprintf(v[9], sizeof v[9], "%u", (unsigned)w.skipped);
+  snprintf(v[10], sizeof v[10], "%u", (unsigned)w.resets);
+  snprintf(v[11], sizeof v[11], "%u", (unsigned)w.failures);
+  snprintf(v[12], sizeof v[12], "%u", (unsigned)nd->resets);
+  snprintf(v[13], sizeof v[13], "%d", nd->nweld);
+  rosc_kv kv[] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
+                  {"step time max (ms)", v[2]}, {"input period (ms)", v[3]},
+                  {"step budget (ms)", v[4]},   {"inputs received", v[5]},
+                  {"inputs processed", v[6]},   {"inputs rejected", v[7]},
+                  {"inputs dropped", v[8]},     {"inputs skipped", v[9]},
+                  {"resets", v[10]},            {"failures", v[11]},
+                  {"resets total", v[12]},      {"skin vertices", v[13]}};
+  rosc_diag_update(nd->diag, level, msg, kv, sizeof kv / sizeof kv[0]);
+  nd->win.in = nd->frames_in;
+  nd->win.processed = nd->processed;
+  nd->win.nstep_ms = nd->nstep_ms;
+  nd->win.step_ms_sum = nd->step_ms_sum;
+  nd->win.rejected = nd->rejected;
+  nd->win.dropped = dropped;
+  nd->win.skipped = nd->skipped;
+  nd->win.resets = nd->resets;
+  nd->win.failures = nd->failures;
+  nd->step_ms_max = 0.0;
 }
 
 int main(int argc, char **argv)
@@ -540,6 +635,16 @@ int main(int argc, char **argv)
     rosc_shutdown();
     return 1;
   }
+  rosc_srv *srv_reset = NULL;
+  char node_name[256] = "skin_sim";
+  rosc_node_name(node_name, sizeof node_name);
+  if (rosc_srv_empty(&srv_reset, "~reset", on_reset, nd) != ROSC_OK ||
+      rosc_diag_create(&nd->diag, node_name, "skin") != ROSC_OK) {
+    ROSC_ERROR("cannot advertise ~reset or /diagnostics");
+    rosc_shutdown();
+    return 1;
+  }
+  rosc_wall_now_s(&nd->diag_wall);
   ROSC_INFO("skin_sim: solver %s, method %s, stiffness %g N/m/m^2, young %g N/m, slide %g, "
             "substeps %d, iterations %d, marker %g Hz", ss_solver_name(nd->p.set.solver),
             ss_method_name(nd->p.set.mover.method), nd->p.set.anchor_stiffness, nd->p.set.young,
@@ -552,10 +657,13 @@ int main(int argc, char **argv)
       nd->in.head = (nd->in.head + 1) % nd->in.cap;
       nd->in.count--;
     }
+    diagnose(nd);
   }
   ROSC_INFO("skin_sim: %lu meshes in, %lu out, %u rejected, %u dropped, %u skipped, %u resets",
             nd->frames_in, nd->frames_out, (unsigned)nd->rejected,
             (unsigned)(nd->dropped + nd->stream.lost), (unsigned)nd->skipped, (unsigned)nd->resets);
+  rosc_srv_destroy(srv_reset);
+  rosc_diag_destroy(nd->diag);
   rosc_sub_destroy(sub);
   rosc_pub_destroy(nd->pub_mesh);
   rosc_pub_destroy(nd->pub_stats);

@@ -259,6 +259,7 @@ static void test_plan(void)
 }
 
 static void test_time_wild(void);
+static void test_health(void);
 
 int main(void)
 {
@@ -270,6 +271,7 @@ int main(void)
   test_stream();
   test_plan();
   test_time_wild();
+  test_health();
   return ss_test_finish("test_input");
 }
 
@@ -292,4 +294,51 @@ static void test_time_wild(void)
   CHECK(ss_input_classify_time(1, INT64_MAX - 499, INT64_MAX, 0.5, &dt) == SS_TIME_SAME);
   /* a NaN gap bound lets no stamp through as a step */
   CHECK(ss_input_classify_time(1, 0, 33333333, NAN, &dt) == SS_TIME_GAP);
+}
+
+/* The level of a diagnostics window from its figures (README "ROS nodes",
+ * /diagnostics). */
+static void test_health(void)
+{
+  char msg[128];
+  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3};
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
+  CHECK(strcmp(msg, "stepping normally") == 0);
+  w.step_ms_mean = 30.0; /* over 80% of the period */
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "step 30.0 ms") != NULL);
+  w.step_ms_mean = 70.0; /* over twice the period */
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_ERROR);
+  CHECK(strstr(msg, "cannot keep up") != NULL);
+  w.period_ms = 0.0; /* unknown period: step time not judged */
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
+  w.period_ms = 33.3;
+  w.step_ms_mean = 5.0;
+  w.skipped = 2;
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "2 skipped") != NULL);
+  w.skipped = 0;
+  w.resets = 1;
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "reset 1") != NULL);
+  w.resets = 0;
+  w.rejected = 3; /* some rejected, some stepped */
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "3 inputs rejected") != NULL);
+  w.stepped = 0; /* every one rejected */
+  w.step_ms_mean = 0.0;
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_ERROR);
+  CHECK(strstr(msg, "every input rejected") != NULL);
+  w.stepped = 27;
+  w.failures = 1; /* a failure outranks everything */
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_ERROR);
+  CHECK(strstr(msg, "failed") != NULL);
+  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0};
+  CHECK(ss_input_health(&none, NULL, 0) == SS_HEALTH_WARN);
+  CHECK(ss_input_health(&none, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "no kinematic_mesh") != NULL);
+  w.failures = 0;
+  w.step_ms_mean = NAN; /* a NaN step time is not judged (no crash, no false alarm) */
+  w.rejected = 0;
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
 }

@@ -21,6 +21,11 @@
  *                            disagree, NaN, only unknown names (rejected, counted in
  *                            avatar_stats), known plus unknown names (used; the unknown
  *                            ones counted); kinematic_mesh comes back for the good ones.
+ *   skin_probe reset [CMD]   streams the waving sheet (the skin lags the body), calls
+ *                            ~reset (std_srvs/Empty, through rosc, or by running CMD,
+ *                            e.g. rosservice call /skin_sim/reset): the next skin_mesh
+ *                            is the body's pose itself and skin_stats counts one reset.
+ *   skin_probe badstream S HZ  S seconds of NaN meshes at HZ (for /diagnostics tests).
  * Exit 0 when every check passes. */
 #include "rosc/rosc.h"
 #include "ss_test.h"
@@ -549,6 +554,95 @@ static int run_await(long long stamp_ns, double timeout_s)
   return seen ? 0 : 1;
 }
 
+static double max_diff(const float *a, const float *b, int n)
+{
+  double m = 0.0;
+  for (int i = 0; i < n; i++) {
+    double d = fabs((double)a[i] - (double)b[i]);
+    if (!(d <= m)) m = d;
+  }
+  return m;
+}
+
+/* cmd NULL: ~reset through rosc_call_empty; else system(cmd) does it (rosservice). */
+static int run_reset(const char *cmd)
+{
+  static got g;
+  static float out_pos[3 * NV];
+  g.last_out_pos = out_pos;
+  make_sheet(0.0);
+  g.tri = g_tri;
+  g.ntri = 3 * NT;
+  if (!setup_skin(&g, "skin_probe_reset") || !connect_skin(&g, 0)) return 1;
+  int64_t period = 33333333;
+  int n = 45;
+  for (int i = 0; i < n; i++) {
+    make_sheet(i / 30.0);
+    send_mesh(T0 + i * period, 1, g_pos, 3 * NV, g_tri, 3 * NT);
+    rosc_spin_for(1.0 / 30.0);
+  }
+  wait_for(&g, n, 20.0);
+  double before = max_diff(out_pos, g_pos, 3 * NV);
+  uint32_t resets0 = g.last_stats.resets;
+  printf("reset: %d skin_mesh before the call; skin - body %.3g m; resets %u\n", g.n, before,
+         (unsigned)resets0);
+  CHECK(g.n == n);
+  CHECK(before > 1e-4); /* the skin lags and slides: not the body's pose */
+  int st;
+  if (cmd) {
+    st = system(cmd);
+    printf("reset: '%s' exited with %d\n", cmd, st);
+    CHECK(st == 0);
+  } else {
+    st = rosc_call_empty("/skin_sim/reset", 10.0);
+    printf("reset: rosc_call_empty(/skin_sim/reset): %s\n", rosc_strerror(st));
+    CHECK(st == ROSC_OK);
+  }
+  make_sheet(n / 30.0);
+  send_mesh(T0 + n * period, 1, g_pos, 3 * NV, g_tri, 3 * NT);
+  wait_for(&g, n + 1, 20.0);
+  double after = max_diff(out_pos, g_pos, 3 * NV);
+  printf("reset: after the call %d skin_mesh; skin - body %.3g m; resets %u\n", g.n, after,
+         (unsigned)g.last_stats.resets);
+  CHECK(g.n == n + 1);
+  CHECK(after < 1e-6); /* the skin is created again on the current pose: at rest on it */
+  CHECK(g.last_stats.resets == resets0 + 1);
+  /* stepping goes on from there, no further reset */
+  for (int i = n + 1; i < n + 10; i++) {
+    make_sheet(i / 30.0);
+    send_mesh(T0 + i * period, 1, g_pos, 3 * NV, g_tri, 3 * NT);
+    rosc_spin_for(1.0 / 30.0);
+  }
+  wait_for(&g, n + 10, 20.0);
+  CHECK(g.n == n + 10);
+  CHECK(g.last_stats.resets == resets0 + 1);
+  CHECK(g.bad_frame == 0 && g.bad_tri == 0);
+  /* a call while nothing is wrong with the service name resolves; a wrong one times out */
+  CHECK(rosc_call_empty("/skin_sim/no_such_service", 0.5) == ROSC_E_TIMEOUT);
+  return finish();
+}
+
+static int run_badstream(double seconds, double hz)
+{
+  static got g;
+  make_sheet(0.0);
+  g.tri = g_tri;
+  g.ntri = 3 * NT;
+  if (!setup_skin(&g, "skin_probe_badstream") || !connect_skin(&g, 0)) return 1;
+  g_pos[5] = NAN;
+  int n = (int)(seconds * hz);
+  for (int i = 0; i < n; i++) {
+    send_mesh(T0 + (int64_t)(i * 1e9 / hz), 1, g_pos, 3 * NV, g_tri, 3 * NT);
+    rosc_spin_for(1.0 / hz);
+  }
+  rosc_spin_for(0.5);
+  /* a rejected mesh gets no skin_mesh nor skin_stats: /diagnostics is what shows it */
+  printf("badstream: %d NaN meshes sent, %d skin_mesh and %d skin_stats back\n", n, g.n,
+         g.nstats);
+  CHECK(g.n == 0 && g.nstats == 0);
+  return finish();
+}
+
 int main(int argc, char **argv)
 {
   g_argc = argc;
@@ -559,6 +653,10 @@ int main(int argc, char **argv)
   if (argc >= 2 && strcmp(argv[1], "bad") == 0) return run_bad();
   if (argc >= 2 && strcmp(argv[1], "jump") == 0) return run_jump();
   if (argc >= 2 && strcmp(argv[1], "joints") == 0) return run_joints();
-  fprintf(stderr, "usage: skin_probe stream N HZ | burst N | bad | jump | joints\n");
+  if (argc >= 2 && strcmp(argv[1], "reset") == 0) return run_reset(argc >= 3 ? argv[2] : NULL);
+  if (argc >= 4 && strcmp(argv[1], "badstream") == 0)
+    return run_badstream(atof(argv[2]), atof(argv[3]));
+  fprintf(stderr, "usage: skin_probe stream N HZ | burst N | bad | jump | joints | reset [CMD] | "
+          "badstream S HZ\n");
   return 2;
 }

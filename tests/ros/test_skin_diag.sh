@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# skin_sim_node's health on /diagnostics and its ~reset service, through a real master,
+# the node started from launch/skin.launch, driven by tests/ros/skin_probe.c:
+#  - /diagnostics (read with rostopic echo, as a robot monitor would): with no input the
+#    status "skin_sim: skin" is WARN "no kinematic_mesh received"; during a good 10 Hz
+#    stream it is OK with every key-value; during a stream of NaN meshes it is ERROR
+#    "every input rejected";
+#  - ~reset: `skin_probe reset` calls it through rosc; the next skin_mesh is the body's
+#    pose and skin_stats counts the reset; then the same with `rosservice call
+#    /skin_sim/reset` (the user's way).
+# Usage: test_skin_diag.sh BUILD_DIR [SOURCE_DIR].
+set -u
+bld="$1"
+src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
+. "$src/tests/ros/ros_env.sh"
+ros_env_setup "$bld" || exit $?
+probe="$bld/tests/ros/skin_probe"
+[ -x "$probe" ] || { echo "FAIL: $probe not built"; exit 1; }
+export PATH=/usr/bin:$PATH
+fail=0
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+
+# diag NAME: the next skin_sim status on /diagnostics, into $ROS_ENV_DIR/diag_NAME.txt
+diag() {
+  timeout 20 rostopic echo -n 1 /diagnostics > "$ROS_ENV_DIR/diag_$1.txt" 2>&1
+  echo "--- /diagnostics ($1):"
+  grep -E "name:|level:|message:|key:|value:" "$ROS_ENV_DIR/diag_$1.txt" | head -34
+}
+level_is() { grep -q "level: $2" "$ROS_ENV_DIR/diag_$1.txt"; }
+
+ros_env_bg launch roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
+lpid=$ROS_ENV_LAST_PID
+if ! ros_env_wait_node /skin_sim 20 "$lpid"; then
+  check "skin node starts from skin.launch" false
+  exit 1
+fi
+
+# 1. no input yet
+diag idle
+check "idle: status named after the node, WARN, no input" \
+  "grep -q 'name: \"skin_sim: skin\"' '$ROS_ENV_DIR/diag_idle.txt' && level_is idle 1 && grep -q 'no kinematic_mesh' '$ROS_ENV_DIR/diag_idle.txt'"
+
+# 2. a good stream at 10 Hz (8 s): OK, every figure present
+"$probe" stream 80 10 > "$ROS_ENV_DIR/probe_stream.log" 2>&1 &
+ppid=$!
+sleep 3
+diag good
+wait $ppid
+rc=$?
+tail -3 "$ROS_ENV_DIR/probe_stream.log"
+check "good: skin_probe stream passes (exit $rc)" "[ $rc -eq 0 ]"
+check "good: level OK, 'stepping normally'" "level_is good 0 && grep -q 'stepping normally' '$ROS_ENV_DIR/diag_good.txt'"
+for k in "step time mean (ms)" "step time max (ms)" "input period (ms)" "step budget (ms)" \
+         "inputs received" "inputs processed" "inputs rejected" "inputs dropped" \
+         "inputs skipped" "resets" "failures" "window (s)"; do
+  check "good: key '$k' present" "grep -qF 'key: \"$k\"' '$ROS_ENV_DIR/diag_good.txt'"
+done
+check "good: input period measured (100 ms)" \
+  "grep -A1 'key: \"input period (ms)\"' '$ROS_ENV_DIR/diag_good.txt' | grep -q 'value: \"100.00\"'"
+
+# 3. NaN meshes only (8 s at 10 Hz): ERROR, every input rejected
+"$probe" badstream 8 10 > "$ROS_ENV_DIR/probe_bad.log" 2>&1 &
+ppid=$!
+sleep 3
+diag bad
+wait $ppid
+rc=$?
+cat "$ROS_ENV_DIR/probe_bad.log"
+check "bad: skin_probe badstream passes (exit $rc)" "[ $rc -eq 0 ]"
+check "bad: level ERROR, 'every input rejected'" "level_is bad 2 && grep -q 'every input rejected' '$ROS_ENV_DIR/diag_bad.txt'"
+ros_env_stop "$lpid"
+
+# 4. ~reset on a fresh node
+ros_env_bg launch_reset roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
+lpid=$ROS_ENV_LAST_PID
+if ros_env_wait_node /skin_sim 20 "$lpid"; then
+  "$probe" reset > "$ROS_ENV_DIR/probe_reset.log" 2>&1
+  rc=$?
+  cat "$ROS_ENV_DIR/probe_reset.log"
+  check "reset: skin_probe reset passes (exit $rc)" "[ $rc -eq 0 ]"
+  "$probe" reset "timeout 20 rosservice call /skin_sim/reset" > "$ROS_ENV_DIR/probe_reset2.log" 2>&1
+  rc=$?
+  cat "$ROS_ENV_DIR/probe_reset2.log"
+  check "reset: with rosservice call /skin_sim/reset (exit $rc)" "[ $rc -eq 0 ]"
+  check "reset: logged" "grep -q '~reset: skin created again' '$ROS_ENV_DIR/launch_reset.log'"
+  check "reset: the second reset (rosservice) counted" \
+    "[ \$(grep -c '~reset: skin created again' '$ROS_ENV_DIR/launch_reset.log') -eq 2 ]"
+  ros_env_stop "$lpid"
+else
+  check "reset: skin node starts" false
+fi
+for l in launch launch_reset; do
+  if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/$l.log"; then
+    grep -E -A5 "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/$l.log" | head -30
+    check "$l: no sanitizer report from the skin node" false
+  fi
+done
+exit $fail
