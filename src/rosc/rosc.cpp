@@ -9,6 +9,7 @@
 // passed by const reference before publish() returns (also for subscribers in the
 // same process), so reusing it is safe.
 #include "rosc/rosc.h"
+#include "rosc_internal.h"
 
 #include <ros/callback_queue.h>
 #include <ros/console.h>
@@ -32,6 +33,10 @@
 #include <unordered_map>
 #include <vector>
 
+using rosc_internal::copy_out;
+using rosc_internal::guard;
+using rosc_internal::valid_name;
+
 namespace {
 
 // ------------------------------------------------------------------ state
@@ -45,51 +50,11 @@ NodeState g_node;
 
 void log_plain(int level, const char *file, int line, const char *func, const char *msg);
 
-void log_internal(const char *func, const char *what)
-{
-  std::string text = std::string("rosc: ") + func + ": " + what;
-  log_plain(ROSC_LOG_ERROR, __FILE__, __LINE__, func, text.c_str());
-}
-
-// Runs body() and maps every exception to a status code.
-template <class F>
-int guard(const char *func, F &&body) noexcept
-{
-  try {
-    return body();
-  } catch (const std::bad_alloc &) {
-    return ROSC_E_NOMEM;
-  } catch (const ros::InvalidNameException &e) {
-    try { log_internal(func, e.what()); } catch (...) {}
-    return ROSC_E_INVALID;
-  } catch (const std::exception &e) {
-    try { log_internal(func, e.what()); } catch (...) {}
-    return ROSC_E_ROS;
-  } catch (...) {
-    try { log_internal(func, "unknown exception"); } catch (...) {}
-    return ROSC_E_ROS;
-  }
-}
-
 int need_node()
 {
   if (!g_node.started || g_node.shut_down || g_node.nh == nullptr) return ROSC_E_STATE;
   return ROSC_OK;
 }
-
-int copy_out(const std::string &s, char *buf, size_t buf_size)
-{
-  if (buf == nullptr || buf_size == 0) return ROSC_E_INVALID;
-  if (s.size() + 1 > buf_size) {
-    std::memcpy(buf, s.data(), buf_size - 1);
-    buf[buf_size - 1] = '\0';
-    return ROSC_E_TRUNCATED;
-  }
-  std::memcpy(buf, s.c_str(), s.size() + 1);
-  return ROSC_OK;
-}
-
-bool valid_name(const char *name) { return name != nullptr && name[0] != '\0'; }
 
 void atexit_cleanup() { rosc_shutdown(); }
 
@@ -221,6 +186,12 @@ void assign_array(V &dst, const T *p, size_t n)
 }
 
 }  // namespace
+
+void rosc_internal::log_internal(const char *func, const char *what)
+{
+  std::string text = std::string("rosc: ") + func + ": " + what;
+  log_plain(ROSC_LOG_ERROR, __FILE__, __LINE__, func, text.c_str());
+}
 
 // ------------------------------------------------------------------ opaque handles
 struct rosc_rate {

@@ -1,8 +1,9 @@
 // rosc services and diagnostics (include/rosc/rosc.h: "services", "diagnostics"):
 // std_srvs/Empty servers and calls, and a diagnostic_updater::Updater behind a C
 // handle. Kept apart from rosc.cpp (which holds the node, topics and logging); it uses
-// only the node's public state (rosc_ok) and the same exception guard.
+// only the node's public state (rosc_ok) and the exception guard of rosc_internal.h.
 #include "rosc/rosc.h"
+#include "rosc_internal.h"
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -15,43 +16,9 @@
 #include <string>
 #include <vector>
 
-namespace {
-
-// Runs body() and maps every exception to a status code (one log line), as rosc.cpp.
-template <class F>
-int guard(const char *func, F &&body) noexcept
-{
-  try {
-    return body();
-  } catch (const std::bad_alloc &) {
-    return ROSC_E_NOMEM;
-  } catch (const ros::InvalidNameException &e) {
-    try { rosc_log(ROSC_LOG_ERROR, "rosc: %s: %s", func, e.what()); } catch (...) {}
-    return ROSC_E_INVALID;
-  } catch (const std::exception &e) {
-    try { rosc_log(ROSC_LOG_ERROR, "rosc: %s: %s", func, e.what()); } catch (...) {}
-    return ROSC_E_ROS;
-  } catch (...) {
-    try { rosc_log(ROSC_LOG_ERROR, "rosc: %s: unknown exception", func); } catch (...) {}
-    return ROSC_E_ROS;
-  }
-}
-
-bool valid_name(const char *name) { return name != nullptr && name[0] != '\0'; }
-
-int copy_out(const std::string &s, char *buf, size_t buf_size)
-{
-  if (buf == nullptr || buf_size == 0) return ROSC_E_INVALID;
-  if (s.size() + 1 > buf_size) {
-    std::memcpy(buf, s.data(), buf_size - 1);
-    buf[buf_size - 1] = '\0';
-    return ROSC_E_TRUNCATED;
-  }
-  std::memcpy(buf, s.c_str(), s.size() + 1);
-  return ROSC_OK;
-}
-
-}  // namespace
+using rosc_internal::copy_out;
+using rosc_internal::guard;
+using rosc_internal::valid_name;
 
 // ------------------------------------------------------------------ services
 struct rosc_srv {
