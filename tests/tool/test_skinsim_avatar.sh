@@ -118,20 +118,8 @@ check "prims_coarse: --primitive-edge 0.05 gives fewer triangles" \
 bad "built-in motion on a robot without its joints" run --urdf "$tmp/prims.urdf" --motion arms
 check "  ... names the motion and the robot" "grep -q \"'arms'.*robot 'prims'\" '$tmp/err'"
 bad "bad --mesh-up-axis" run --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --mesh-up-axis up
-cat > "$tmp/tet_y.dae" <<'DAE'
-<?xml version="1.0" encoding="utf-8"?>
-<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-<asset><unit name="meter" meter="1"/><up_axis>Y_UP</up_axis></asset>
-<library_geometries><geometry id="g" name="g"><mesh>
-<source id="gp"><float_array id="gpa" count="12">0 0 0 0.1 0 0 0 0.2 0 0 0 0.3</float_array>
-<technique_common><accessor source="#gpa" count="4" stride="3"><param name="X" type="float"/>
-<param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
-<vertices id="gv"><input semantic="POSITION" source="#gp"/></vertices>
-<triangles count="4"><input semantic="VERTEX" source="#gv" offset="0"/><p>0 2 1 0 1 3 0 3 2 1 2 3</p></triangles>
-</mesh></geometry></library_geometries>
-<library_visual_scenes><visual_scene id="s"><node id="n" name="n"><instance_geometry url="#g"/></node>
-</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/></scene></COLLADA>
-DAE
+# a Y_UP Collada tetrahedron (bounding box 0.1 x 0.2 x 0.3 as the file stores it)
+cp "$src/tests/data/tet_y.dae" "$tmp/tet_y.dae"
 cat > "$tmp/mixed.urdf" <<'URDF'
 <robot name='mixed'>
 <link name='body'><visual><geometry><mesh filename='tet_y.dae'/></geometry></visual>
