@@ -33,6 +33,9 @@ enum ss_method {
   SS_METHOD_NRING = 2    /* closest point among faces within N rings of the anchor's face */
 };
 
+/* Monotonic wall clock in milliseconds (for timings; never asserted in tests). */
+double ss_now_ms(void);
+
 /* "walk", "project", "nring"; NULL for an unknown value. */
 const char *ss_method_name(int method);
 /* Parses a method name; returns the ss_method or -1 if unknown. */

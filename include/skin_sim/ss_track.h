@@ -48,9 +48,6 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
                  ss_progress_fn progress, void *user, ss_track_stats *stats,
                  char *err, int err_sz);
 
-/* Monotonic wall clock in milliseconds (for timings; never asserted in tests). */
-double ss_now_ms(void);
-
 #ifdef __cplusplus
 }
 #endif

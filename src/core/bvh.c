@@ -17,7 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "bvh.h"
+#include "closest.h"
 
 #define LEAF_SIZE 4
 #define MAX_DEPTH 96

@@ -1,12 +1,8 @@
 /* Status strings, method names and the clock shared by the core. */
 #include "skin_sim/ss_common.h"
 
-#include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-#include "skin_sim/ss_track.h"
-#include "ss_util.h"
 
 const char *ss_status_string(int status) {
   switch (status) {
@@ -40,15 +36,4 @@ double ss_now_ms(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-double ss_median(double *values, int n) {
-  if (n <= 0) return 0.0;
-  qsort(values, (size_t)n, sizeof(double), cmp_double);
-  return (n % 2) ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }

@@ -1,10 +1,12 @@
-/* One interface for the three ways of moving an anchor (ss_anchor.h): holds
+/* One interface for the three ways of moving an anchor (mover.h): holds
  * the per-pose canonical frames and the scratch memory of the chosen method,
  * all allocated at create, so that moving anchors allocates nothing. */
 #include <math.h>
 #include <stdlib.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "bvh.h"
+#include "closest.h"
+#include "mover.h"
 #include "ss_err.h"
 
 struct ss_mover {

@@ -14,7 +14,7 @@
  *               (slide a rate per second, so any substep count converges to
  *               one relaxation), then the mover
  *               carries (face, u, v) over the body to a* (walk / project /
- *               nring, ss_anchor.h).
+ *               nring, mover.h).
  * A solve that meets a non-finite value keeps the last finite state and is
  * counted in the statistics; nothing non-finite ever enters the state. */
 #include <float.h>
@@ -31,7 +31,6 @@
 static void openmp_warm_up(int nthread);
 #endif
 #include "ss_err.h"
-#include "skin_sim/ss_track.h"
 
 static const char *const solver_names[] = {"newton", "quasi-newton"};
 

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bvh.h"
 #include "energy.h"
 #include "sim_internal.h"
 #include "ss_err.h"

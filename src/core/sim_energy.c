@@ -20,7 +20,6 @@
 
 #include "energy.h"
 #include "sim_internal.h"
-#include "skin_sim/ss_track.h"
 
 void ss_sim_energy_begin(ss_sim *sim, double h) {
   double c = sim->set.damping;

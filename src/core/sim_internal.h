@@ -16,6 +16,7 @@
 
 #include <cholmod.h>
 
+#include "mover.h"
 #include "skin_sim/ss_sim.h"
 
 enum ss_vert_kind {

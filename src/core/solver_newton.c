@@ -29,7 +29,6 @@
 
 #include "sim_internal.h"
 #include "ss_err.h"
-#include "skin_sim/ss_track.h"
 
 static double dot(const double *a, const double *b, int n) {
   double s = 0.0;

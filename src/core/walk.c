@@ -36,7 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "walk.h"
 
 /* ---- frames ------------------------------------------------------------- */
 

@@ -22,7 +22,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "geodesic.h"
+#include "walk.h"
 
 struct ss_geodesic {
   int nweld;

@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "skin_sim/ss_track.h"
+#include "bvh.h"
 #include "ss_err.h"
 
 static const char MAGIC[8] = {'S', 'S', 'R', 'E', 'F', '\0', 'v', '1'};

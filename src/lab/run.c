@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bvh.h"
 #include "snag.h"
 #include "ss_err.h"
 #include "ss_util.h"

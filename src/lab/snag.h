@@ -4,7 +4,8 @@
 #ifndef SKIN_SIM_SNAG_H
 #define SKIN_SIM_SNAG_H
 
-#include "skin_sim/ss_anchor.h"
+#include "geodesic.h"
+#include "walk.h"
 
 typedef struct snag_judge {
   ss_geodesic *geo;

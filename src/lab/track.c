@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "skin_sim/ss_track.h"
+#include "mover.h"
 #include "snag.h"
 #include "ss_err.h"
 #include "ss_util.h"

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "walk.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"

@@ -4,7 +4,10 @@
  * search; and the surface distance used for snag detection. */
 #include <string.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "bvh.h"
+#include "closest.h"
+#include "geodesic.h"
+#include "walk.h"
 #include "ss_test.h"
 #include "ss_test_mesh.h"
 

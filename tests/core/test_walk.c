@@ -3,7 +3,7 @@
  * zero-area faces, clamping, and the step bound. */
 #include <string.h>
 
-#include "skin_sim/ss_anchor.h"
+#include "mover.h"
 #include "ss_test.h"
 #include "ss_test_mesh.h"
 

@@ -8,7 +8,10 @@
 #include <assert.h>
 
 #include "fuzz_util.h"
-#include "skin_sim/ss_anchor.h"
+#include "bvh.h"
+#include "closest.h"
+#include "geodesic.h"
+#include "mover.h"
 #include "skin_sim/ss_mesh.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

@@ -1,4 +1,4 @@
-/* Internal: small helpers shared by core modules. */
+/* Internal to the experiment library: small helpers shared by its modules. */
 #ifndef SKIN_SIM_SS_UTIL_H
 #define SKIN_SIM_SS_UTIL_H
 

@@ -1,0 +1,19 @@
+/* Internal: bounding volume hierarchy over the body's faces, for the exact
+ * Euclidean closest point of the "projection springs" baseline (bvh.c): built
+ * once per topology, refitted per pose. */
+#ifndef SKIN_SIM_BVH_H
+#define SKIN_SIM_BVH_H
+
+#include "skin_sim/ss_mesh.h"
+
+typedef struct ss_bvh ss_bvh;
+int ss_bvh_create(ss_bvh **out, const ss_topo *topo);
+void ss_bvh_destroy(ss_bvh *bvh);
+/* Refits boxes to positions pos (nvert x 3). Allocates nothing. */
+void ss_bvh_refit(ss_bvh *bvh, const double *pos);
+/* Exact Euclidean closest point on the whole mesh (pose of the last refit);
+ * ties go to the lower face index. Returns the squared distance. */
+double ss_bvh_closest(const ss_bvh *bvh, const double *pos, const double p[3], int *face,
+                      double uv[2]);
+
+#endif

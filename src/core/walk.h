@@ -1,0 +1,64 @@
+/* Internal: per-face canonical frames of one body pose and the anchor walk
+ * (walk.c; the paper's section 2). An anchor lives on the body as (face, u, v):
+ * its world position is v0 + u (v1 - v0) + v (v2 - v0) with v0, v1, v2 the
+ * face's corners in the current pose; inside means u >= 0, v >= 0, u + v <= 1. */
+#ifndef SKIN_SIM_WALK_H
+#define SKIN_SIM_WALK_H
+
+#include "skin_sim/ss_mesh.h"
+
+/* Per-face data of the body in its current pose, computed once per frame
+ * (ss_frames_update) and then shared read-only by every anchor update. */
+typedef struct ss_frames {
+  int nface;
+  double *origin;    /* (nface x 3) corner v0 */
+  double *edge;      /* (nface x 6) Dm = [v1 - v0, v2 - v0], stored as e1 xyz then e2 xyz */
+  double *to_canon;  /* (nface x 6) R^-1 Q^T from the QR of Dm: 2x3 row-major; maps a world
+                        vector to canonical (u, v) coordinates. Regularised on degenerate faces
+                        so it is always finite. */
+  double *normal;    /* (nface x 3) unit normal (zero on a degenerate face) */
+  double *area;      /* (nface) area */
+  unsigned char *degenerate; /* (nface) 1 where the face is too thin for its QR to be
+                                inverted in this pose (zero area, collinear corners):
+                                to_canon is then the regularised pseudo-inverse and
+                                walks pass straight through the face */
+} ss_frames;
+
+int ss_frames_create(ss_frames **out, int nface);
+void ss_frames_destroy(ss_frames *frames);
+/* Recomputes all per-face data for positions pos (nvert x 3). Allocates nothing. */
+void ss_frames_update(ss_frames *frames, const ss_topo *topo, const double *pos);
+
+/* World position of anchor (face, uv) in the pose of frames. */
+void ss_anchor_position(const ss_frames *frames, int face, const double uv[2], double out[3]);
+
+enum ss_walk_stop {
+  SS_STOP_INSIDE = 0,     /* the ray ended inside a face: the normal case */
+  SS_STOP_BOUNDARY = 1,   /* hit a boundary (or non-manifold) edge: stopped on it */
+  SS_STOP_CREASE = 2,     /* would re-enter a face already visited: stopped on the edge */
+  SS_STOP_STEP_LIMIT = 3  /* crossed walk_max_steps edges: stopped where it was */
+};
+const char *ss_walk_stop_name(int stop);
+
+typedef struct ss_walk_result {
+  int face;      /* final face */
+  double uv[2];  /* final canonical coordinates, inside the face */
+  int stop;      /* ss_walk_stop */
+  int steps;     /* edges crossed */
+  double length; /* length of the path walked on the surface (world units): an upper
+                    bound of the geodesic distance moved; 0 for project and nring */
+} ss_walk_result;
+
+/* Scratch memory for walks (per-face visit stamps): one per thread. */
+typedef struct ss_walker ss_walker;
+int ss_walker_create(ss_walker **out, int nface);
+void ss_walker_destroy(ss_walker *walker);
+
+/* Walks anchor (face, uv) towards target over the pose of frames, crossing at
+ * most max_steps edges. Never produces NaN: a non-finite target leaves the
+ * anchor where it is (stop INSIDE, 0 steps). Allocates nothing. */
+void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *frames, int face,
+             const double uv[2], const double target[3], int max_steps,
+             ss_walk_result *res);
+
+#endif
