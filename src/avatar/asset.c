@@ -217,7 +217,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   m4_mul(rot, sc_m, a->root_fix);
 
   /* ---- nodes */
-  if (!sc->mRootNode) return ssa_fail(err, err_sz, SS_E_MESH, "asset '%s' has no nodes", path);
+  if (!sc->mRootNode) return ss_fail(err, err_sz, SS_E_MESH, "asset '%s' has no nodes", path);
   a->nnode = count_nodes(sc->mRootNode);
   const struct aiNode **nodes = calloc((size_t)a->nnode, sizeof *nodes);
   a->node_name = calloc((size_t)a->nnode, sizeof(char *));
@@ -228,7 +228,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   if (!nodes || !a->node_name || !a->node_parent || !a->node_local || !a->node_rest_trs ||
       !add_nodes(a, sc->mRootNode, -1, &k, nodes)) {
     free(nodes);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   }
   for (int i = 0; i < a->nnode; i++) decompose(a->node_local + 16 * i, a->node_rest_trs + 10 * i);
 
@@ -248,7 +248,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   }
   if (nf == 0) {
     free(nodes);
-    return ssa_fail(err, err_sz, SS_E_MESH, "asset '%s' contains no triangles", path);
+    return ss_fail(err, err_sz, SS_E_MESH, "asset '%s' contains no triangles", path);
   }
   a->npart = npart;
   a->nvert = nv;
@@ -275,7 +275,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
       !a->bone_offset || !a->w_start || !a->w_bone || !a->w_weight || !coo_v) {
     free(nodes);
     free(coo_v);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   }
   /* file bones first, then the rigid bones of parts that need one */
   int p = 0, v0 = 0, f0 = 0, nb = 0, nw = 0;
@@ -288,7 +288,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
     free(rigid_needed);
     free(part_mesh);
     free(part_v0);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   }
   int status = SS_OK;
   for (unsigned m = 0; m < sc->mNumMeshes && status == SS_OK; m++) {
@@ -314,9 +314,9 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
       d[1] = me->mVertices[i].y;
       d[2] = me->mVertices[i].z;
       if (!isfinite(d[0]) || !isfinite(d[1]) || !isfinite(d[2])) {
-        status = ssa_fail(err, err_sz, SS_E_NONFINITE,
-                          "asset '%s': vertex %u of mesh %u ('%s') is not finite", path, i, m,
-                          me->mName.data);
+        status = ss_fail(err, err_sz, SS_E_NONFINITE,
+                         "asset '%s': vertex %u of mesh %u ('%s') is not finite", path, i, m,
+                         me->mName.data);
         break;
       }
       a->vert_part[v0 + (int)i] = p;
@@ -327,9 +327,9 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
       for (int c = 0; c < 3; c++) {
         unsigned idx = me->mFaces[f].mIndices[c];
         if (idx >= me->mNumVertices) {
-          status = ssa_fail(err, err_sz, SS_E_MESH,
-                            "asset '%s': face %u of mesh %u indexes vertex %u of %u", path, f, m,
-                            idx, me->mNumVertices);
+          status = ss_fail(err, err_sz, SS_E_MESH,
+                           "asset '%s': face %u of mesh %u indexes vertex %u of %u", path, f, m,
+                           idx, me->mNumVertices);
           break;
         }
         a->faces[3 * f0 + c] = v0 + (int)idx;
@@ -347,8 +347,8 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
         unsigned vi = bo->mWeights[w].mVertexId;
         double wt = bo->mWeights[w].mWeight;
         if (!isfinite(wt)) {
-          status = ssa_fail(err, err_sz, SS_E_NONFINITE,
-                            "asset '%s': bone '%s' has a non-finite weight", path, bo->mName.data);
+          status = ss_fail(err, err_sz, SS_E_NONFINITE,
+                           "asset '%s': bone '%s' has a non-finite weight", path, bo->mName.data);
           break;
         }
         if (vi >= me->mNumVertices || !(wt > 0)) continue;
@@ -366,7 +366,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   if (status == SS_OK) {
     /* vertices without weight: rigid on their part's node */
     double *wsum = calloc((size_t)nv, sizeof(double));
-    if (!wsum) status = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+    if (!wsum) status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
     for (int i = 0; wsum && i < nw; i++) wsum[coo_v[i]] += a->w_weight[i];
     for (int v = 0; wsum && v < nv; v++)
       if (!(wsum[v] > 0)) rigid_needed[a->vert_part[v]] = 1;
@@ -392,7 +392,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
     a->nbone = nb;
     for (int i = 0; i < nb; i++)
       if (!a->bone_name[i] && status == SS_OK)
-        status = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+        status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
     /* COO -> CSR, weights normalised */
     if (wsum && rigid_bone && status == SS_OK) {
       int *cnt = a->w_start;
@@ -402,7 +402,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
       int *wb = malloc(sizeof(int) * (size_t)(nw > 0 ? nw : 1));
       double *ww = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
       if (!fill || !wb || !ww) {
-        status = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+        status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
       } else {
         memcpy(fill, cnt, sizeof(int) * (size_t)(nv + 1));
         for (int i = 0; i < nw; i++) {
@@ -417,7 +417,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
       free(wb);
       free(ww);
     } else if (status == SS_OK) {
-      status = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+      status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
     }
     free(wsum);
     free(rigid_bone);
@@ -428,7 +428,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   free(coo_v);
   for (int q = 0; q < npart && status == SS_OK; q++)
     if (!a->part_name[q])
-      status = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+      status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   if (status != SS_OK) {
     free(nodes);
     return status;
@@ -456,7 +456,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   if (!a->anim_name || !a->anim_duration || !a->anim_chan_start || !a->chan_node ||
       !a->chan_key_start || !a->key_time || !a->key_value || !a->anim_node_chan) {
     free(nodes);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   }
   int ci = 0, ki = 0;
   for (int i = 0; i < a->nanim; i++) {
@@ -464,7 +464,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
     double tps = an->mTicksPerSecond > 0 ? an->mTicksPerSecond : 25.0;
     if (!(a->anim_name[i] = ssa_strdup(an->mName.data))) {
       free(nodes);
-      return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+      return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
     }
     a->anim_duration[i] = an->mDuration / tps;
     a->anim_chan_start[i] = ci;
@@ -505,8 +505,8 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
     for (int c = 0; c < 4; c++)
       if (!isfinite(a->key_value[4 * i + c]) || !isfinite(a->key_time[i])) {
         free(nodes);
-        return ssa_fail(err, err_sz, SS_E_NONFINITE, "asset '%s': an animation key is not finite",
-                        path);
+        return ss_fail(err, err_sz, SS_E_NONFINITE, "asset '%s': an animation key is not finite",
+                       path);
       }
   free(nodes);
 
@@ -516,7 +516,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   if (!nw_m || !bm) {
     free(nw_m);
     free(bm);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   }
   ssa_asset_node_world(a, -1, 0.0, nw_m);
   ssa_asset_skin_matrices(a, nw_m, bm);
@@ -525,22 +525,22 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   free(bm);
   for (int i = 0; i < 3 * a->nvert; i++)
     if (!isfinite(a->rest_pos[i]))
-      return ssa_fail(err, err_sz, SS_E_NONFINITE,
-                      "asset '%s': vertex %d is not finite in the rest pose (singular transforms)",
-                      path, i / 3);
+      return ss_fail(err, err_sz, SS_E_NONFINITE,
+                     "asset '%s': vertex %d is not finite in the rest pose (singular transforms)",
+                     path, i / 3);
   return SS_OK;
 }
 
 int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts, char *err,
                    int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
-  if (!path) return ssa_fail(err, err_sz, SS_E_ARG, "no asset path given");
+  if (!path) return ss_fail(err, err_sz, SS_E_ARG, "no asset path given");
   ssa_asset_opts o = opts ? *opts : ssa_asset_default_opts();
   int st0 = ssa_check_mesh_file(path, &o, err, err_sz); /* before anything opens it */
   if (st0 != SS_OK) return st0;
   struct aiPropertyStore *props = aiCreatePropertyStore();
-  if (!props) return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
+  if (!props) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
   aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   if (o.ignore_up_axis) aiSetImportPropertyInteger(props, AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, 1);
@@ -556,9 +556,9 @@ int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts
       for (unsigned i = 0; i < me->mNumVertices; i++)
         if (!isfinite(me->mVertices[i].x) || !isfinite(me->mVertices[i].y) ||
             !isfinite(me->mVertices[i].z)) {
-          int st = ssa_fail(err, err_sz, SS_E_NONFINITE,
-                            "mesh file '%s': vertex %u of mesh %u ('%s') is not finite", path, i,
-                            m, me->mName.data);
+          int st = ss_fail(err, err_sz, SS_E_NONFINITE,
+                           "mesh file '%s': vertex %u of mesh %u ('%s') is not finite", path, i,
+                           m, me->mName.data);
           aiReleaseImport(sc);
           return st;
         }
@@ -574,18 +574,18 @@ int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts
     snprintf(msg, sizeof msg, "%s", why && why[0] ? why : "unknown format or broken file");
     size_t n = strlen(msg);
     while (n > 0 && (msg[n - 1] == '\n' || msg[n - 1] == '.' || msg[n - 1] == ' ')) msg[--n] = '\0';
-    return ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, msg);
+    return ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, msg);
   }
   ssa_asset *a = calloc(1, sizeof *a);
   if (!a) {
     aiReleaseImport(sc);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
   }
   int st = (a->path = ssa_strdup(path)) ? SS_OK : SS_E_NOMEM;
   if (st == SS_OK)
     st = load_scene(a, sc, &o, path, err, err_sz);
   else
-    ssa_fail(err, err_sz, st, "out of memory reading '%s'", path);
+    ss_fail(err, err_sz, st, "out of memory reading '%s'", path);
   aiReleaseImport(sc);
   if (st != SS_OK) {
     ssa_asset_destroy(a);

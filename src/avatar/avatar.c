@@ -127,7 +127,7 @@ int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out) {
 
 int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_avatar_opts *opts,
                           char *err, int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
   ssa_avatar_opts o = opts ? *opts : ssa_avatar_default_opts();
   ssa_asset *a = NULL;
@@ -138,7 +138,7 @@ int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_av
   if (!av || !alloc_body(av, a->nvert, a->nface, a->nbone, a->nnode, nw)) {
     ssa_avatar_destroy(av);
     ssa_asset_destroy(a);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for asset '%s'", asset_path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for asset '%s'", asset_path);
   }
   av->kind = SSA_AVATAR_ASSET;
   av->weight_source = SSA_WEIGHTS_FILE;
@@ -211,7 +211,7 @@ static int bind_links_auto(ssa_avatar *av, const ssa_avatar_opts *o, const char 
   if (nseg < 0) {
     free(seg);
     free(owner);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory binding %s", what);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory binding %s", what);
   }
   free(av->w_start);
   free(av->w_bone);
@@ -225,7 +225,7 @@ static int bind_links_auto(ssa_avatar *av, const ssa_avatar_opts *o, const char 
                             &av->w_weight, NULL, why, sizeof why);
   free(seg);
   free(owner);
-  if (st != SS_OK) return ssa_fail(err, err_sz, st, "%s: automatic weights failed: %s", what, why);
+  if (st != SS_OK) return ss_fail(err, err_sz, st, "%s: automatic weights failed: %s", what, why);
   av->weight_source = SSA_WEIGHTS_AUTO;
   return SS_OK;
 }
@@ -304,7 +304,7 @@ static int bind_links_from_file(ssa_avatar *av) {
 static int finish_mesh_body(ssa_avatar *av, const ssa_avatar_opts *o, const char *what,
                             int try_file, char *err, int err_sz) {
   if (!setup_link_bones(av))
-    return ssa_fail(err, err_sz, SS_E_ARG, "%s: a link pose is singular", what);
+    return ss_fail(err, err_sz, SS_E_ARG, "%s: a link pose is singular", what);
   if (!(try_file && !o->force_auto_weights && bind_links_from_file(av))) {
     int st = bind_links_auto(av, o, what, err, err_sz);
     if (st != SS_OK) return st;
@@ -361,7 +361,7 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
   ao.z_up = 0;
   ao.ignore_up_axis = 1;
   visual_part *parts = calloc((size_t)(r->nvisual > 0 ? r->nvisual : 1), sizeof *parts);
-  if (!parts) return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
+  if (!parts) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
   int st = SS_OK, nv = 0, nf = 0, nb = 0, other_up = 0, first_up = -1;
   static const char *const up_names[3] = {"X_UP", "Y_UP", "Z_UP"};
   char base[4096];
@@ -377,7 +377,7 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
       st = ssa_primitive_mesh(kind, r->visual_size + 3 * i, o->primitive_edge, &vp->prim_pos,
                               &vp->nvert, &vp->prim_faces, &vp->nface, why, sizeof why);
       if (st != SS_OK) {
-        ssa_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, link, why);
+        ss_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, link, why);
         break;
       }
       vp->pos = vp->prim_pos;
@@ -387,7 +387,7 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
         char path[4096], why[1024] = "";
         ssa_resolve_uri(r->visual_uri[i], base, o->package_path, path, sizeof path, why,
                         sizeof why);
-        st = ssa_fail(err, err_sz, SS_E_IO, "URDF '%s', link '%s': %s", urdf, link, why);
+        st = ss_fail(err, err_sz, SS_E_IO, "URDF '%s', link '%s': %s", urdf, link, why);
         break;
       }
       ssa_asset_opts aoi = ao;
@@ -403,7 +403,7 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
       char why[1024] = "";
       st = ssa_asset_load(&vp->asset, r->visual_path[i], &aoi, why, sizeof why);
       if (st != SS_OK) {
-        ssa_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, link, why);
+        ss_fail(err, err_sz, st, "URDF '%s', link '%s': %s", urdf, link, why);
         break;
       }
       vp->nvert = vp->asset->nvert;
@@ -426,10 +426,10 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
          r->visual_path[first_up], up_names[ssa_collada_up_axis(r->visual_path[first_up])],
          other_up == 1 ? "is" : "are", other_up == 1 ? "it" : "them");
   if (st == SS_OK && nf == 0)
-    st = ssa_fail(err, err_sz, SS_E_MESH, "URDF '%s' has no visual meshes or primitives to make a "
-                  "body of", urdf);
+    st = ss_fail(err, err_sz, SS_E_MESH, "URDF '%s' has no visual meshes or primitives to make a "
+                 "body of", urdf);
   if (st == SS_OK && !alloc_body(av, nv, nf, nb, r->nlink, nv))
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", urdf);
   if (st == SS_OK) {
     int v0 = 0, f0 = 0, b = 0;
     for (int i = 0; i < r->nvisual; i++) {
@@ -474,15 +474,15 @@ int ssa_avatar_from_robot(ssa_avatar **out, ssa_robot *robot, const char *mesh_p
                           const ssa_avatar_opts *opts, char *err, int err_sz) {
   if (!out) {
     ssa_robot_destroy(robot);
-    return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+    return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   }
   *out = NULL;
-  if (!robot) return ssa_fail(err, err_sz, SS_E_ARG, "no robot given");
+  if (!robot) return ss_fail(err, err_sz, SS_E_ARG, "no robot given");
   ssa_avatar_opts o = opts ? *opts : ssa_avatar_default_opts();
   ssa_avatar *av = calloc(1, sizeof *av);
   if (!av) {
     ssa_robot_destroy(robot);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
   }
   av->kind = SSA_AVATAR_ROBOT;
   av->robot = robot;
@@ -494,7 +494,7 @@ int ssa_avatar_from_robot(ssa_avatar **out, ssa_robot *robot, const char *mesh_p
     if (st == SS_OK) {
       const ssa_asset *a = av->asset;
       if (!alloc_body(av, a->nvert, a->nface, robot->nlink, robot->nlink, -1)) {
-        st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", mesh_path);
+        st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for '%s'", mesh_path);
       } else {
         memcpy(av->rest_pos, a->rest_pos, sizeof(double) * 3 * (size_t)a->nvert);
         memcpy(av->faces, a->faces, sizeof(int) * 3 * (size_t)a->nface);
@@ -520,22 +520,22 @@ int ssa_avatar_from_robot_mesh(ssa_avatar **out, ssa_robot *robot, int nvert, co
                                char *err, int err_sz) {
   if (!out) {
     ssa_robot_destroy(robot);
-    return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+    return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   }
   *out = NULL;
-  if (!robot) return ssa_fail(err, err_sz, SS_E_ARG, "no robot given");
+  if (!robot) return ss_fail(err, err_sz, SS_E_ARG, "no robot given");
   char why[512] = "";
   int st = ss_mesh_check(nvert, pos, nface, faces, why, sizeof why);
   if (st != SS_OK) {
     ssa_robot_destroy(robot);
-    return ssa_fail(err, err_sz, st, "body mesh: %s", why);
+    return ss_fail(err, err_sz, st, "body mesh: %s", why);
   }
   ssa_avatar_opts o = opts ? *opts : ssa_avatar_default_opts();
   ssa_avatar *av = calloc(1, sizeof *av);
   if (!av || !alloc_body(av, nvert, nface, robot->nlink, robot->nlink, -1)) {
     if (av) av->robot = robot; else ssa_robot_destroy(robot);
     ssa_avatar_destroy(av);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for the body mesh");
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the body mesh");
   }
   av->kind = SSA_AVATAR_ROBOT;
   av->robot = robot;
@@ -554,7 +554,7 @@ int ssa_avatar_from_robot_mesh(ssa_avatar **out, ssa_robot *robot, int nvert, co
 
 int ssa_avatar_load_urdf(ssa_avatar **out, const char *urdf_path, const char *mesh_path,
                          const ssa_avatar_opts *opts, char *err, int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
   ssa_robot *r = NULL;
   int st = ssa_robot_load(&r, urdf_path, opts ? opts->package_path : NULL, err, err_sz);
@@ -565,18 +565,18 @@ int ssa_avatar_load_urdf(ssa_avatar **out, const char *urdf_path, const char *me
 int ssa_avatar_region_mask(const ssa_avatar *av, int n, const char *const *names,
                            unsigned char *mask, char *err, int err_sz) {
   if (!av || !mask || n < 0 || (n > 0 && !names))
-    return ssa_fail(err, err_sz, SS_E_ARG, "region: missing arguments");
+    return ss_fail(err, err_sz, SS_E_ARG, "region: missing arguments");
   memset(mask, 0, (size_t)av->nvert);
   unsigned char *pick = calloc((size_t)(av->ntarget > 0 ? av->ntarget : 1), 1);
-  if (!pick) return ssa_fail(err, err_sz, SS_E_NOMEM, "region: out of memory");
+  if (!pick) return ss_fail(err, err_sz, SS_E_NOMEM, "region: out of memory");
   for (int i = 0; i < n; i++) {
     int t = av->kind == SSA_AVATAR_ROBOT ? ssa_robot_link_index(av->robot, names[i])
                                          : ssa_asset_node_index(av->asset, names[i]);
     if (t < 0) {
       free(pick);
-      return ssa_fail(err, err_sz, SS_E_ARG, "region: '%s' is no %s of this avatar",
-                      names[i] ? names[i] : "(null)",
-                      av->kind == SSA_AVATAR_ROBOT ? "link" : "node");
+      return ss_fail(err, err_sz, SS_E_ARG, "region: '%s' is no %s of this avatar",
+                     names[i] ? names[i] : "(null)",
+                     av->kind == SSA_AVATAR_ROBOT ? "link" : "node");
     }
     pick[t] = 1;
   }

@@ -407,15 +407,15 @@ static int relax(mt_out *m, int iters) {
 int ssa_mannequin_mesh(int target_tris, double **pos, int *nvert, int **faces, int *nface,
                        char *err, int err_sz) {
   if (!pos || !nvert || !faces || !nface)
-    return ssa_fail(err, err_sz, SS_E_ARG, "mannequin: missing output arguments");
+    return ss_fail(err, err_sz, SS_E_ARG, "mannequin: missing output arguments");
   *pos = NULL;
   *faces = NULL;
   *nvert = *nface = 0;
   if (target_tris <= 0) target_tris = 5000;
   if (target_tris < 3000 || target_tris > 5000000)
-    return ssa_fail(err, err_sz, SS_E_ARG,
-                    "mannequin: %d triangles is outside the supported range [3000, 5000000]",
-                    target_tris);
+    return ss_fail(err, err_sz, SS_E_ARG,
+                   "mannequin: %d triangles is outside the supported range [3000, 5000000]",
+                   target_tris);
   /* about 3.9 triangles per h^2 per m^2 of surface, about 1.45 m^2: calibrated below */
   double h = sqrt(1.45 * 3.9 / target_tris);
   mt_out m;
@@ -439,7 +439,7 @@ int ssa_mannequin_mesh(int target_tris, double **pos, int *nvert, int **faces, i
   if (!ok || m.nface == 0 || !relax(&m, 6)) {
     free(m.pos);
     free(m.faces);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "mannequin: out of memory generating the body");
+    return ss_fail(err, err_sz, SS_E_NOMEM, "mannequin: out of memory generating the body");
   }
   *pos = m.pos;
   *faces = m.faces;
@@ -449,7 +449,7 @@ int ssa_mannequin_mesh(int target_tris, double **pos, int *nvert, int **faces, i
 }
 
 int ssa_avatar_mannequin(ssa_avatar **out, int target_tris, char *err, int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
   ssa_robot *r = NULL;
   int st = ssa_robot_load_string(&r, mannequin_urdf, NULL, NULL, err, err_sz);

@@ -101,14 +101,14 @@ static int count_fields(const char *s) {
 }
 
 int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
-  if (!path) return ssa_fail(err, err_sz, SS_E_ARG, "no motion file given");
+  if (!path) return ss_fail(err, err_sz, SS_E_ARG, "no motion file given");
   char *text = ssa_read_text_file(path, "motion file", err, err_sz);
   if (!text) return SS_E_IO;
   ssa_motion *m = calloc(1, sizeof *m);
   int st = SS_OK, line_no = 0, cap = 0;
-  if (!m) st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
+  if (!m) st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
   char *save = NULL;
   int header = 0;
   for (char *line = text; st == SS_OK && line; line = save) {
@@ -121,15 +121,15 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
     int nf = count_fields(s);
     if (!header) {
       if (nf < 2) {
-        st = ssa_fail(err, err_sz, SS_E_ARG,
-                      "motion file '%s', line %d: the header needs a time column and at least one joint",
-                      path, line_no);
+        st = ss_fail(err, err_sz, SS_E_ARG,
+                     "motion file '%s', line %d: the header needs a time column and at least one joint",
+                     path, line_no);
         break;
       }
       m->njoint = nf - 1;
       m->joint_name = calloc((size_t)m->njoint, sizeof(char *));
       if (!m->joint_name) {
-        st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
+        st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
         break;
       }
       char *p = s;
@@ -138,19 +138,19 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
         if (c) *c = '\0';
         char *name = trim(p);
         if (k == 0 && strcasecmp(name, "time") != 0) {
-          st = ssa_fail(err, err_sz, SS_E_ARG,
-                        "motion file '%s', line %d: the first column must be 'time' (seconds), "
-                        "not '%s'", path, line_no, name);
+          st = ss_fail(err, err_sz, SS_E_ARG,
+                       "motion file '%s', line %d: the first column must be 'time' (seconds), "
+                       "not '%s'", path, line_no, name);
           break;
         }
         if (k > 0) {
           if (!*name) {
-            st = ssa_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: column %d has no joint name",
-                          path, line_no, k + 1);
+            st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: column %d has no joint name",
+                         path, line_no, k + 1);
             break;
           }
           if (!(m->joint_name[k - 1] = ssa_strdup(name))) {
-            st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
+            st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
             break;
           }
         }
@@ -160,9 +160,9 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
       continue;
     }
     if (nf != m->njoint + 1) {
-      st = ssa_fail(err, err_sz, SS_E_ARG,
-                    "motion file '%s', line %d: %d columns where the header has %d", path, line_no,
-                    nf, m->njoint + 1);
+      st = ss_fail(err, err_sz, SS_E_ARG,
+                   "motion file '%s', line %d: %d columns where the header has %d", path, line_no,
+                   nf, m->njoint + 1);
       break;
     }
     if (m->nframe == cap) {
@@ -172,7 +172,7 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
       double *nv = realloc(m->value, sizeof(double) * (size_t)nc * (size_t)m->njoint);
       if (nv) m->value = nv;
       if (!nt || !nv) {
-        st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
+        st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
         break;
       }
       cap = nc;
@@ -185,8 +185,8 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
       errno = 0;
       double v = strtod(field, &end);
       if (!*field || *trim(end) || errno == ERANGE || !isfinite(v)) {
-        st = ssa_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d, column %d: '%s' is not a finite number",
-                      path, line_no, k + 1, field);
+        st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d, column %d: '%s' is not a finite number",
+                     path, line_no, k + 1, field);
         break;
       }
       if (k == 0)
@@ -197,17 +197,17 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
     }
     if (st != SS_OK) break;
     if (m->nframe > 0 && !(m->time[m->nframe] > m->time[m->nframe - 1])) {
-      st = ssa_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: time %g does not increase",
-                    path, line_no, m->time[m->nframe]);
+      st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: time %g does not increase",
+                   path, line_no, m->time[m->nframe]);
       break;
     }
     m->nframe++;
   }
   free(text);
   if (st == SS_OK && !header)
-    st = ssa_fail(err, err_sz, SS_E_ARG, "motion file '%s' has no header row", path);
+    st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s' has no header row", path);
   if (st == SS_OK && m->nframe == 0)
-    st = ssa_fail(err, err_sz, SS_E_ARG, "motion file '%s' has no rows of values", path);
+    st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s' has no rows of values", path);
   if (st != SS_OK) {
     ssa_motion_destroy(m);
     return st;
@@ -217,11 +217,11 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
 }
 
 int ssa_motion_write_csv(const ssa_motion *m, const char *path, char *err, int err_sz) {
-  if (!m || !path) return ssa_fail(err, err_sz, SS_E_ARG, "no motion or file given");
+  if (!m || !path) return ss_fail(err, err_sz, SS_E_ARG, "no motion or file given");
   FILE *f = fopen(path, "w");
   if (!f)
-    return ssa_fail(err, err_sz, SS_E_IO, "motion file '%s' cannot be written: %s", path,
-                    strerror(errno));
+    return ss_fail(err, err_sz, SS_E_IO, "motion file '%s' cannot be written: %s", path,
+                   strerror(errno));
   fprintf(f, "time");
   for (int j = 0; j < m->njoint; j++) fprintf(f, ",%s", m->joint_name[j]);
   fprintf(f, "\n");
@@ -233,16 +233,16 @@ int ssa_motion_write_csv(const ssa_motion *m, const char *path, char *err, int e
   }
   int bad = ferror(f);
   if (fclose(f) != 0 || bad)
-    return ssa_fail(err, err_sz, SS_E_IO, "motion file '%s' could not be written completely", path);
+    return ss_fail(err, err_sz, SS_E_IO, "motion file '%s' could not be written completely", path);
   return SS_OK;
 }
 
 int ssa_motion_from_builtin(ssa_motion **out, int i, const ssa_robot *robot, double duration,
                             int nframe, char *err, int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
   if (i < 0 || i >= NBUILTIN || !robot || nframe < 2 || !(duration > 0))
-    return ssa_fail(err, err_sz, SS_E_ARG, "motion: bad built-in motion, robot, duration or frame count");
+    return ss_fail(err, err_sz, SS_E_ARG, "motion: bad built-in motion, robot, duration or frame count");
   ssa_motion *m = calloc(1, sizeof *m);
   int n = 0;
   for (int j = 0; j < robot->njoint; j++)
@@ -259,7 +259,7 @@ int ssa_motion_from_builtin(ssa_motion **out, int i, const ssa_robot *robot, dou
   if (!m || !q || !m->joint_name || !m->time || !m->value) {
     free(q);
     ssa_motion_destroy(m);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for a motion");
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for a motion");
   }
   int k = 0;
   for (int j = 0; j < robot->njoint; j++)
@@ -280,19 +280,19 @@ int ssa_motion_from_builtin(ssa_motion **out, int i, const ssa_robot *robot, dou
   for (int j = 0; j < n; j++)
     if (!m->joint_name[j]) {
       ssa_motion_destroy(m);
-      return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for a motion");
+      return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for a motion");
     }
   *out = m;
   return SS_OK;
 }
 
 int ssa_motion_bind(const ssa_motion *m, const ssa_robot *robot, int *map, char *err, int err_sz) {
-  if (!m || !robot || !map) return ssa_fail(err, err_sz, SS_E_ARG, "motion: missing arguments");
+  if (!m || !robot || !map) return ss_fail(err, err_sz, SS_E_ARG, "motion: missing arguments");
   for (int k = 0; k < m->njoint; k++) {
     map[k] = ssa_robot_joint_index(robot, m->joint_name[k]);
     if (map[k] < 0)
-      return ssa_fail(err, err_sz, SS_E_ARG, "motion column '%s' names no joint of robot '%s'",
-                      m->joint_name[k], robot->name);
+      return ss_fail(err, err_sz, SS_E_ARG, "motion column '%s' names no joint of robot '%s'",
+                     m->joint_name[k], robot->name);
   }
   return SS_OK;
 }

@@ -265,19 +265,19 @@ static int finish(builder *b) {
 int ssa_primitive_mesh(int kind, const double *size, double edge, double **pos, int *nvert,
                        int **faces, int *nface, char *err, int err_sz) {
   if (!pos || !nvert || !faces || !nface || !size)
-    return ssa_fail(err, err_sz, SS_E_ARG, "primitive: missing arguments");
+    return ss_fail(err, err_sz, SS_E_ARG, "primitive: missing arguments");
   *pos = NULL;
   *faces = NULL;
   *nvert = *nface = 0;
   if (!(edge > 0) || !isfinite(edge)) edge = PRIM_DEFAULT_EDGE;
   const int nsize = kind == SSA_VISUAL_BOX ? 3 : kind == SSA_VISUAL_CYLINDER ? 2
                     : kind == SSA_VISUAL_SPHERE ? 1 : 0;
-  if (!nsize) return ssa_fail(err, err_sz, SS_E_ARG, "primitive: unknown kind %d", kind);
+  if (!nsize) return ss_fail(err, err_sz, SS_E_ARG, "primitive: unknown kind %d", kind);
   static const char *const what[] = {"", "sphere radius", "box size", "cylinder radius/length"};
   for (int k = 0; k < nsize; k++)
     if (!(size[k] > 0) || !isfinite(size[k]))
-      return ssa_fail(err, err_sz, SS_E_ARG, "primitive: %s %g is not a positive finite length",
-                      what[kind], size[k]);
+      return ss_fail(err, err_sz, SS_E_ARG, "primitive: %s %g is not a positive finite length",
+                     what[kind], size[k]);
   /* at most about PRIM_MAX_TRIS triangles: a huge primitive gets longer edges */
   const double area = kind == SSA_VISUAL_BOX
                           ? 2 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0])
@@ -304,7 +304,7 @@ int ssa_primitive_mesh(int kind, const double *size, double edge, double **pos, 
   if (!b.ok || !finish(&b)) {
     free(b.pos);
     free(b.faces);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "primitive: out of memory");
+    return ss_fail(err, err_sz, SS_E_NOMEM, "primitive: out of memory");
   }
   *pos = b.pos;
   *faces = b.faces;

@@ -22,7 +22,7 @@ char *ssa_read_text_file(const char *path, const char *what, char *err, int err_
   if (ssa_check_input_file(path, what, SSA_MAX_FILE_MB_DEFAULT, err, err_sz) != SS_OK) return NULL;
   FILE *f = fopen(path, "rb");
   if (!f) {
-    ssa_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be opened: %s", what, path, strerror(errno));
+    ss_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be opened: %s", what, path, strerror(errno));
     return NULL;
   }
   size_t cap = 1 << 16, n = 0;
@@ -44,7 +44,7 @@ char *ssa_read_text_file(const char *path, const char *what, char *err, int err_
   fclose(f);
   if (!buf || bad) {
     free(buf);
-    ssa_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be read", what, path);
+    ss_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be read", what, path);
     return NULL;
   }
   buf[n] = '\0';
@@ -173,7 +173,7 @@ static int find_package_in(const char *list, const char *pkg, char *out, int out
 
 int ssa_resolve_uri(const char *uri, const char *base_dir, const char *package_path, char *out,
                     int out_sz, char *err, int err_sz) {
-  if (!uri || !out || out_sz <= 0) return ssa_fail(err, err_sz, SS_E_ARG, "no mesh URI given");
+  if (!uri || !out || out_sz <= 0) return ss_fail(err, err_sz, SS_E_ARG, "no mesh URI given");
   char path[4096];
   if (strncmp(uri, "package://", 10) == 0) {
     const char *rest = uri + 10;
@@ -181,32 +181,32 @@ int ssa_resolve_uri(const char *uri, const char *base_dir, const char *package_p
     char pkg[256];
     size_t n = slash ? (size_t)(slash - rest) : strlen(rest);
     if (n == 0 || n >= sizeof pkg)
-      return ssa_fail(err, err_sz, SS_E_IO, "mesh URI '%s' names no package", uri);
+      return ss_fail(err, err_sz, SS_E_IO, "mesh URI '%s' names no package", uri);
     memcpy(pkg, rest, n);
     pkg[n] = '\0';
     char dir[4096];
     if (!find_package_in(package_path, pkg, dir, sizeof dir) &&
         !find_package_in(getenv("ROS_PACKAGE_PATH"), pkg, dir, sizeof dir))
-      return ssa_fail(err, err_sz, SS_E_IO,
-                      "mesh URI '%s' cannot be resolved: package '%s' is not in the package "
-                      "path '%s' nor under ROS_PACKAGE_PATH '%s'",
-                      uri, pkg, package_path ? package_path : "",
-                      getenv("ROS_PACKAGE_PATH") ? getenv("ROS_PACKAGE_PATH") : "");
+      return ss_fail(err, err_sz, SS_E_IO,
+                     "mesh URI '%s' cannot be resolved: package '%s' is not in the package "
+                     "path '%s' nor under ROS_PACKAGE_PATH '%s'",
+                     uri, pkg, package_path ? package_path : "",
+                     getenv("ROS_PACKAGE_PATH") ? getenv("ROS_PACKAGE_PATH") : "");
     snprintf(path, sizeof path, "%s%s", dir, slash ? slash : "");
   } else if (strncmp(uri, "file://", 7) == 0) {
     snprintf(path, sizeof path, "%s", uri + 7);
   } else if (strstr(uri, "://")) {
-    return ssa_fail(err, err_sz, SS_E_IO, "mesh URI '%s' has an unsupported scheme", uri);
+    return ss_fail(err, err_sz, SS_E_IO, "mesh URI '%s' has an unsupported scheme", uri);
   } else if (uri[0] == '/' || !base_dir || !base_dir[0]) {
     snprintf(path, sizeof path, "%s", uri);
   } else {
     snprintf(path, sizeof path, "%s/%s", base_dir, uri);
   }
   if (!is_file(path))
-    return ssa_fail(err, err_sz, SS_E_IO, "mesh URI '%s' resolves to '%s', which is not a file",
-                    uri, path);
+    return ss_fail(err, err_sz, SS_E_IO, "mesh URI '%s' resolves to '%s', which is not a file",
+                   uri, path);
   if ((int)strlen(path) >= out_sz)
-    return ssa_fail(err, err_sz, SS_E_ARG, "mesh path '%s' is too long", path);
+    return ss_fail(err, err_sz, SS_E_ARG, "mesh path '%s' is too long", path);
   snprintf(out, (size_t)out_sz, "%s", path);
   return SS_OK;
 }
@@ -279,22 +279,22 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
       !ALLOC(r->visual_uri, r->nvisual) || !ALLOC(r->visual_path, r->nvisual) ||
       !ALLOC(r->visual_origin, 16 * r->nvisual) || !ALLOC(r->visual_scale, 3 * r->nvisual) ||
       !ALLOC(r->visual_kind, r->nvisual) || !ALLOC(r->visual_size, 3 * r->nvisual))
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
   for (int i = 0; i < r->nlink; i++) {
     if (!(r->link_name[i] = ssa_strdup(d->link_name[i])))
-      return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
+      return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
     r->link_parent[i] = -1;
     r->link_joint[i] = -1;
   }
   for (int j = 0; j < r->njoint; j++) {
     if (!(r->joint_name[j] = ssa_strdup(d->joint_name[j])))
-      return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
+      return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
     r->joint_type[j] = d->joint_type[j];
     r->joint_parent_link[j] = d->joint_parent[j];
     r->joint_child_link[j] = d->joint_child[j];
     if (d->joint_parent[j] < 0 || d->joint_child[j] < 0)
-      return ssa_fail(err, err_sz, SS_E_IO, "%s: joint '%s' connects an unknown link", what,
-                      d->joint_name[j]);
+      return ss_fail(err, err_sz, SS_E_IO, "%s: joint '%s' connects an unknown link", what,
+                     d->joint_name[j]);
     r->link_parent[d->joint_child[j]] = d->joint_parent[j];
     r->link_joint[d->joint_child[j]] = j;
     m4_from_tqs(d->joint_origin + 7 * j, d->joint_origin + 7 * j + 3, NULL,
@@ -303,8 +303,8 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
     double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     if (!(n > 0) || !isfinite(n)) {
       if (r->joint_type[j] != SSA_JOINT_FIXED && r->joint_type[j] != SSA_JOINT_UNSUPPORTED)
-        return ssa_fail(err, err_sz, SS_E_IO, "%s: joint '%s' has a zero axis", what,
-                        d->joint_name[j]);
+        return ss_fail(err, err_sz, SS_E_IO, "%s: joint '%s' has a zero axis", what,
+                       d->joint_name[j]);
       n = 1.0;
     }
     for (int k = 0; k < 3; k++) r->joint_axis[3 * j + k] = a[k] / n;
@@ -322,8 +322,8 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
     for (int k = 0; k < d->njoint; k++)
       if (strcmp(d->joint_name[k], d->joint_mimic[j]) == 0) m = k;
     if (m < 0)
-      return ssa_fail(err, err_sz, SS_E_ARG, "%s: joint '%s' mimics unknown joint '%s'", what,
-                      d->joint_name[j], d->joint_mimic[j]);
+      return ss_fail(err, err_sz, SS_E_ARG, "%s: joint '%s' mimics unknown joint '%s'", what,
+                     d->joint_name[j], d->joint_mimic[j]);
     r->joint_mimic[j] = m;
   }
   /* mimic cycles */
@@ -334,8 +334,8 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
       steps++;
     }
     if (steps > r->njoint)
-      return ssa_fail(err, err_sz, SS_E_ARG, "%s: mimic joints form a cycle through '%s'", what,
-                      r->joint_name[j]);
+      return ss_fail(err, err_sz, SS_E_ARG, "%s: mimic joints form a cycle through '%s'", what,
+                     r->joint_name[j]);
   }
   /* link order: breadth-first from the root */
   int n = 0;
@@ -346,8 +346,8 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
       if (r->link_parent[c] == l && n < r->nlink) r->link_order[n++] = c;
   }
   if (n != r->nlink)
-    return ssa_fail(err, err_sz, SS_E_IO, "%s: %d of %d links are not connected to root '%s'",
-                    what, r->nlink - n, r->nlink, r->link_name[r->root_link]);
+    return ss_fail(err, err_sz, SS_E_IO, "%s: %d of %d links are not connected to root '%s'",
+                   what, r->nlink - n, r->nlink, r->link_name[r->root_link]);
   for (int v = 0; v < r->nvisual; v++) {
     r->visual_link[v] = d->visual_link[v];
     r->visual_is_mesh[v] = d->visual_geom[v] == SSA_GEOM_MESH;
@@ -358,7 +358,7 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
     memcpy(r->visual_size + 3 * v, d->visual_size + 3 * v, 3 * sizeof(double));
     if (d->visual_uri[v]) {
       if (!(r->visual_uri[v] = ssa_strdup(d->visual_uri[v])))
-        return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
+        return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading %s", what);
       char path[4096];
       if (ssa_resolve_uri(d->visual_uri[v], base_dir, package_path, path, sizeof path, NULL, 0) ==
           SS_OK)
@@ -370,23 +370,23 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
 
 int ssa_robot_load_string(ssa_robot **out, const char *urdf_xml, const char *base_dir,
                           const char *package_path, char *err, int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
-  if (!urdf_xml) return ssa_fail(err, err_sz, SS_E_ARG, "no URDF text given");
+  if (!urdf_xml) return ss_fail(err, err_sz, SS_E_ARG, "no URDF text given");
   ssa_urdf_data *d = NULL;
   char why[768];
   why[0] = '\0';
   int st = ssa_urdf_parse(urdf_xml, &d, why, sizeof why);
-  if (st != SS_OK) return ssa_fail(err, err_sz, st, "URDF text: %s", why);
+  if (st != SS_OK) return ss_fail(err, err_sz, st, "URDF text: %s", why);
   ssa_robot *r = calloc(1, sizeof *r);
   if (!r) {
     ssa_urdf_data_free(d);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading URDF text");
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading URDF text");
   }
   st = build(r, d, "URDF text", base_dir, package_path, err, err_sz);
   ssa_urdf_data_free(d);
   if (st == SS_OK && !(r->path = ssa_strdup("")))
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading URDF text");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading URDF text");
   if (st != SS_OK) {
     ssa_robot_destroy(r);
     return st;
@@ -397,9 +397,9 @@ int ssa_robot_load_string(ssa_robot **out, const char *urdf_xml, const char *bas
 
 int ssa_robot_load(ssa_robot **out, const char *urdf_path, const char *package_path, char *err,
                    int err_sz) {
-  if (!out) return ssa_fail(err, err_sz, SS_E_ARG, "no output pointer given");
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
   *out = NULL;
-  if (!urdf_path) return ssa_fail(err, err_sz, SS_E_ARG, "no URDF path given");
+  if (!urdf_path) return ss_fail(err, err_sz, SS_E_ARG, "no URDF path given");
   char *xml = ssa_read_text_file(urdf_path, "URDF file", err, err_sz);
   if (!xml) return SS_E_IO;
   char base[4096];
@@ -414,18 +414,18 @@ int ssa_robot_load(ssa_robot **out, const char *urdf_path, const char *package_p
   why[0] = '\0';
   int st = ssa_urdf_parse(xml, &d, why, sizeof why);
   free(xml);
-  if (st != SS_OK) return ssa_fail(err, err_sz, st, "URDF file '%s': %s", urdf_path, why);
+  if (st != SS_OK) return ss_fail(err, err_sz, st, "URDF file '%s': %s", urdf_path, why);
   ssa_robot *r = calloc(1, sizeof *r);
   if (!r) {
     ssa_urdf_data_free(d);
-    return ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", urdf_path);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", urdf_path);
   }
   char what[4200];
   snprintf(what, sizeof what, "URDF file '%s'", urdf_path);
   st = build(r, d, what, base, package_path, err, err_sz);
   ssa_urdf_data_free(d);
   if (st == SS_OK && !(r->path = ssa_strdup(urdf_path)))
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", urdf_path);
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", urdf_path);
   if (st != SS_OK) {
     ssa_robot_destroy(r);
     return st;
@@ -439,15 +439,15 @@ int ssa_robot_load(ssa_robot **out, const char *urdf_path, const char *package_p
 int ssa_robot_set_joints(const ssa_robot *r, double *q, int n, const char *const *names,
                          const double *values, char *err, int err_sz) {
   if (!r || !q || n < 0 || (n > 0 && (!names || !values)))
-    return ssa_fail(err, err_sz, SS_E_ARG, "joint values: missing arrays");
+    return ss_fail(err, err_sz, SS_E_ARG, "joint values: missing arrays");
   for (int i = 0; i < n; i++) {
     int j = ssa_robot_joint_index(r, names[i]);
     if (j < 0)
-      return ssa_fail(err, err_sz, SS_E_ARG, "robot '%s' has no joint named '%s'", r->name,
-                      names[i] ? names[i] : "(null)");
+      return ss_fail(err, err_sz, SS_E_ARG, "robot '%s' has no joint named '%s'", r->name,
+                     names[i] ? names[i] : "(null)");
     if (!isfinite(values[i]))
-      return ssa_fail(err, err_sz, SS_E_NONFINITE, "joint '%s' of robot '%s' got a non-finite value",
-                      names[i], r->name);
+      return ss_fail(err, err_sz, SS_E_NONFINITE, "joint '%s' of robot '%s' got a non-finite value",
+                     names[i], r->name);
     q[j] = values[i];
   }
   return SS_OK;

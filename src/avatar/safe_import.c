@@ -42,10 +42,10 @@ static double pick(double v, double def) { return v > 0.0 ? v : def; }
 
 int ssa_check_input_file(const char *path, const char *what, double max_mb, char *err,
                          int err_sz) {
-  if (!path || !path[0]) return ssa_fail(err, err_sz, SS_E_IO, "no %s given", what);
+  if (!path || !path[0]) return ss_fail(err, err_sz, SS_E_IO, "no %s given", what);
   struct stat sb;
   if (stat(path, &sb) != 0)
-    return ssa_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be opened: %s", what, path, strerror(errno));
+    return ss_fail(err, err_sz, SS_E_IO, "%s '%s' cannot be opened: %s", what, path, strerror(errno));
   if (!S_ISREG(sb.st_mode)) {
     const char *kind = S_ISDIR(sb.st_mode)    ? "a directory"
                        : S_ISFIFO(sb.st_mode) ? "a FIFO (named pipe)"
@@ -53,12 +53,12 @@ int ssa_check_input_file(const char *path, const char *what, double max_mb, char
                        : S_ISBLK(sb.st_mode)  ? "a block device"
                        : S_ISSOCK(sb.st_mode) ? "a socket"
                                               : "not a regular file";
-    return ssa_fail(err, err_sz, SS_E_IO, "%s '%s' is %s, not a regular file: refused", what, path,
-                    kind);
+    return ss_fail(err, err_sz, SS_E_IO, "%s '%s' is %s, not a regular file: refused", what, path,
+                   kind);
   }
   if (max_mb > 0.0 && (double)sb.st_size > max_mb * 1048576.0)
-    return ssa_fail(err, err_sz, SS_E_IO, "%s '%s' is %.1f MB, over the cap of %g MB: refused", what,
-                    path, (double)sb.st_size / 1048576.0, max_mb);
+    return ss_fail(err, err_sz, SS_E_IO, "%s '%s' is %.1f MB, over the cap of %g MB: refused", what,
+                   path, (double)sb.st_size / 1048576.0, max_mb);
   return SS_OK;
 }
 
@@ -113,10 +113,10 @@ static int check_off(const char *path, const char *head, size_t n, double size, 
   if (!next_token(&p, end, tok, sizeof tok) || !parse_count(tok, &nv)) return SS_OK;
   if (!next_token(&p, end, tok, sizeof tok) || !parse_count(tok, &nf)) return SS_OK;
   if (6.0 * nv + 8.0 * nf > size)
-    return ssa_fail(err, err_sz, SS_E_MESH,
-                    "mesh file '%s' declares %.0f vertices and %.0f faces (OFF header), more than "
-                    "its %.0f bytes can hold: refused",
-                    path, nv, nf, size);
+    return ss_fail(err, err_sz, SS_E_MESH,
+                   "mesh file '%s' declares %.0f vertices and %.0f faces (OFF header), more than "
+                   "its %.0f bytes can hold: refused",
+                   path, nv, nf, size);
   return SS_OK;
 }
 
@@ -146,10 +146,10 @@ static int check_ply(const char *path, const char *head, size_t n, double size, 
   }
   if (in_element) need += count * (nprop > 0 ? nprop : 1) * per;
   if (need > size)
-    return ssa_fail(err, err_sz, SS_E_MESH,
-                    "mesh file '%s' declares elements needing at least %.0f bytes (PLY header), "
-                    "more than its %.0f bytes: refused",
-                    path, need, size);
+    return ss_fail(err, err_sz, SS_E_MESH,
+                   "mesh file '%s' declares elements needing at least %.0f bytes (PLY header), "
+                   "more than its %.0f bytes: refused",
+                   path, need, size);
   return SS_OK;
 }
 
@@ -162,7 +162,7 @@ int ssa_check_mesh_file(const char *path, const ssa_asset_opts *opts, char *err,
   if (!is_off && !is_ply) return SS_OK;
   int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0)
-    return ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be opened: %s", path, strerror(errno));
+    return ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be opened: %s", path, strerror(errno));
   struct stat sb;
   char head[4096];
   ssize_t n = 0;
@@ -285,8 +285,8 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
   *status = SS_E_IO;
   int fds[2];
   if (pipe(fds) != 0) {
-    ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: no pipe (%s)", path,
-             strerror(errno));
+    ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: no pipe (%s)", path,
+            strerror(errno));
     return NULL;
   }
   double as_bytes = current_vsize() + mem_mb * 1048576.0;
@@ -295,8 +295,8 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
   if (pid < 0) {
     close(fds[0]);
     close(fds[1]);
-    ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: fork failed (%s)", path,
-             strerror(errno));
+    ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: fork failed (%s)", path,
+            strerror(errno));
     return NULL;
   }
   if (pid == 0) {
@@ -325,25 +325,25 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
   while (w < 0 && errno == EINTR);
   if (r == 2) {
     free(buf);
-    ssa_fail(err, err_sz, SS_E_IO,
-             "mesh file '%s' cannot be imported: the import took longer than %g s and was stopped",
-             path, timeout_s);
+    ss_fail(err, err_sz, SS_E_IO,
+            "mesh file '%s' cannot be imported: the import took longer than %g s and was stopped",
+            path, timeout_s);
     return NULL;
   }
   if (r != 0) {
     free(buf);
     if (w == pid && WIFSIGNALED(wst)) {
       int sig = WTERMSIG(wst);
-      ssa_fail(err, err_sz, SS_E_IO,
-               "mesh file '%s' cannot be imported: the importer %s (signal %d, %s; memory limit "
-               "%g MB)",
-               path, sig == SIGXCPU ? "ran out of CPU time" : sig == SIGSEGV || sig == SIGBUS ? "crashed" : "died",
-               sig, strsignal(sig), mem_mb);
+      ss_fail(err, err_sz, SS_E_IO,
+              "mesh file '%s' cannot be imported: the importer %s (signal %d, %s; memory limit "
+              "%g MB)",
+              path, sig == SIGXCPU ? "ran out of CPU time" : sig == SIGSEGV || sig == SIGBUS ? "crashed" : "died",
+              sig, strsignal(sig), mem_mb);
     } else {
-      ssa_fail(err, err_sz, SS_E_IO,
-               "mesh file '%s' cannot be imported: the importer ended without a scene (out of "
-               "memory within the %g MB limit, or a broken file)",
-               path, mem_mb);
+      ss_fail(err, err_sz, SS_E_IO,
+              "mesh file '%s' cannot be imported: the importer ended without a scene (out of "
+              "memory within the %g MB limit, or a broken file)",
+              path, mem_mb);
     }
     return NULL;
   }
@@ -351,7 +351,7 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
     buf[len] = '\0';
     size_t n = strlen(buf);
     while (n > 0 && (buf[n - 1] == '\n' || buf[n - 1] == '.' || buf[n - 1] == ' ')) buf[--n] = '\0';
-    ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, buf);
+    ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, buf);
     free(buf);
     return NULL;
   }
@@ -360,8 +360,8 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
   free(buf);
   if (!sc) {
     const char *why = aiGetErrorString();
-    ssa_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: the scene handed back "
-             "could not be read (%s)", path, why && why[0] ? why : "assbin");
+    ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: the scene handed back "
+            "could not be read (%s)", path, why && why[0] ? why : "assbin");
     return NULL;
   }
   if (hdr[0] == 2 && sc->mRootNode) {

@@ -1,4 +1,4 @@
-/* Internal helpers of the avatar layer: error messages, strings and 4x4
+/* Internal helpers of the avatar layer: strings, files and 4x4
  * row-major homogeneous matrices (16 doubles). */
 #ifndef SKIN_SIM_AVATAR_SSA_UTIL_H
 #define SKIN_SIM_AVATAR_SSA_UTIL_H
@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "skin_sim/ss_common.h"
+#include "ss_err.h" /* ss_fail: the one-sentence error, as in the core */
 
 #define SSA_PI 3.14159265358979323846
 
@@ -21,18 +22,6 @@ char *ssa_read_text_file(const char *path, const char *what, char *err, int err_
  * (robot.c; r is a const ssa_robot *). */
 struct ssa_robot;
 void ssa_limit_sentence(const struct ssa_robot *r, int j, double v, char *msg, int msg_sz);
-
-static inline int ssa_fail(char *err, int err_sz, int status, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static inline int ssa_fail(char *err, int err_sz, int status, const char *fmt, ...) {
-  if (err && err_sz > 0) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, (size_t)err_sz, fmt, ap);
-    va_end(ap);
-  }
-  return status;
-}
 
 static inline char *ssa_strdup(const char *s) {
   if (!s) s = "";

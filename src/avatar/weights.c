@@ -246,19 +246,19 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
                      const ssa_autoweight_opts *opts, int **w_start_out, int **w_bone_out,
                      double **w_weight_out, int *dominant, char *err, int err_sz) {
   if (!w_start_out || !w_bone_out || !w_weight_out)
-    return ssa_fail(err, err_sz, SS_E_ARG, "no output arrays given");
+    return ss_fail(err, err_sz, SS_E_ARG, "no output arrays given");
   *w_start_out = NULL;
   *w_bone_out = NULL;
   *w_weight_out = NULL;
   if (nseg <= 0 || !seg || !seg_owner || nowner <= 0)
-    return ssa_fail(err, err_sz, SS_E_ARG, "no skeleton segments given");
+    return ss_fail(err, err_sz, SS_E_ARG, "no skeleton segments given");
   for (int s = 0; s < nseg; s++) {
     if (seg_owner[s] < 0 || seg_owner[s] >= nowner)
-      return ssa_fail(err, err_sz, SS_E_ARG, "segment %d has owner %d outside [0, %d)", s,
-                      seg_owner[s], nowner);
+      return ss_fail(err, err_sz, SS_E_ARG, "segment %d has owner %d outside [0, %d)", s,
+                     seg_owner[s], nowner);
     for (int c = 0; c < 6; c++)
       if (!isfinite(seg[6 * s + c]))
-        return ssa_fail(err, err_sz, SS_E_NONFINITE, "segment %d is not finite", s);
+        return ss_fail(err, err_sz, SS_E_NONFINITE, "segment %d is not finite", s);
   }
   ssa_autoweight_opts o = opts ? *opts : ssa_autoweight_default_opts();
   ss_topo *topo = NULL;
@@ -281,7 +281,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   int *ws = NULL, *wb = NULL;
   double *wv = NULL;
   if (!area || !dist || !near1 || !near2 || !rigid) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   /* nearest and second-nearest owners of each welded vertex, among the
@@ -290,14 +290,14 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   int have_vt = 0;
   unsigned char *seen = malloc((size_t)nseg);
   if (!seen) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   if (o.visibility) {
     if (!vis_tree_create(&vt, pos, nface, faces, topo->vert_weld)) {
       vis_tree_destroy(&vt);
       free(seen);
-      st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+      st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
       goto done;
     }
     have_vt = 1;
@@ -306,7 +306,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   if (!sd) {
     if (have_vt) vis_tree_destroy(&vt);
     free(seen);
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   for (int i = 0; i < nw; i++) {
@@ -364,14 +364,14 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   T = cholmod_allocate_triplet((size_t)nw, (size_t)nw, (size_t)(6 * nface + nw), 1, CHOLMOD_REAL,
                                &cc);
   if (!T) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   int *Ti = T->i, *Tj = T->j;
   double *Tx = T->x;
   double *diag = calloc((size_t)nw, sizeof(double));
   if (!diag) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   size_t nt = 0;
@@ -429,7 +429,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   A = cholmod_triplet_to_sparse(T, nt, &cc);
   B = cholmod_zeros((size_t)nw, (size_t)nowner, CHOLMOD_REAL, &cc);
   if (!A || !B) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   double *Bx = B->x;
@@ -443,14 +443,14 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   }
   F = cholmod_analyze(A, &cc);
   if (!F || !cholmod_factorize(A, F, &cc) || cc.status != CHOLMOD_OK) {
-    st = ssa_fail(err, err_sz, SS_E_SOLVER,
-                  "the heat diffusion matrix could not be factored (CHOLMOD status %d)", cc.status);
+    st = ss_fail(err, err_sz, SS_E_SOLVER,
+                 "the heat diffusion matrix could not be factored (CHOLMOD status %d)", cc.status);
     goto done;
   }
   X = cholmod_solve(CHOLMOD_A, F, B, &cc);
   if (!X) {
-    st = ssa_fail(err, err_sz, SS_E_SOLVER, "the heat diffusion solve failed (CHOLMOD status %d)",
-                  cc.status);
+    st = ss_fail(err, err_sz, SS_E_SOLVER, "the heat diffusion solve failed (CHOLMOD status %d)",
+                 cc.status);
     goto done;
   }
   /* post-processing on welded vertices: w (nowner x nw, owner-major) */
@@ -458,7 +458,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   nbr_sum = malloc(sizeof(double) * (size_t)nw);
   nbr_cnt = malloc(sizeof(double) * (size_t)nw);
   if (!w || !nbr_sum || !nbr_cnt) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   const double *Xx = X->x;
@@ -489,7 +489,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   int *cnt_w = calloc((size_t)nw + 1, sizeof(int));
   if (!ws || !cnt_w) {
     free(cnt_w);
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   for (int i = 0; i < nw; i++) {
@@ -519,7 +519,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   wb = malloc(sizeof(int) * (size_t)(ws[nvert] > 0 ? ws[nvert] : 1));
   wv = malloc(sizeof(double) * (size_t)(ws[nvert] > 0 ? ws[nvert] : 1));
   if (!wb || !wv) {
-    st = ssa_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
+    st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
     goto done;
   }
   for (int v = 0; v < nvert; v++) {

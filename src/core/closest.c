@@ -22,10 +22,7 @@
 #include <string.h>
 
 #include "closest.h"
-
-static double dot3(const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+#include "ss_vec.h"
 
 /* Closest point of segment a + t (b - a), t in [0, 1]: returns t. */
 static double segment_param(const double p[3], const double a[3], const double b[3]) {

@@ -32,22 +32,13 @@
 #include <string.h>
 
 #include "energy.h"
+#include "ss_vec.h"
 
 typedef struct {
   double e[3], na[3], nb[3];
   double e_len2, na_len2, nb_len2;
   double theta;
 } hinge_geometry;
-
-static inline void cross3(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static inline double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 static void hinge_geometry_init(const double x[12], hinge_geometry *g) {
   const double *e0 = x, *e1 = x + 3, *o0 = x + 6, *o1 = x + 9;

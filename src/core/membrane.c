@@ -47,6 +47,7 @@
 #include <string.h>
 
 #include "energy.h"
+#include "ss_vec.h"
 
 void ss_membrane_lame(double young, double poisson, double *mu, double *lam) {
   double m = young / (2.0 * (1.0 + poisson));
@@ -89,16 +90,6 @@ int ss_membrane_rest(const double x0[3], const double x1[3], const double x2[3],
 }
 
 /* ---- small vector helpers ---------------------------------------------- */
-
-static inline void cross3(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static inline double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /* A deterministic unit vector perpendicular to the unit vector u. */
 static void perpendicular_unit(const double u[3], double out[3]) {

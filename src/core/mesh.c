@@ -19,6 +19,7 @@
 
 #include "skin_sim/ss_mesh.h"
 #include "ss_err.h"
+#include "ss_vec.h"
 
 int ss_mesh_check(int nvert, const double *pos, int nface, const int *faces, char *err,
                   int err_sz) {
@@ -133,11 +134,6 @@ static int cmp_half_edge(const void *pa, const void *pb) {
   if (a->hi != b->hi) return (a->hi > b->hi) - (a->hi < b->hi);
   if (a->face != b->face) return (a->face > b->face) - (a->face < b->face);
   return (a->k > b->k) - (a->k < b->k);
-}
-
-static double dist3(const double *a, const double *b) {
-  double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
 /* Mean edge length over distinct welded edges. An interior edge is counted

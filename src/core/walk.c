@@ -37,6 +37,7 @@
 #include <string.h>
 
 #include "walk.h"
+#include "ss_vec.h"
 
 /* ---- frames ------------------------------------------------------------- */
 
@@ -70,10 +71,6 @@ void ss_frames_destroy(ss_frames *fr) {
   free(fr->area);
   free(fr->degenerate);
   free(fr);
-}
-
-static double dot3(const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* T for one face from its edges e1, e2 (see the file comment). Returns 1

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "geodesic.h"
+#include "ss_vec.h"
 #include "walk.h"
 
 struct ss_geodesic {
@@ -98,11 +99,6 @@ void ss_geodesic_destroy(ss_geodesic *g) {
   free(g->heap_key);
   free(g->heap_vert);
   free(g);
-}
-
-static double dist3(const double *a, const double *b) {
-  double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
 static void point_on_face(const ss_topo *topo, const double *pos, int f, const double uv[2],
