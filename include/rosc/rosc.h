@@ -1,8 +1,10 @@
 /* rosc: a thin C API over ROS 1's roscpp for skin_sim's plain-C nodes.
  *
  * The only code in skin_sim that includes ROS headers lives behind this header
- * (src/rosc/rosc.cpp, C++14). It knows nothing about skins: it passes flat arrays
- * in and out of the few message types the nodes use.
+ * (src/rosc, C++14). It knows nothing about skins: it passes flat arrays
+ * in and out of the few message types the nodes use. It declares what the nodes
+ * call; what only the tests call (setters, string topics, name lookups, service
+ * calls) is in tests/ros/rosc_test.h, built on the same inside.
  *
  * Conventions
  * - Every function that can fail returns an int status: ROSC_OK (0) or a negative
@@ -77,8 +79,6 @@ int rosc_ok(void);
 int rosc_shutdown(void);
 /* The fully resolved node name (e.g. "/skin_sim"), copied into buf. */
 int rosc_node_name(char *buf, size_t buf_size);
-/* Resolves a name ("~x", "x", "/x") with the node's namespace and remappings. */
-int rosc_resolve_name(const char *name, char *buf, size_t buf_size);
 
 /* ------------------------------------------------------------------ spinning */
 /* Runs the callbacks that are ready, waiting up to timeout_s seconds (wall clock)
@@ -114,15 +114,8 @@ static inline rosc_time rosc_time_from_s(double s)
 /* ROS time: simulated (/clock) when the parameter /use_sim_time is true, else wall.
  * With sim time it is zero until the first /clock message arrives. */
 int rosc_now(rosc_time *out);
-int rosc_now_s(double *out);
-/* Wall-clock time (system clock), available before rosc_init too. */
-int rosc_wall_now(rosc_time *out);
+/* Wall-clock time (system clock) in seconds, available before rosc_init too. */
 int rosc_wall_now_s(double *out);
-/* Sleeps for seconds of ROS time (follows /clock with sim time).
- * ROSC_E_SHUTDOWN when the sleep was cut short by shutdown. */
-int rosc_sleep(double seconds);
-/* Sleeps for seconds of wall-clock time. */
-int rosc_wall_sleep(double seconds);
 
 /* A loop rate in ROS time. rosc_rate_sleep sleeps for what is left of the cycle;
  * *met (may be NULL) is 1 if the cycle was on time, 0 if it overran. */
@@ -144,12 +137,6 @@ int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const ch
 int rosc_param_get_double(const char *name, double *out, double def, int *was_set);
 int rosc_param_get_int(const char *name, int *out, int def, int *was_set);
 int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
-/* A string parameter of any size, malloc'd (caller frees) and NUL-terminated;
- * *len (may be NULL) is its length. ROSC_E_NOTFOUND if not set, ROSC_E_TYPE if not a
- * string. */
-int rosc_param_get_string_alloc(const char *name, char **out, size_t *len);
-/* *out = 1 if the parameter is set (any type), else 0. */
-int rosc_param_has(const char *name, int *out);
 /* One sentence for a getter's failure, for the node to log before it refuses to
  * start: status is what a getter returned for parameter name, expected what the
  * node wanted ("an int", "a double (or an int)", "a bool", "a string"). ROSC_E_TYPE:
@@ -158,12 +145,6 @@ int rosc_param_has(const char *name, int *out);
  * status; with ROSC_OK err gets "". */
 int rosc_param_explain(int status, const char *name, const char *expected, char *err,
                        size_t err_size);
-/* Setters (tests and tools); bool is any non-zero int. */
-int rosc_param_set_string(const char *name, const char *value);
-int rosc_param_set_double(const char *name, double value);
-int rosc_param_set_int(const char *name, int value);
-int rosc_param_set_bool(const char *name, int value);
-int rosc_param_delete(const char *name);   /* ROSC_OK also when it was not set */
 /* The URDF as robot_state_publisher finds it: the parameter "robot_description"
  * searched upwards from the node's namespace (so "/robot_description" for a node in
  * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND
@@ -281,11 +262,8 @@ int rosc_publish_skin_mesh(rosc_pub *pub, const rosc_skin_mesh *msg);
 int rosc_publish_skin_stats(rosc_pub *pub, const rosc_skin_stats *msg);
 int rosc_publish_joint_state(rosc_pub *pub, const rosc_joint_state *msg);
 int rosc_publish_marker(rosc_pub *pub, const rosc_marker *msg);
-int rosc_publish_string(rosc_pub *pub, const char *text);
 /* Number of subscribers connected now. */
 int rosc_pub_num_subscribers(const rosc_pub *pub, unsigned *out);
-/* The fully resolved topic name (after remapping). */
-int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size);
 int rosc_pub_destroy(rosc_pub *pub);   /* unadvertises; NULL is fine */
 
 /* ------------------------------------------------------------------ subscribers */
@@ -302,19 +280,8 @@ typedef void (*rosc_string_cb)(const rosc_string *msg, void *user);
  * throttled error. */
 int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
                        rosc_skin_mesh_cb cb, void *user);
-int rosc_sub_skin_stats(rosc_sub **out, const char *topic, unsigned queue_size,
-                        rosc_skin_stats_cb cb, void *user);
 int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
                          rosc_joint_state_cb cb, void *user);
-int rosc_sub_marker(rosc_sub **out, const char *topic, unsigned queue_size,
-                    rosc_marker_cb cb, void *user);
-int rosc_sub_string(rosc_sub **out, const char *topic, unsigned queue_size,
-                    rosc_string_cb cb, void *user);
-/* Number of publishers connected now. */
-int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out);
-/* Messages dropped by the shim itself (frame_id or ns too long) so far. */
-int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out);
-int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */
@@ -327,10 +294,6 @@ int rosc_srv_empty(rosc_srv **out, const char *name, rosc_empty_cb cb, void *use
 /* The fully resolved service name. */
 int rosc_srv_name(const rosc_srv *srv, char *buf, size_t buf_size);
 int rosc_srv_destroy(rosc_srv *srv);   /* unadvertises; NULL is fine */
-/* Calls the std_srvs/Empty service `name` (tests and tools), waiting up to timeout_s
- * (wall clock) for it to exist. ROSC_OK when the server answered success,
- * ROSC_E_TIMEOUT when it did not appear, ROSC_E_ROS when the call failed. */
-int rosc_call_empty(const char *name, double timeout_s);
 
 /* ------------------------------------------------------------------ diagnostics */
 /* Health on /diagnostics (diagnostic_msgs/DiagnosticArray) through
@@ -354,14 +317,11 @@ int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
  * hidden by default). Safe from any thread and before rosc_init. */
 enum { ROSC_LOG_DEBUG = 0, ROSC_LOG_INFO = 1, ROSC_LOG_WARN = 2, ROSC_LOG_ERROR = 3,
        ROSC_LOG_FATAL = 4 };
-int rosc_log(int level, const char *fmt, ...) ROSC_PRINTF(2, 3);
-/* Prints at most once per period_s seconds of wall-clock time per key (a bag looping
- * ROS time back does not silence it). When messages were held back, the next one
- * that prints says how many. key NULL: the format string's text is the key. */
-int rosc_log_throttle(int level, double period_s, const char *key, const char *fmt, ...)
-    ROSC_PRINTF(4, 5);
-/* The general form the macros below use: the caller's file, line and function show
- * in the log; period_s <= 0 means no throttling. */
+/* The caller's file, line and function show in the log. period_s > 0 prints at most
+ * once per period_s seconds of wall-clock time per key (a bag looping ROS time back
+ * does not silence it); when messages were held back, the next one that prints says
+ * how many. key NULL: the format string's text is the key. The macros below fill in
+ * the place. */
 int rosc_log_at(int level, const char *file, int line, const char *func, double period_s,
                 const char *key, const char *fmt, ...) ROSC_PRINTF(7, 8);
 

@@ -1,16 +1,27 @@
-// Internal to the rosc shim (rosc.cpp, rosc_srv.cpp), not part of its C API: the
-// exception guard every extern "C" function runs its body in, and small helpers
-// both files use.
+// Internal to the rosc shim (src/rosc/*.cpp) and to its test helpers (tests/ros/rosc_test.cpp),
+// not part of its C API: the exception guard every extern "C" function runs its body in, the
+// node's state, the handles behind rosc_pub and rosc_sub, and the generic message paths.
+//
+//   rosc.cpp        node life, spinning, time, rates, logging
+//   rosc_param.cpp  parameters
+//   rosc_msg.cpp    C views <-> ROS messages, and one generic publish / subscribe path
+//   rosc_srv.cpp    services and diagnostics
 #ifndef ROSC_INTERNAL_H
 #define ROSC_INTERNAL_H
 
 #include "rosc/rosc.h"
 
 #include <ros/exceptions.h>
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <ros/subscriber.h>
 
+#include <cstdarg>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 namespace rosc_internal {
 
@@ -52,6 +63,55 @@ inline int copy_out(const std::string &s, char *buf, size_t buf_size)
 
 inline bool valid_name(const char *name) { return name != nullptr && name[0] != '\0'; }
 
+// ------------------------------------------------------------------ the node (rosc.cpp)
+// ROSC_OK while the node runs (after rosc_init, before rosc_shutdown), else ROSC_E_STATE.
+int need_node();
+// ros::init has run (names can be resolved).
+bool ros_initialized();
+// The node's handle; only while need_node() is ROSC_OK.
+ros::NodeHandle &node();
+
+// One log line at level with the caller's place; period_s > 0 throttles it per key
+// (NULL key: the format). What rosc_log_at and the test helpers' rosc_log run.
+int vlog(int level, const char *file, int line, const char *func, double period_s,
+         const char *key, const char *fmt, va_list ap);
+
+// ------------------------------------------------------------------ parameters (rosc_param.cpp)
+// A string parameter of any size, malloc'd (caller frees); ROSC_E_NOTFOUND if not set.
+int param_get_string_alloc(const char *name, char **out, size_t *len);
+
+// ------------------------------------------------------------------ messages (rosc_msg.cpp)
+// Any of the rosc_*_cb callback types, kept as a generic function pointer and called
+// back as its own type (the one of the subscriber's message type).
+using any_cb = void (*)();
+
+// Publishes msg, the C view of message type `type` (a rosc_msg_type).
+int publish(rosc_pub *pub, int type, const void *msg);
+// Subscribes topic for message type `type`; cb is that type's rosc_*_cb.
+int subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size, any_cb cb,
+              void *user);
+
 }  // namespace rosc_internal
+
+struct rosc_pub {
+  int type;
+  ros::Publisher pub;
+  std::shared_ptr<void> msg;  // the message object of the publisher's type, reused
+};
+
+struct rosc_sub {
+  int type;
+  ros::Subscriber sub;
+  rosc_internal::any_cb cb = nullptr;
+  void *user = nullptr;
+  uint64_t dropped = 0;
+  std::string topic;
+  // scratch reused across messages (views into them live only during a callback)
+  std::vector<const char *> names;
+  std::vector<float> points, colors;
+
+  // Counts a message the shim could not convert, with a throttled error naming why.
+  void drop(const char *why);
+};
 
 #endif

@@ -62,19 +62,6 @@ int rosc_srv_destroy(rosc_srv *srv)
   });
 }
 
-int rosc_call_empty(const char *name, double timeout_s)
-{
-  return guard(__func__, [&]() -> int {
-    if (!valid_name(name)) return ROSC_E_INVALID;
-    if (!rosc_ok()) return ROSC_E_STATE;
-    std::string resolved = ros::names::resolve(name);
-    if (!ros::service::waitForService(resolved, ros::Duration(timeout_s > 0 ? timeout_s : 0.001)))
-      return ROSC_E_TIMEOUT;
-    std_srvs::Empty e;
-    return ros::service::call(resolved, e) ? ROSC_OK : ROSC_E_ROS;
-  });
-}
-
 // ------------------------------------------------------------------ diagnostics
 struct rosc_diag {
   std::unique_ptr<diagnostic_updater::Updater> up;

@@ -20,7 +20,7 @@
  * The script passes the check's private parameters as _p_double:=2.5 _p_int:=7
  * _p_str:=hello _p_bool:=true _p_int_as_double:=3.0 (see test_rosc.sh).
  */
-#include "rosc/rosc.h"
+#include "rosc_test.h" /* rosc/rosc.h and the calls only tests make */
 #include "ss_test.h"
 
 #include <math.h>

@@ -27,7 +27,7 @@
  *                            is the body's pose itself and skin_stats counts one reset.
  *   skin_probe badstream S HZ  S seconds of NaN meshes at HZ (for /diagnostics tests).
  * Exit 0 when every check passes. */
-#include "rosc/rosc.h"
+#include "rosc_test.h" /* rosc/rosc.h and the calls only tests make */
 #include "ss_test.h"
 
 #include <math.h>

@@ -1,0 +1,195 @@
+// rosc parameters (include/rosc/rosc.h: "parameters"): typed getters that tell "not set"
+// from "set with another type", the sentence explaining a getter's failure, and the URDF
+// under robot_description. Each getter asks the master once (an XmlRpcValue) and checks
+// the type itself.
+#include "rosc/rosc.h"
+#include "rosc_internal.h"
+
+#include <ros/param.h>
+#include <ros/ros.h>
+
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+using rosc_internal::copy_out;
+using rosc_internal::guard;
+using rosc_internal::need_node;
+using rosc_internal::valid_name;
+
+namespace {
+int param_fetch(const char *name, XmlRpc::XmlRpcValue &v, bool *found)
+{
+  if (!valid_name(name)) return ROSC_E_INVALID;
+  int st = need_node();
+  if (st != ROSC_OK) return st;
+  *found = ros::param::get(name, v) && v.valid();
+  return ROSC_OK;
+}
+}  // namespace
+
+int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const char *def,
+                          int *was_set)
+{
+  return guard(__func__, [&]() -> int {
+    if (buf == nullptr || buf_size == 0) return ROSC_E_INVALID;
+    if (was_set != nullptr) *was_set = 0;
+    int dst = copy_out(def != nullptr ? def : "", buf, buf_size);
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    int st = param_fetch(name, v, &found);
+    if (st != ROSC_OK) return st;
+    if (!found) return dst;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return ROSC_E_TYPE;
+    if (was_set != nullptr) *was_set = 1;
+    return copy_out(static_cast<std::string &>(v), buf, buf_size);
+  });
+}
+
+int rosc_param_get_double(const char *name, double *out, double def, int *was_set)
+{
+  return guard(__func__, [&]() -> int {
+    if (out == nullptr) return ROSC_E_INVALID;
+    *out = def;
+    if (was_set != nullptr) *was_set = 0;
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    int st = param_fetch(name, v, &found);
+    if (st != ROSC_OK || !found) return st;
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) *out = static_cast<double>(v);
+    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) *out = static_cast<int>(v);
+    else return ROSC_E_TYPE;
+    if (was_set != nullptr) *was_set = 1;
+    return ROSC_OK;
+  });
+}
+
+int rosc_param_get_int(const char *name, int *out, int def, int *was_set)
+{
+  return guard(__func__, [&]() -> int {
+    if (out == nullptr) return ROSC_E_INVALID;
+    *out = def;
+    if (was_set != nullptr) *was_set = 0;
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    int st = param_fetch(name, v, &found);
+    if (st != ROSC_OK || !found) return st;
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) {
+      *out = static_cast<int>(v);
+    } else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+      double d = static_cast<double>(v);
+      if (!(d == std::floor(d)) || d < (double)INT_MIN || d > (double)INT_MAX) return ROSC_E_TYPE;
+      *out = (int)d;
+    } else {
+      return ROSC_E_TYPE;
+    }
+    if (was_set != nullptr) *was_set = 1;
+    return ROSC_OK;
+  });
+}
+
+int rosc_param_get_bool(const char *name, int *out, int def, int *was_set)
+{
+  return guard(__func__, [&]() -> int {
+    if (out == nullptr) return ROSC_E_INVALID;
+    *out = def ? 1 : 0;
+    if (was_set != nullptr) *was_set = 0;
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    int st = param_fetch(name, v, &found);
+    if (st != ROSC_OK || !found) return st;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) return ROSC_E_TYPE;
+    *out = static_cast<bool>(v) ? 1 : 0;
+    if (was_set != nullptr) *was_set = 1;
+    return ROSC_OK;
+  });
+}
+
+int rosc_internal::param_get_string_alloc(const char *name, char **out, size_t *len)
+{
+  return guard("rosc_param_get_string_alloc", [&]() -> int {
+    if (out == nullptr) return ROSC_E_INVALID;
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    int st = param_fetch(name, v, &found);
+    if (st != ROSC_OK) return st;
+    if (!found) return ROSC_E_NOTFOUND;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return ROSC_E_TYPE;
+    const std::string &s = static_cast<std::string &>(v);
+    char *p = static_cast<char *>(std::malloc(s.size() + 1));
+    if (p == nullptr) return ROSC_E_NOMEM;
+    std::memcpy(p, s.c_str(), s.size() + 1);
+    *out = p;
+    if (len != nullptr) *len = s.size();
+    return ROSC_OK;
+  });
+}
+
+
+int rosc_param_explain(int status, const char *name, const char *expected, char *err,
+                       size_t err_size)
+{
+  if (err == nullptr || err_size == 0) return status;
+  err[0] = '\0';
+  if (status == ROSC_OK) return status;
+  const char *nm = name != nullptr ? name : "(null)";
+  if (status != ROSC_E_TYPE) {
+    std::snprintf(err, err_size, "parameter %s: %s", nm, rosc_strerror(status));
+    return status;
+  }
+  std::string held = "a value of another type";
+  guard(__func__, [&]() -> int {
+    XmlRpc::XmlRpcValue v;
+    bool found = false;
+    if (param_fetch(nm, v, &found) != ROSC_OK || !found) return ROSC_OK;
+    char buf[160];
+    switch (v.getType()) {
+      case XmlRpc::XmlRpcValue::TypeString: {
+        std::string t = static_cast<std::string &>(v);
+        if (t.size() > 60) t = t.substr(0, 60) + "...";
+        held = "the string '" + t + "'";
+        char *end = nullptr;
+        const std::string &full = static_cast<std::string &>(v);
+        std::strtod(full.c_str(), &end);
+        if (!full.empty() && end != nullptr && *end == '\0' && expected != nullptr &&
+            std::strstr(expected, "double") != nullptr)
+          held += " (in a launch file, a number without a '.' such as 1e-4 stays a string: "
+                  "write type=\"double\")";
+        break;
+      }
+      case XmlRpc::XmlRpcValue::TypeDouble:
+        std::snprintf(buf, sizeof buf, "the double %g", static_cast<double>(v));
+        held = buf;
+        break;
+      case XmlRpc::XmlRpcValue::TypeInt:
+        std::snprintf(buf, sizeof buf, "the int %d", static_cast<int>(v));
+        held = buf;
+        break;
+      case XmlRpc::XmlRpcValue::TypeBoolean:
+        held = static_cast<bool>(v) ? "the bool true" : "the bool false";
+        break;
+      case XmlRpc::XmlRpcValue::TypeArray: held = "a list"; break;
+      case XmlRpc::XmlRpcValue::TypeStruct: held = "a dictionary"; break;
+      default: break;
+    }
+    return ROSC_OK;
+  });
+  std::snprintf(err, err_size, "%s must be %s, but is %s", nm,
+                expected != nullptr ? expected : "of another type", held.c_str());
+  return status;
+}
+
+int rosc_robot_description(char **out, size_t *len)
+{
+  return guard(__func__, [&]() -> int {
+    if (out == nullptr) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    std::string key;
+    if (!ros::param::search("robot_description", key)) return ROSC_E_NOTFOUND;
+    return rosc_internal::param_get_string_alloc(key.c_str(), out, len);
+  });
+}

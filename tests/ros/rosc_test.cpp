@@ -1,0 +1,230 @@
+// rosc for tests (tests/ros/rosc_test.h): the calls only the ROS test helpers make, on the
+// shim's inside (src/rosc/rosc_internal.h): each runs in the same exception guard, checks
+// the same node state, and goes through the same generic publish / subscribe path as the
+// nodes' calls in src/rosc.
+#include "rosc_test.h"
+#include "rosc_internal.h"
+
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include <cmath>
+#include <cstdarg>
+#include <cstring>
+#include <string>
+
+using rosc_internal::any_cb;
+using rosc_internal::copy_out;
+using rosc_internal::guard;
+using rosc_internal::need_node;
+using rosc_internal::valid_name;
+
+// ------------------------------------------------------------------ node and time
+int rosc_resolve_name(const char *name, char *buf, size_t buf_size)
+{
+  return guard(__func__, [&]() -> int {
+    if (!valid_name(name)) return ROSC_E_INVALID;
+    if (!rosc_internal::ros_initialized()) return ROSC_E_STATE;
+    return copy_out(ros::names::resolve(name), buf, buf_size);
+  });
+}
+
+int rosc_now_s(double *out)
+{
+  rosc_time t;
+  if (out == nullptr) return ROSC_E_INVALID;
+  int st = rosc_now(&t);
+  if (st == ROSC_OK) *out = rosc_time_to_s(t);
+  return st;
+}
+
+int rosc_wall_now(rosc_time *out)
+{
+  return guard(__func__, [&]() -> int {
+    if (out == nullptr) return ROSC_E_INVALID;
+    ros::WallTime t = ros::WallTime::now();
+    out->sec = t.sec;
+    out->nsec = t.nsec;
+    return ROSC_OK;
+  });
+}
+
+int rosc_sleep(double seconds)
+{
+  return guard(__func__, [&]() -> int {
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    if (!(seconds >= 0.0)) return ROSC_E_INVALID;
+    return ros::Duration(seconds).sleep() ? ROSC_OK : ROSC_E_SHUTDOWN;
+  });
+}
+
+int rosc_wall_sleep(double seconds)
+{
+  return guard(__func__, [&]() -> int {
+    if (!(seconds >= 0.0)) return ROSC_E_INVALID;
+    ros::WallDuration(seconds).sleep();
+    return ROSC_OK;
+  });
+}
+
+// ------------------------------------------------------------------ parameters
+int rosc_param_get_string_alloc(const char *name, char **out, size_t *len)
+{
+  return rosc_internal::param_get_string_alloc(name, out, len);
+}
+
+int rosc_param_has(const char *name, int *out)
+{
+  return guard(__func__, [&]() -> int {
+    if (!valid_name(name) || out == nullptr) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    *out = ros::param::has(name) ? 1 : 0;
+    return ROSC_OK;
+  });
+}
+
+namespace {
+template <class T>
+int param_set(const char *func, const char *name, const T &value)
+{
+  return guard(func, [&]() -> int {
+    if (!valid_name(name)) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    ros::param::set(name, value);
+    return ROSC_OK;
+  });
+}
+}  // namespace
+
+int rosc_param_set_string(const char *name, const char *value)
+{
+  if (value == nullptr) return ROSC_E_INVALID;
+  return guard(__func__, [&]() -> int { return param_set(__func__, name, std::string(value)); });
+}
+int rosc_param_set_double(const char *name, double value) { return param_set(__func__, name, value); }
+int rosc_param_set_int(const char *name, int value) { return param_set(__func__, name, value); }
+int rosc_param_set_bool(const char *name, int value) { return param_set(__func__, name, value != 0); }
+
+int rosc_param_delete(const char *name)
+{
+  return guard(__func__, [&]() -> int {
+    if (!valid_name(name)) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    ros::param::del(name);
+    return ROSC_OK;
+  });
+}
+
+// ------------------------------------------------------------------ topics
+int rosc_publish_string(rosc_pub *pub, const char *text)
+{
+  return guard(__func__, [&]() -> int {
+    rosc_string s;
+    s.data = text;
+    s.len = text != nullptr ? std::strlen(text) : 0;
+    return rosc_internal::publish(pub, ROSC_MSG_STRING, text != nullptr ? &s : nullptr);
+  });
+}
+
+int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size)
+{
+  return guard(__func__, [&]() -> int {
+    if (pub == nullptr) return ROSC_E_INVALID;
+    return copy_out(pub->pub.getTopic(), buf, buf_size);
+  });
+}
+
+int rosc_sub_skin_stats(rosc_sub **out, const char *topic, unsigned queue_size,
+                        rosc_skin_stats_cb cb, void *user)
+{
+  return guard(__func__, [&] {
+    return rosc_internal::subscribe(out, ROSC_MSG_SKIN_STATS, topic, queue_size,
+                                    reinterpret_cast<any_cb>(cb), user);
+  });
+}
+
+int rosc_sub_marker(rosc_sub **out, const char *topic, unsigned queue_size, rosc_marker_cb cb,
+                    void *user)
+{
+  return guard(__func__, [&] {
+    return rosc_internal::subscribe(out, ROSC_MSG_MARKER, topic, queue_size,
+                                    reinterpret_cast<any_cb>(cb), user);
+  });
+}
+
+int rosc_sub_string(rosc_sub **out, const char *topic, unsigned queue_size, rosc_string_cb cb,
+                    void *user)
+{
+  return guard(__func__, [&] {
+    return rosc_internal::subscribe(out, ROSC_MSG_STRING, topic, queue_size,
+                                    reinterpret_cast<any_cb>(cb), user);
+  });
+}
+
+int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out)
+{
+  return guard(__func__, [&]() -> int {
+    if (sub == nullptr || out == nullptr) return ROSC_E_INVALID;
+    *out = sub->sub.getNumPublishers();
+    return ROSC_OK;
+  });
+}
+
+int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out)
+{
+  return guard(__func__, [&]() -> int {
+    if (sub == nullptr || out == nullptr) return ROSC_E_INVALID;
+    *out = sub->dropped;
+    return ROSC_OK;
+  });
+}
+
+int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size)
+{
+  return guard(__func__, [&]() -> int {
+    if (sub == nullptr) return ROSC_E_INVALID;
+    return copy_out(sub->topic, buf, buf_size);
+  });
+}
+
+// ------------------------------------------------------------------ services
+int rosc_call_empty(const char *name, double timeout_s)
+{
+  return guard(__func__, [&]() -> int {
+    if (!valid_name(name)) return ROSC_E_INVALID;
+    if (!rosc_ok()) return ROSC_E_STATE;
+    std::string resolved = ros::names::resolve(name);
+    if (!ros::service::waitForService(resolved, ros::Duration(timeout_s > 0 ? timeout_s : 0.001)))
+      return ROSC_E_TIMEOUT;
+    std_srvs::Empty e;
+    return ros::service::call(resolved, e) ? ROSC_OK : ROSC_E_ROS;
+  });
+}
+
+// ------------------------------------------------------------------ logging
+int rosc_log(int level, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  int st = guard(__func__, [&]() -> int {
+    return rosc_internal::vlog(level, nullptr, 0, "", 0.0, nullptr, fmt, ap);
+  });
+  va_end(ap);
+  return st;
+}
+
+int rosc_log_throttle(int level, double period_s, const char *key, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  int st = guard(__func__, [&]() -> int {
+    if (!(period_s >= 0.0)) return ROSC_E_INVALID;
+    return rosc_internal::vlog(level, nullptr, 0, "", period_s, key, fmt, ap);
+  });
+  va_end(ap);
+  return st;
+}
