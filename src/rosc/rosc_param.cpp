@@ -49,9 +49,13 @@ int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const ch
   });
 }
 
-int rosc_param_get_double(const char *name, double *out, double def, int *was_set)
+namespace {
+// One getter for every scalar type: *out = def, then the server's value if it is set;
+// convert(v, out) takes a value of an accepted type, else returns ROSC_E_TYPE.
+template <class T, class Convert>
+int get_scalar(const char *func, const char *name, T *out, T def, int *was_set, Convert convert)
 {
-  return guard(__func__, [&]() -> int {
+  return guard(func, [&]() -> int {
     if (out == nullptr) return ROSC_E_INVALID;
     *out = def;
     if (was_set != nullptr) *was_set = 0;
@@ -59,51 +63,45 @@ int rosc_param_get_double(const char *name, double *out, double def, int *was_se
     bool found = false;
     int st = param_fetch(name, v, &found);
     if (st != ROSC_OK || !found) return st;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) *out = static_cast<double>(v);
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) *out = static_cast<int>(v);
-    else return ROSC_E_TYPE;
+    st = convert(v, out);
+    if (st != ROSC_OK) return st;
     if (was_set != nullptr) *was_set = 1;
+    return ROSC_OK;
+  });
+}
+}  // namespace
+
+int rosc_param_get_double(const char *name, double *out, double def, int *was_set)
+{
+  return get_scalar(__func__, name, out, def, was_set, [](XmlRpc::XmlRpcValue &v, double *o) {
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) *o = static_cast<double>(v);
+    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) *o = static_cast<int>(v);
+    else return ROSC_E_TYPE;
     return ROSC_OK;
   });
 }
 
 int rosc_param_get_int(const char *name, int *out, int def, int *was_set)
 {
-  return guard(__func__, [&]() -> int {
-    if (out == nullptr) return ROSC_E_INVALID;
-    *out = def;
-    if (was_set != nullptr) *was_set = 0;
-    XmlRpc::XmlRpcValue v;
-    bool found = false;
-    int st = param_fetch(name, v, &found);
-    if (st != ROSC_OK || !found) return st;
+  return get_scalar(__func__, name, out, def, was_set, [](XmlRpc::XmlRpcValue &v, int *o) {
     if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) {
-      *out = static_cast<int>(v);
+      *o = static_cast<int>(v);
     } else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
       double d = static_cast<double>(v);
       if (!(d == std::floor(d)) || d < (double)INT_MIN || d > (double)INT_MAX) return ROSC_E_TYPE;
-      *out = (int)d;
+      *o = (int)d;
     } else {
       return ROSC_E_TYPE;
     }
-    if (was_set != nullptr) *was_set = 1;
     return ROSC_OK;
   });
 }
 
 int rosc_param_get_bool(const char *name, int *out, int def, int *was_set)
 {
-  return guard(__func__, [&]() -> int {
-    if (out == nullptr) return ROSC_E_INVALID;
-    *out = def ? 1 : 0;
-    if (was_set != nullptr) *was_set = 0;
-    XmlRpc::XmlRpcValue v;
-    bool found = false;
-    int st = param_fetch(name, v, &found);
-    if (st != ROSC_OK || !found) return st;
+  return get_scalar(__func__, name, out, def ? 1 : 0, was_set, [](XmlRpc::XmlRpcValue &v, int *o) {
     if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) return ROSC_E_TYPE;
-    *out = static_cast<bool>(v) ? 1 : 0;
-    if (was_set != nullptr) *was_set = 1;
+    *o = static_cast<bool>(v) ? 1 : 0;
     return ROSC_OK;
   });
 }
