@@ -22,9 +22,11 @@
  * log line and counted; the last good state is kept. Received meshes wait in a
  * ring of ~queue_size slots (default 1: only the newest); when it is full the
  * oldest is skipped (inputs_skipped), so nothing queues without bound.
- * roscpp's own queue holds ~queue_size + 32 (it only fills during one step, as
- * the node spins between steps); meshes lost before the callback show as gaps
- * in header.seq and are counted as inputs_dropped.
+ * roscpp's own queue holds ~queue_size + 2 (it only fills during one step, as
+ * the node spins between steps; deeper, a stall filled it with up to 33 serialized
+ * meshes of ~90 kB, a 3 MB high-water mark kept by the allocator: issue 14's soak);
+ * meshes lost before the callback show as gaps in header.seq and are counted as
+ * inputs_dropped.
  *
  * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
  * core from the window's figures: ss_input_health); the ~reset service
@@ -633,7 +635,7 @@ int main(int argc, char **argv)
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 32, on_mesh, nd) !=
+      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 2, on_mesh, nd) !=
           ROSC_OK) {
     if (rosc_ok()) ROSC_ERROR("cannot advertise or subscribe");
     else status = 0;
