@@ -4,7 +4,8 @@
 # Builds them with clang (ASan + UBSan) into build/fuzz, keeps each harness's
 # growing corpus in build/fuzz/corpus/NAME (seeded from tests/fuzz/corpus/NAME)
 # and crashes in build/fuzz/artifacts/NAME. Harnesses run one after the other;
-# FUZZ_JOBS=N runs N at once (each with nice -n 10). Prints per harness the
+# FUZZ_JOBS=N runs N at once (each with nice -n ${FUZZ_NICE:-10}: FUZZ_NICE=19 for a
+# long run beside other work). Prints per harness the
 # executions reached, the corpus size and what was found; exits 1 on a finding.
 set -uo pipefail
 export PATH=/usr/bin:/bin:$PATH
@@ -30,7 +31,7 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 run() {
   local n=$1
   mkdir -p "$bld/corpus/$n" "$bld/artifacts/$n"
-  nice -n 10 "$bld/$n" -max_total_time="$secs" -timeout=30 -rss_limit_mb=2560 -max_len=4096 \
+  nice -n "${FUZZ_NICE:-10}" "$bld/$n" -max_total_time="$secs" -timeout=30 -rss_limit_mb=2560 -max_len=4096 \
     -artifact_prefix="$bld/artifacts/$n/" -print_final_stats=1 \
     "$bld/corpus/$n" "$src/tests/fuzz/corpus/$n" > "$bld/$n.log" 2>&1
   echo $? > "$bld/$n.status"

@@ -64,14 +64,14 @@ find_pids() {
   done
 }
 rss_kb() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status" 2> /dev/null || echo 0; }
-# one SkinStats message as "rejected dropped resets seq" (empty if none came)
+# one SkinStats message as "rejected dropped resets seq skipped" (empty if none came)
 # (rostopic starts slowly on a loaded machine: up to three tries of 60 s)
 read_stats() {
   local out=""
   for _ in 1 2 3; do
     out=$(timeout 60 rostopic echo -n 1 "$1" 2> /dev/null |
       awk '/^  seq:/ {s=$2} /^inputs_rejected:/ {r=$2} /^inputs_dropped:/ {d=$2} /^resets:/ {x=$2}
-           END {if (s != "") print r, d, x, s}' || true)
+           /^inputs_skipped:/ {k=$2} END {if (s != "") print r, d, x, s, k + 0}' || true)
     [ -n "$out" ] && break
   done
   echo "$out"
@@ -97,9 +97,26 @@ fi
 t0=$(date +%s)
 echo "t_s,${nodes[*]}" | tr ' ' ',' > "$out/rss.csv"
 died=""
+snapped=""
+# Where RSS grows: each node's /proc/PID/smaps after the warm-up minute and at the
+# end (the report lists the mappings whose Rss grew: [heap], thread arenas (anon
+# maps inside 64 MiB reservations), stacks, libraries); with SOAK_MALLOC_STATS=1
+# and gdb, at the end (after the counters are read: gdb stops the node a while)
+# also glibc's malloc_stats() (per arena: system bytes and in use), written by the
+# node into its stderr log in ROS_LOG_DIR.
+snap() {
+  local n
+  for n in "${nodes[@]}"; do
+    cp "/proc/${pid[$n]}/smaps" "$out/smaps_$1_$n.txt" 2> /dev/null || true
+    if [ "$1" = end ] && [ -n "${SOAK_MALLOC_STATS:-}" ] && command -v gdb > /dev/null; then
+      timeout 60 gdb -p "${pid[$n]}" -batch -ex 'call (void)malloc_stats()' > /dev/null 2>&1 || true
+    fi
+  done
+}
 while :; do
   now=$(date +%s)
   row="$((now - t0))"
+  if [ -z "$snapped" ] && [ $((now - t0)) -ge 60 ]; then snap start; snapped=1; fi
   for n in "${nodes[@]}"; do
     if [ -d "/proc/${pid[$n]}" ]; then row="$row,$(rss_kb "${pid[$n]}")"; else row="$row,0"; died="$died $n"; fi
   done
@@ -110,6 +127,7 @@ while :; do
 done
 skin1=$(read_stats skin_stats || true)
 avatar1=$(read_stats avatar_stats || true)
+snap end
 stop
 trap - EXIT
 
@@ -126,14 +144,46 @@ for j, name in enumerate(head[1:], 1):
     print("%-22s %10d %10d %+10d %10d" % (name, col[warm], col[-1], col[-1] - col[warm], max(col)))
 def parse(s):
     f = s.split()
-    return [int(x) for x in f] if len(f) == 4 else None
+    return [int(x) for x in f] if len(f) == 5 else None
 for topic, a, b in (("skin_stats", sys.argv[2], sys.argv[3]), ("avatar_stats", sys.argv[4], sys.argv[5])):
     a, b = parse(a), parse(b)
     if not a or not b:
         print("%s: not read at %s" % (topic, "start" if not a else "end"))
         continue
-    print("%s: %d messages; rejected %d -> %d, dropped %d -> %d, resets %d -> %d" %
-          (topic, b[3] - a[3], a[0], b[0], a[1], b[1], a[2], b[2]))
+    print("%s: %d messages; rejected %d -> %d, dropped %d -> %d, skipped %d -> %d, resets %d -> %d"
+          % (topic, b[3] - a[3], a[0], b[0], a[1], b[1], a[4], b[4], a[2], b[2]))
+EOF
+/usr/bin/python3 - "$out" "${nodes[@]}" <<'EOF'
+import os, re, sys
+out = sys.argv[1]
+def maps(path):
+    m, key = {}, None
+    for line in open(path):
+        if re.match(r"^[0-9a-f]+-[0-9a-f]+ ", line):
+            f = line.split()
+            lo, hi = (int(x, 16) for x in f[0].split("-"))
+            key = (f[0].split("-")[0], f[5] if len(f) > 5 else "[anon]")
+            m[key] = [0, (hi - lo) // 1024]
+        elif line.startswith("Rss:") and key:
+            m[key][0] = int(line.split()[1])
+    return m
+for n in sys.argv[2:]:
+    a, b = (os.path.join(out, "smaps_%s_%s.txt" % (w, n)) for w in ("start", "end"))
+    if not (os.path.exists(a) and os.path.exists(b)):
+        continue
+    ma, mb = maps(a), maps(b)
+    z = [0, 0]
+    d = sorted(((mb.get(k, z)[0] - ma.get(k, z)[0], k, mb.get(k, ma.get(k))[1])
+                for k in set(ma) | set(mb)), reverse=True)
+    d = [x for x in d if x[0] != 0]
+    if not d:
+        continue
+    print("%s: Rss change per mapping, minute 1 to the end (KiB; mapping, start, size KiB at the"
+          " end; a thread's malloc arena is an [anon] mapping at a 64 MiB boundary):" % n)
+    for g, (addr, name), size in d[:6]:
+        print("  %+8d  %-36s %s %d" % (g, name[-36:], addr, size))
+    if len(d) > 6:
+        print("  %+8d  (%d other mappings)" % (sum(x[0] for x in d[6:]), len(d) - 6))
 EOF
 echo "samples: $out/rss.csv   launch log: $log"
 if [ -n "$died" ]; then

@@ -57,7 +57,7 @@ int ssa_check_input_file(const char *path, const char *what, double max_mb, char
                    kind);
   }
   if (max_mb > 0.0 && (double)sb.st_size > max_mb * 1048576.0)
-    return ss_fail(err, err_sz, SS_E_IO, "%s '%s' is %.1f MB, over the cap of %g MB: refused", what,
+    return ss_fail(err, err_sz, SS_E_IO, "%s '%s' is %.3g MB, over the cap of %g MB: refused", what,
                    path, (double)sb.st_size / 1048576.0, max_mb);
   return SS_OK;
 }
@@ -215,6 +215,14 @@ static void child_import(int fd, const char *path, unsigned flags,
   static const int sigs[] = {SIGPIPE, SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGINT,
                              SIGTERM, SIGXCPU, SIGXFSZ, SIGALRM, SIGUSR1, SIGUSR2};
   for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) signal(sigs[i], SIG_DFL);
+  /* the parent gives the one error: nothing of the child's own on the terminal
+   * (e.g. "terminate called after throwing std::bad_alloc" at the memory limit) */
+  int devnull = open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (devnull >= 0) {
+    dup2(devnull, STDERR_FILENO);
+    dup2(devnull, STDOUT_FILENO);
+    close(devnull);
+  }
   struct rlimit rl;
   rl.rlim_cur = rl.rlim_max = 0;
   setrlimit(RLIMIT_CORE, &rl);

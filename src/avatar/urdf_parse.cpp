@@ -186,6 +186,26 @@ int fill(const urdf::ModelInterface &model, ssa_urdf_data *d) {
   return SS_OK;
 }
 
+/* TinyXML 2.6.2 (urdfdom's XML reader) steps over a UTF-8 character by the
+ * length its first byte announces without looking for the end of the text: a
+ * text ending inside a character (e.g. '...xyz="0 0.17' then byte 0xCB) makes
+ * it jump over the terminating NUL and parse on into whatever memory follows
+ * (found by fuzz_urdf: an ASan heap-buffer-overflow in TiXmlBase::ReadName).
+ * Such a text is refused here; and every text goes to TinyXML with NUL bytes
+ * after its end, so that no such jump can leave it. Returns the offset of the
+ * cut character, or -1. */
+long cut_utf8_tail(const char *s, size_t n) {
+  for (size_t k = 1; k <= 3 && k <= n; k++) {
+    unsigned char c = static_cast<unsigned char>(s[n - k]);
+    if (c < 0x80) return -1;  /* ASCII: no character is cut */
+    if (c >= 0xC0) {          /* a first byte: 2, 3 or 4 bytes long */
+      size_t len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : 2;
+      return len > k ? static_cast<long>(n - k) : -1;
+    }
+  }
+  return -1;  /* continuation bytes only: TinyXML steps over them one by one */
+}
+
 }  // namespace
 
 extern "C" int ssa_urdf_parse(const char *xml, ssa_urdf_data **out, char *err, int err_sz) {
@@ -202,7 +222,17 @@ extern "C" int ssa_urdf_parse(const char *xml, ssa_urdf_data **out, char *err, i
   int status = SS_OK;
   try {
     console_bridge::useOutputHandler(&capture);
-    urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(std::string(xml));
+    std::string text(xml);
+    long cut = cut_utf8_tail(text.data(), text.size());
+    if (cut >= 0) {
+      restore_handler(previous);
+      set_err(err, err_sz, "not a valid URDF: the text ends inside a UTF-8 character (byte " +
+                               std::to_string(cut) + " of " + std::to_string(text.size()) + ")");
+      ssa_urdf_data_free(d);
+      return SS_E_IO;
+    }
+    text.append(8, '\0');  /* TinyXML reads up to the first NUL; these keep it inside */
+    urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text);
     restore_handler(previous);
     if (!model) {
       std::string why = capture.first_error.empty() ? std::string("urdfdom could not parse it")

@@ -19,7 +19,17 @@
  * Values outside a joint's URDF limits are clamped (by the FK) with one
  * warning naming the joint and its limits, or with ~strict_limits the
  * message is rejected. Parameters of the wrong type or out of range stop the
- * node at start (exit 2) with one message naming the parameter. */
+ * node at start (exit 2) with one message naming the parameter.
+ *
+ * Mesh files are read behind the avatar layer's guards (safe_import.h): files
+ * over ~max_file_mb are refused, and each import runs in a child process
+ * stopped after ~import_timeout seconds or ~import_mem_mb more megabytes.
+ * The ~reload service (std_srvs/Empty) reads the body parameters,
+ * robot_description and ~mesh again and swaps the body in (joint values kept
+ * by name); if that load fails or a file is refused, the call fails, one error
+ * names the file, and the node keeps publishing its last good body. At start
+ * there is no good body yet: a failed load ends the node (exit 1, or 2 for a
+ * bad parameter). */
 #include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ssa_avatar.h"
@@ -31,7 +41,8 @@
 
 #define ERR_SZ 512
 
-typedef struct node {
+/* One loaded body and its buffers: swapped whole by ~reload. */
+typedef struct body {
   ssa_avatar *av;
   const ssa_robot *robot;
   char frame[ROSC_FRAME_ID_MAX];
@@ -41,7 +52,12 @@ typedef struct node {
   double *pose;       /* (nvert x 3) */
   float *pos_out;     /* (nvert x 3) */
   uint32_t *tri_out;  /* (nface x 3) */
+} body;
+
+typedef struct node {
+  body b;             /* the last good body */
   rosc_pub *pub_mesh, *pub_stats;
+  unsigned long reloads, reload_failures;
   uint32_t rejected, unknown_names;
   unsigned long in, out;
   int strict_limits;      /* ~strict_limits: reject values outside the URDF limits */
@@ -80,8 +96,9 @@ static void on_joints(const rosc_joint_state *m, void *user)
     reject(nd, why);
     return;
   }
-  const ssa_robot *r = nd->robot;
-  memcpy(nd->q_try, nd->q, (size_t)r->njoint * sizeof(double));
+  body *b = &nd->b;
+  const ssa_robot *r = b->robot;
+  memcpy(b->q_try, b->q, (size_t)r->njoint * sizeof(double));
   size_t known = 0, unknown = 0;
   const char *first_unknown = NULL;
   for (size_t i = 0; i < m->n_name; i++) {
@@ -96,7 +113,7 @@ static void on_joints(const rosc_joint_state *m, void *user)
       reject(nd, why);
       return;
     }
-    nd->q_try[j] = m->position[i];
+    b->q_try[j] = m->position[i];
     known++;
   }
   if (known == 0 && m->n_name > 0) {
@@ -112,7 +129,7 @@ static void on_joints(const rosc_joint_state *m, void *user)
                        (unsigned)nd->unknown_names);
   }
   char lim[ERR_SZ];
-  if (ssa_robot_check_limits(r, nd->q_try, lim, sizeof lim) > 0) {
+  if (ssa_robot_check_limits(r, b->q_try, lim, sizeof lim) > 0) {
     if (nd->strict_limits) {
       char why2[ERR_SZ + 32];
       snprintf(why2, sizeof why2, "%s (~strict_limits)", lim);
@@ -126,24 +143,24 @@ static void on_joints(const rosc_joint_state *m, void *user)
                 "rejects such messages)", lim);
     }
   }
-  memcpy(nd->q, nd->q_try, (size_t)r->njoint * sizeof(double));
+  memcpy(b->q, b->q_try, (size_t)r->njoint * sizeof(double));
   double t0 = 0, t1 = 0;
   rosc_wall_now_s(&t0);
-  ssa_avatar_pose_joints(nd->av, nd->q, nd->pose);
-  size_t n3 = 3 * (size_t)nd->av->nvert;
-  for (size_t i = 0; i < n3; i++) nd->pos_out[i] = (float)nd->pose[i];
+  ssa_avatar_pose_joints(b->av, b->q, b->pose);
+  size_t n3 = 3 * (size_t)b->av->nvert;
+  for (size_t i = 0; i < n3; i++) b->pos_out[i] = (float)b->pose[i];
   rosc_wall_now_s(&t1);
 
   rosc_skin_mesh out;
   memset(&out, 0, sizeof out);
   out.header.stamp = m->header.stamp;
   if (out.header.stamp.sec == 0 && out.header.stamp.nsec == 0) rosc_now(&out.header.stamp);
-  snprintf(out.header.frame_id, sizeof out.header.frame_id, "%s", nd->frame);
-  out.topology_id = nd->topology_id;
-  out.positions = nd->pos_out;
+  snprintf(out.header.frame_id, sizeof out.header.frame_id, "%s", b->frame);
+  out.topology_id = b->topology_id;
+  out.positions = b->pos_out;
   out.n_positions = n3;
-  out.triangles = nd->tri_out;
-  out.n_triangles = 3 * (size_t)nd->av->nface;
+  out.triangles = b->tri_out;
+  out.n_triangles = 3 * (size_t)b->av->nface;
   if (rosc_publish_skin_mesh(nd->pub_mesh, &out) == ROSC_OK) nd->out++;
 
   rosc_skin_stats s;
@@ -161,31 +178,67 @@ static void on_avatar_warning(void *user, const char *msg)
   ROSC_WARN("%s", msg);
 }
 
-/* Loads the avatar: 0, or the exit status (1 it cannot be built, 2 a bad parameter). */
-static int load_avatar(node *nd)
+static void body_free(body *b)
+{
+  free(b->q); free(b->q_try); free(b->pose); free(b->pos_out); free(b->tri_out);
+  ssa_avatar_destroy(b->av);
+  memset(b, 0, sizeof *b);
+}
+
+/* The buffers of a loaded body; joint values of `old` (may be NULL) kept by name. */
+static int body_finish(body *b, const body *old)
+{
+  const ssa_avatar *av = b->av;
+  b->robot = av->robot;
+  snprintf(b->frame, sizeof b->frame, "%s", b->robot->link_name[b->robot->root_link]);
+  b->q = calloc((size_t)b->robot->njoint + 1, sizeof(double));
+  b->q_try = calloc((size_t)b->robot->njoint + 1, sizeof(double));
+  b->pose = malloc(3 * (size_t)av->nvert * sizeof(double));
+  b->pos_out = malloc(3 * (size_t)av->nvert * sizeof(float));
+  b->tri_out = malloc(3 * (size_t)av->nface * sizeof(uint32_t));
+  if (!b->q || !b->q_try || !b->pose || !b->pos_out || !b->tri_out) return 0;
+  for (size_t i = 0; i < 3 * (size_t)av->nface; i++) b->tri_out[i] = (uint32_t)av->faces[i];
+  b->topology_id = hash_topology(av->nvert, av->nface, av->faces);
+  if (old && old->robot)
+    for (int j = 0; j < b->robot->njoint; j++) {
+      int k = ssa_robot_joint_index(old->robot, b->robot->joint_name[j]);
+      if (k >= 0) b->q[j] = old->q[k];
+    }
+  return 1;
+}
+
+/* Reads a double parameter within [lo, hi]; 0 (with one error) if it is not one. */
+static int get_ranged(const char *name, double *v, double def, double lo, double hi,
+                      const char *unit)
+{
+  if (!get_double(name, v, def)) return 0;
+  if (*v >= lo && *v <= hi) return 1;
+  ROSC_ERROR("%s = %g %s is out of range [%g, %g]", name, *v, unit, lo, hi);
+  return 0;
+}
+
+/* Loads a body from the parameters (~avatar, ~mesh, robot_description, ...) into
+ * *b: 0, or 1 it cannot be built, 2 a bad parameter (each with one error). */
+static int load_body(body *b, const body *old)
 {
   char kind[64], mesh[1024], up[32], pkg[2048], err[ERR_SZ] = "";
   int tris = 5000, ok = 1;
-  double edge = 0.02;
+  double edge = 0.02, max_mb = 256.0, timeout_s = 60.0, mem_mb = 4096.0;
+  memset(b, 0, sizeof *b);
   ok &= param_ok(rosc_param_get_string("~avatar", kind, sizeof kind, "", NULL), "~avatar", "a string");
   ok &= param_ok(rosc_param_get_string("~mesh", mesh, sizeof mesh, "", NULL), "~mesh", "a string");
   ok &= param_ok(rosc_param_get_int("~tris", &tris, 5000, NULL), "~tris", "an int");
   ok &= param_ok(rosc_param_get_string("~package_path", pkg, sizeof pkg, "", NULL), "~package_path",
                  "a string");
-  ok &= param_ok(rosc_param_get_bool("~strict_limits", &nd->strict_limits, 0, NULL),
-                 "~strict_limits", "a bool");
   ok &= param_ok(rosc_param_get_string("~mesh_up_axis", up, sizeof up, "ignore", NULL),
                  "~mesh_up_axis", "a string");
   ok &= param_ok(rosc_param_get_double("~primitive_edge", &edge, 0.02, NULL), "~primitive_edge",
                  "a double (or an int)");
+  ok &= get_ranged("~max_file_mb", &max_mb, 256.0, 1e-6, 1048576.0, "MB");
+  ok &= get_ranged("~import_timeout", &timeout_s, 60.0, 0.1, 86400.0, "s");
+  ok &= get_ranged("~import_mem_mb", &mem_mb, 4096.0, 16.0, 1048576.0, "MB");
   if (ok && strcmp(up, "ignore") != 0 && strcmp(up, "file") != 0) {
     ROSC_ERROR("~mesh_up_axis: '%s' is neither 'ignore' (rviz's way) nor 'file'", up);
-    ok = 0;
-  }
-  nd->queue = 2;
-  ok &= param_ok(rosc_param_get_int("~queue_size", &nd->queue, 2, NULL), "~queue_size", "an int");
-  if (ok && (nd->queue < 1 || nd->queue > 1000)) {
-    ROSC_ERROR("~queue_size = %d is out of range [1, 1000]", nd->queue);
     ok = 0;
   }
   if (ok && !(edge >= 1e-4 && edge <= 10.0)) {
@@ -195,7 +248,7 @@ static int load_avatar(node *nd)
   if (!ok) return 2;
   int st;
   if (strcmp(kind, "mannequin") == 0) {
-    st = ssa_avatar_mannequin(&nd->av, tris, err, sizeof err);
+    st = ssa_avatar_mannequin(&b->av, tris, err, sizeof err);
     if (st != SS_OK) {
       ROSC_ERROR("mannequin: %s", err);
       return st == SS_E_ARG ? 2 : 1;
@@ -229,15 +282,47 @@ static int load_avatar(node *nd)
     opts.package_path = pkg[0] ? pkg : NULL;
     opts.mesh_up_axis = strcmp(up, "file") == 0 ? SSA_UP_AXIS_FILE : SSA_UP_AXIS_IGNORE;
     opts.primitive_edge = edge;
+    opts.asset.max_file_mb = max_mb;
+    opts.asset.import_timeout_s = timeout_s;
+    opts.asset.import_mem_mb = mem_mb;
     opts.warn = on_avatar_warning;
-    st = ssa_avatar_from_robot(&nd->av, robot, mesh[0] ? path : NULL, &opts, err, sizeof err);
+    st = ssa_avatar_from_robot(&b->av, robot, mesh[0] ? path : NULL, &opts, err, sizeof err);
     if (st != SS_OK) {
       ROSC_ERROR("avatar: %s", err);
       return 1;
     }
   }
-  nd->robot = nd->av->robot;
-  snprintf(nd->frame, sizeof nd->frame, "%s", nd->robot->link_name[nd->robot->root_link]);
+  if (!body_finish(b, old)) {
+    ROSC_ERROR("avatar: out of memory for the body's buffers");
+    body_free(b);
+    return 1;
+  }
+  return 0;
+}
+
+static void log_body(const char *what, const body *b)
+{
+  ROSC_INFO("%s '%s': %d vertices, %d triangles, %d joints, frame '%s', topology %u", what,
+            b->robot->name, b->av->nvert, b->av->nface, b->robot->njoint, b->frame,
+            (unsigned)b->topology_id);
+}
+
+/* ~reload (std_srvs/Empty): a new body from the parameters, or the old one kept. */
+static int on_reload(void *user)
+{
+  node *nd = user;
+  body fresh;
+  if (load_body(&fresh, &nd->b) != 0) {
+    nd->reload_failures++;
+    ROSC_ERROR("~reload failed (see the error above); still publishing the last good body "
+               "('%s', %d vertices, topology %u)", nd->b.robot->name, nd->b.av->nvert,
+               (unsigned)nd->b.topology_id);
+    return 1;
+  }
+  body_free(&nd->b);
+  nd->b = fresh;
+  nd->reloads++;
+  log_body("~reload: avatar", &nd->b);
   return 0;
 }
 
@@ -250,43 +335,45 @@ int main(int argc, char **argv)
   }
   node nd;
   memset(&nd, 0, sizeof nd);
-  int load = load_avatar(&nd);
+  int ok = 1;
+  nd.queue = 2;
+  ok &= param_ok(rosc_param_get_bool("~strict_limits", &nd.strict_limits, 0, NULL),
+                 "~strict_limits", "a bool");
+  ok &= param_ok(rosc_param_get_int("~queue_size", &nd.queue, 2, NULL), "~queue_size", "an int");
+  if (ok && (nd.queue < 1 || nd.queue > 1000)) {
+    ROSC_ERROR("~queue_size = %d is out of range [1, 1000]", nd.queue);
+    ok = 0;
+  }
+  int load = ok ? load_body(&nd.b, NULL) : 2;
   if (load != 0) {
     rosc_shutdown();
     return load;
   }
-  const ssa_avatar *av = nd.av;
-  nd.q = calloc((size_t)nd.robot->njoint + 1, sizeof(double));
-  nd.q_try = calloc((size_t)nd.robot->njoint + 1, sizeof(double));
-  nd.pose = malloc(3 * (size_t)av->nvert * sizeof(double));
-  nd.pos_out = malloc(3 * (size_t)av->nvert * sizeof(float));
-  nd.tri_out = malloc(3 * (size_t)av->nface * sizeof(uint32_t));
-  if (!nd.q || !nd.q_try || !nd.pose || !nd.pos_out || !nd.tri_out) {
-    ROSC_ERROR("out of memory");
-    return 1;
-  }
-  for (size_t i = 0; i < 3 * (size_t)av->nface; i++) nd.tri_out[i] = (uint32_t)av->faces[i];
-  nd.topology_id = hash_topology(av->nvert, av->nface, av->faces);
   rosc_sub *sub = NULL;
+  rosc_srv *srv_reload = NULL;
+  int status = 0;
   if (rosc_pub_create(&nd.pub_mesh, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd.pub_stats, ROSC_MSG_SKIN_STATS, "avatar_stats", 10, 0) != ROSC_OK ||
-      rosc_sub_joint_state(&sub, "joint_states", (unsigned)nd.queue, on_joints, &nd) != ROSC_OK) {
-    ROSC_ERROR("cannot advertise or subscribe");
-    rosc_shutdown();
-    return 1;
+      rosc_sub_joint_state(&sub, "joint_states", (unsigned)nd.queue, on_joints, &nd) != ROSC_OK ||
+      rosc_srv_empty(&srv_reload, "~reload", on_reload, &nd) != ROSC_OK) {
+    /* a SIGINT during set-up makes roscpp refuse new publishers: a clean stop */
+    if (rosc_ok()) {
+      ROSC_ERROR("cannot advertise or subscribe");
+      status = 1;
+    }
+  } else {
+    log_body("avatar", &nd.b);
+    rosc_spin_for(-1.0);
+    ROSC_INFO("avatar: %lu joint_states in, %lu meshes out, %u rejected, %u names ignored, %lu "
+              "with values clamped to the joint limits, %lu reloads (%lu failed)", nd.in, nd.out,
+              (unsigned)nd.rejected, (unsigned)nd.unknown_names, nd.clamped, nd.reloads,
+              nd.reload_failures);
   }
-  ROSC_INFO("avatar '%s': %d vertices, %d triangles, %d joints, frame '%s', topology %u",
-            nd.robot->name, av->nvert, av->nface, nd.robot->njoint, nd.frame,
-            (unsigned)nd.topology_id);
-  rosc_spin_for(-1.0);
-  ROSC_INFO("avatar: %lu joint_states in, %lu meshes out, %u rejected, %u names ignored, %lu "
-            "with values clamped to the joint limits", nd.in, nd.out, (unsigned)nd.rejected,
-            (unsigned)nd.unknown_names, nd.clamped);
+  rosc_srv_destroy(srv_reload);
   rosc_sub_destroy(sub);
   rosc_pub_destroy(nd.pub_mesh);
   rosc_pub_destroy(nd.pub_stats);
   rosc_shutdown();
-  free(nd.q); free(nd.q_try); free(nd.pose); free(nd.pos_out); free(nd.tri_out);
-  ssa_avatar_destroy(nd.av);
-  return 0;
+  body_free(&nd.b);
+  return status;
 }

@@ -22,9 +22,11 @@
  * log line and counted; the last good state is kept. Received meshes wait in a
  * ring of ~queue_size slots (default 1: only the newest); when it is full the
  * oldest is skipped (inputs_skipped), so nothing queues without bound.
- * roscpp's own queue holds ~queue_size + 32 (it only fills during one step, as
- * the node spins between steps); meshes lost before the callback show as gaps
- * in header.seq and are counted as inputs_dropped.
+ * roscpp's own queue holds ~queue_size + 2 (it only fills during one step, as
+ * the node spins between steps; deeper, a stall filled it with up to 33 serialized
+ * meshes of ~90 kB, a 3 MB high-water mark kept by the allocator: issue 14's soak);
+ * meshes lost before the callback show as gaps in header.seq and are counted as
+ * inputs_dropped.
  *
  * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
  * core from the window's figures: ss_input_health); the ~reset service
@@ -624,25 +626,28 @@ int main(int argc, char **argv)
   }
   nd->in.cap = nd->p.queue_size;
   nd->in.slot = calloc((size_t)nd->in.cap, sizeof *nd->in.slot);
-  if (!nd->in.slot) return 1;
   rosc_sub *sub = NULL;
+  rosc_srv *srv_reset = NULL;
+  int status = 1;
+  if (!nd->in.slot) goto done;
+  /* A SIGINT during set-up (roslaunch stopping a node still starting) makes roscpp
+   * refuse new publishers: then a clean stop (exit 0) that destroys what was made. */
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 32, on_mesh, nd) !=
+      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 2, on_mesh, nd) !=
           ROSC_OK) {
-    ROSC_ERROR("cannot advertise or subscribe");
-    rosc_shutdown();
-    return 1;
+    if (rosc_ok()) ROSC_ERROR("cannot advertise or subscribe");
+    else status = 0;
+    goto done;
   }
-  rosc_srv *srv_reset = NULL;
   char node_name[256] = "skin_sim";
   rosc_node_name(node_name, sizeof node_name);
   if (rosc_srv_empty(&srv_reset, "~reset", on_reset, nd) != ROSC_OK ||
       rosc_diag_create(&nd->diag, node_name, "skin") != ROSC_OK) {
-    ROSC_ERROR("cannot advertise ~reset or /diagnostics");
-    rosc_shutdown();
-    return 1;
+    if (rosc_ok()) ROSC_ERROR("cannot advertise ~reset or /diagnostics");
+    else status = 0;
+    goto done;
   }
   rosc_wall_now_s(&nd->diag_wall);
   ROSC_INFO("skin_sim: solver %s, method %s, stiffness %g N/m/m^2, young %g N/m, slide %g, "
@@ -662,6 +667,8 @@ int main(int argc, char **argv)
   ROSC_INFO("skin_sim: %lu meshes in, %lu out, %u rejected, %u dropped, %u skipped, %u resets",
             nd->frames_in, nd->frames_out, (unsigned)nd->rejected,
             (unsigned)(nd->dropped + nd->stream.lost), (unsigned)nd->skipped, (unsigned)nd->resets);
+  status = 0;
+done:
   rosc_srv_destroy(srv_reset);
   rosc_diag_destroy(nd->diag);
   rosc_sub_destroy(sub);
@@ -670,11 +677,11 @@ int main(int argc, char **argv)
   rosc_pub_destroy(nd->pub_marker);
   rosc_shutdown();
   free_sim(nd);
-  for (int i = 0; i < nd->in.cap; i++) {
+  for (int i = 0; nd->in.slot && i < nd->in.cap; i++) {
     free(nd->in.slot[i].pos);
     free(nd->in.slot[i].tri);
   }
   free(nd->in.slot);
   free(nd);
-  return 0;
+  return status;
 }

@@ -124,6 +124,21 @@ int main(void) {
     CHECK_MSG(ssa_asset_load(&a, x, NULL, err, sizeof err) == SS_OK && a && a->nface > 0, "%s", err);
     ssa_asset_destroy(a);
   }
+  /* found by fuzz_urdf: a URDF text ending inside a UTF-8 character (here the
+   * first byte 0xCB of two) made TinyXML step over the end of the text and parse
+   * on in the heap (ASan: heap-buffer-overflow in TiXmlBase::ReadName); refused */
+  {
+    static const char cut[] = "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" "
+                              "type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/><origin "
+                              "xyz=\"0 0.17\xcb";
+    ssa_robot *rb = NULL;
+    CHECK(ssa_robot_load_string(&rb, cut, NULL, NULL, err, sizeof err) == SS_E_IO && rb == NULL);
+    CHECK_MSG(strstr(err, "ends inside a UTF-8 character (byte 131 of 132)") != NULL, "%s", err);
+    /* whole UTF-8 characters are fine (a robot named "bras_\u00e9") */
+    static const char fine[] = "<robot name=\"bras_\xc3\xa9\"><link name=\"a\"/></robot>";
+    CHECK_MSG(ssa_robot_load_string(&rb, fine, NULL, NULL, err, sizeof err) == SS_OK && rb, "%s", err);
+    ssa_robot_destroy(rb);
+  }
   /* still working here after all that */
   path_in(p, sizeof p, "tri.obj");
   write_file(p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

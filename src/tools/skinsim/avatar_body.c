@@ -185,6 +185,9 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   opts.package_path = args->package_path;
   if (args->asset_scale > 0.0) opts.asset.scale = args->asset_scale;
   if (args->primitive_edge > 0.0) opts.primitive_edge = args->primitive_edge;
+  if (args->max_file_mb > 0.0) opts.asset.max_file_mb = args->max_file_mb;
+  if (args->import_timeout_s > 0.0) opts.asset.import_timeout_s = args->import_timeout_s;
+  if (args->import_mem_mb > 0.0) opts.asset.import_mem_mb = args->import_mem_mb;
   opts.warn = print_warning;
   if (args->mesh_up_axis && strcmp(args->mesh_up_axis, "file") == 0)
     opts.mesh_up_axis = SSA_UP_AXIS_FILE;

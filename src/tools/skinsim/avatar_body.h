@@ -21,6 +21,10 @@ typedef struct avatar_args {
   const char *mesh_up_axis; /* "ignore" (NULL: the default) or "file": Collada up axes of
                                URDF visual meshes */
   double primitive_edge;    /* edge length (m) of tessellated URDF primitives (<= 0: default) */
+  /* Hostile mesh files (ssa_asset_opts; <= 0: the defaults 256 MB, 60 s, 4096 MB): */
+  double max_file_mb;       /* larger mesh files are refused */
+  double import_timeout_s;  /* an import (in a child process) taking longer is stopped */
+  double import_mem_mb;     /* address space an import may add */
 } avatar_args;
 
 typedef struct avatar_body avatar_body;

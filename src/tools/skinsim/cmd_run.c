@@ -175,6 +175,16 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--primitive-edge") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-4, 10.0, &av.primitive_edge))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--max-file-mb") == 0) { /* hostile mesh files (safe_import.h) */
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-6, 1048576.0, &av.max_file_mb))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--import-timeout") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) ||
+          cli_double(a, v, 0.1, 86400.0, &av.import_timeout_s))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--import-mem-mb") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 16.0, 1048576.0, &av.import_mem_mb))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--tether") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tether))
         return EXIT_USAGE;
@@ -200,6 +210,11 @@ int cmd_run(int argc, char **argv) {
   if (!scene_name == !avatar) {
     cli_error("run needs one body: --scene NAME (skinsim scenes lists them), or an avatar "
               "(--avatar demo, --urdf FILE --motion M, --asset FILE)");
+    return EXIT_USAGE;
+  }
+  if (!avatar && (av.max_file_mb > 0.0 || av.import_timeout_s > 0.0 || av.import_mem_mb > 0.0)) {
+    cli_error("--max-file-mb, --import-timeout and --import-mem-mb limit the reading of avatar "
+              "files; a built-in scene reads none");
     return EXIT_USAGE;
   }
   if (avatar && tris) {

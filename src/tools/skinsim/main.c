@@ -38,6 +38,10 @@ static void usage(FILE *f) {
       "                              [--mesh-up-axis ignore|file] [--primitive-edge M]\n"
       "                       --asset FILE [--anim NAME|INDEX] [--asset-scale M]\n"
       "                       [--region LINK,...]  simulate only the skin of these links\n"
+      "                       [--max-file-mb MB] [--import-timeout S] [--import-mem-mb MB]\n"
+      "                                            mesh files over MB (256) are refused; an import\n"
+      "                                            runs in a child stopped after S s (60) or MB\n"
+      "                                            more memory (4096)\n"
       "                       [--strict-limits]    joint values outside the URDF limits are an\n"
       "                                            error (else clamped with one warning)\n"
 #endif
