@@ -25,7 +25,8 @@
 #
 # After ros_env_setup: ROS_MASTER_URI, ROS_ENV_PORT, ROS_HOME, ROS_LOG_DIR (rosout.log,
 # the master's log), ROS_ENV_DIR (NAME.log of each ros_env_bg process). Functions:
-# ros_env_bg, ros_env_stop PID..., ros_env_wait_node NODE [S],
+# ros_env_bg, ros_env_stop PID..., ros_env_wait_node NODE [S] (ROS_ENV_START_S: the
+# start-up bound the tests use, default 60),
 # ros_env_wait_subscribers TOPIC N [S], ros_env_free_port, ros_env_now_ms.
 # Everything here works under `set -euo pipefail` as well as without it.
 
@@ -34,6 +35,10 @@ ROS_ENV_PIDS=()
 ROS_ENV_DIR=
 ROS_ENV_WATCHDOG=
 ROS_ENV_STOP_TIMEOUT=${ROS_ENV_STOP_TIMEOUT:-5}
+# How long a process may take to come up (master, rosout, a node from roslaunch):
+# a bound on waiting, returned from as soon as it is up, so generous: on a busy
+# 2-core machine under ASan, roslaunch alone was seen to need over 20 s.
+ROS_ENV_START_S=${ROS_ENV_START_S:-60}
 ROS_ENV_LAST_PID=
 
 ros_env_log() { echo "ros_env: $*" >&2; }
@@ -245,14 +250,14 @@ ros_env_setup() {
     # the master first (rosout started earlier only retries and complains)
     # (rosmaster does not exit when its port is taken: the log says so)
     wrc=0
-    ros_env_wait_node /master 15 "$master_pid" "$ROS_ENV_DIR/master.log" || wrc=$?
+    ros_env_wait_node /master "$ROS_ENV_START_S" "$master_pid" "$ROS_ENV_DIR/master.log" || wrc=$?
     case $wrc in
       0) ;;
       2) ros_env_log "port $port was taken before rosmaster bound it: another port"
          ros_env_stop "$master_pid"
          continue ;;
       *) if kill -0 "$master_pid" 2> /dev/null; then
-           ros_env_log "master on port $port running but not answering in 15 s"
+           ros_env_log "master on port $port running but not answering in $ROS_ENV_START_S s"
            return 1
          fi
          ros_env_log "master on port $port did not start (attempt $attempt):"
@@ -261,12 +266,12 @@ ros_env_setup() {
          continue ;;
     esac
     ros_env_bg rosout /usr/lib/rosout/rosout
-    if ros_env_wait_node /rosout 15; then
+    if ros_env_wait_node /rosout "$ROS_ENV_START_S"; then
       export ROS_ENV_PORT=$port
       ros_env_log "master $ROS_MASTER_URI and /rosout up in $(($(ros_env_now_ms) - t0)) ms"
       return 0
     fi
-    ros_env_log "/rosout did not register in 15 s"
+    ros_env_log "/rosout did not register in $ROS_ENV_START_S s"
     return 1
   done
   return 1

@@ -30,7 +30,7 @@ level_is() { grep -q "level: $2" "$ROS_ENV_DIR/diag_$1.txt"; }
 
 ros_env_bg launch roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
 lpid=$ROS_ENV_LAST_PID
-if ! ros_env_wait_node /skin_sim 20 "$lpid"; then
+if ! ros_env_wait_node /skin_sim "$ROS_ENV_START_S" "$lpid"; then
   check "skin node starts from skin.launch" false
   exit 1
 fi
@@ -73,7 +73,7 @@ ros_env_stop "$lpid"
 # 4. ~reset on a fresh node
 ros_env_bg launch_reset roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
 lpid=$ROS_ENV_LAST_PID
-if ros_env_wait_node /skin_sim 20 "$lpid"; then
+if ros_env_wait_node /skin_sim "$ROS_ENV_START_S" "$lpid"; then
   "$probe" reset > "$ROS_ENV_DIR/probe_reset.log" 2>&1
   rc=$?
   cat "$ROS_ENV_DIR/probe_reset.log"

@@ -25,8 +25,9 @@ run_part() {
   local part="$1" queue="$2"; shift 2
   ros_env_bg "launch_$part" roslaunch "$src/launch/skin.launch" output:=screen queue_size:="$queue"
   local lpid=$ROS_ENV_LAST_PID
-  if ! ros_env_wait_node /skin_sim 20 "$lpid"; then
+  if ! ros_env_wait_node /skin_sim "$ROS_ENV_START_S" "$lpid"; then
     check "$part: skin node starts from skin.launch" false
+    ros_env_stop "$lpid" # a node left behind would spoil the later parts
     return
   fi
   "$probe" "$@" > "$ROS_ENV_DIR/probe_$part.log" 2>&1
