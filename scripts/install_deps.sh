@@ -14,6 +14,7 @@ PKGS=(
   python3-visualization-msgs catkin-tools catkin-lint
   clang libclang-rt-14-dev
   libdiagnostic-updater-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
 )
 missing=()
 for p in "${PKGS[@]}"; do
