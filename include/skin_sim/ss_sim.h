@@ -38,7 +38,9 @@ const char *ss_solver_name(int solver);
 int ss_solver_parse(const char *name);
 
 /* Definition of a simulation; get one from ss_sim_default_settings() and
- * change what you need. Stiffnesses are per unit REST AREA of skin, so a
+ * change what you need. Every field but face_mask is described once, with its
+ * default, range and unit, in the settings table (ss_settings.h, src/core/settings.c,
+ * `skinsim settings`), which ss_sim_default_settings() and the checks read. Stiffnesses are per unit REST AREA of skin, so a
  * refined mesh behaves the same. */
 typedef struct ss_sim_settings {
   int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */

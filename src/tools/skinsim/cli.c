@@ -167,6 +167,10 @@ int cli_setting_option(int argc, char **argv, int *i, struct ss_sim_settings *si
   char *end = NULL;
   if (d->type == SS_SETTING_VEC3 && *v && (g = strtod(v, &end), end && *end == '\0')) {
     /* --gravity G: down the z axis, as before the table (G = 0 gives 0 0 -0) */
+    if (!isfinite(g)) {
+      cli_error("%s expects a finite number G (for 0 0 -G) or 'x y z', got '%s'", a, v);
+      return -1;
+    }
     snprintf(one, sizeof one, "0 0 %.17g", -g);
     v = one;
   }
