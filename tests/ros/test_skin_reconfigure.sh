@@ -24,7 +24,7 @@ probe="$bld/tests/ros/skin_probe"
 export PATH=/usr/bin:$PATH
 fail=0
 check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
-dynparam() { timeout 30 rosrun dynamic_reconfigure dynparam "$@"; }
+dynparam() { timeout 120 rosrun dynamic_reconfigure dynparam "$@"; }
 log="$ROS_ENV_DIR/launch.log"
 
 ros_env_bg launch roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
@@ -46,10 +46,10 @@ done
 # settings change (each dynparam takes seconds on a loaded machine, so no fixed timing).
 ros_env_bg stats_echo rostopic echo /skin_stats
 epid=$ROS_ENV_LAST_PID
-"$probe" stream 3000 10 > "$ROS_ENV_DIR/probe.log" 2>&1 &
+"$probe" stream 9000 10 > "$ROS_ENV_DIR/probe.log" 2>&1 &
 ppid=$!
-wait_stats() { # wait_stats N: until N skin_stats were recorded (60 s at most)
-  for _ in $(seq 600); do
+wait_stats() { # wait_stats N: until N skin_stats were recorded (120 s at most)
+  for _ in $(seq 1200); do
     [ "$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log" 2>/dev/null)" -ge "$1" ] && return 0
     sleep 0.1
   done

@@ -26,11 +26,11 @@ rpid=$ROS_ENV_LAST_PID
 ros_env_wait_node /left/skin_sim 20 "$lpid" && ros_env_wait_node /right/skin_sim 20 "$rpid" || {
   check "both skin nodes start" false; exit 1; }
 # the probe reads /left's output (its own frame check fails there on purpose: not used)
-"$probe" stream 600 10 skin_mesh:=/left/skin_mesh skin_stats:=/left/skin_stats \
+"$probe" stream 3000 10 skin_mesh:=/left/skin_mesh skin_stats:=/left/skin_stats \
   skin_marker:=/left/skin_marker > "$ROS_ENV_DIR/probe.log" 2>&1 &
 ppid=$!
 for t in /left/skin_mesh /left/skin_marker /right/skin_mesh /right/skin_marker; do
-  timeout 30 rostopic echo -n 1 "$t/header/frame_id" > "$ROS_ENV_DIR/frame_${t//\//_}.txt" 2>&1
+  timeout 90 rostopic echo -n 1 "$t/header/frame_id" > "$ROS_ENV_DIR/frame_${t//\//_}.txt" 2>&1
   echo "$t: $(head -n 1 "$ROS_ENV_DIR/frame_${t//\//_}.txt")"
 done
 kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
