@@ -8,8 +8,9 @@
 #  - `dynparam set /skin_sim young 500`: taken, "refactored" in the log;
 #  - a bad value (poisson 0.7, method crawl) is refused with a log line naming it, and
 #    the served config, dynparam get and the parameter server keep the value in force;
-#  - `dynparam set /skin_sim barycenters false`: the skin is created again on the next
-#    mesh (the log says so, skin_stats counts one reset), output goes on.
+#  - `dynparam set /skin_sim barycenters false` (between two streams: skin_probe sends
+#    1024 meshes at most): the skin is created again on the next mesh, without its
+#    barycenter anchors (the log says so, skin_stats counts one reset), output goes on.
 # Usage: test_skin_reconfigure.sh BUILD_DIR [SOURCE_DIR].
 set -u
 bld="$1"
@@ -46,7 +47,7 @@ done
 # settings change (each dynparam takes seconds on a loaded machine, so no fixed timing).
 ros_env_bg stats_echo rostopic echo /skin_stats
 epid=$ROS_ENV_LAST_PID
-"$probe" stream 9000 10 > "$ROS_ENV_DIR/probe.log" 2>&1 &
+"$probe" stream 1000 10 > "$ROS_ENV_DIR/probe.log" 2>&1 &
 ppid=$!
 wait_stats() { # wait_stats N: until N skin_stats were recorded (120 s at most)
   for _ in $(seq 1200); do
@@ -65,8 +66,13 @@ dynparam set /skin_sim poisson 0.7 > "$ROS_ENV_DIR/set_poisson.txt" 2>&1
 dynparam set /skin_sim method crawl > "$ROS_ENV_DIR/set_method.txt" 2>&1
 dynparam get /skin_sim > "$ROS_ENV_DIR/get1.txt" 2>&1
 n1=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
+# skin_probe streams 1024 meshes at most: a second stream carries the next change
+kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+n1=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 dynparam set /skin_sim barycenters false > /dev/null 2>&1; rc=$?
 check "dynparam set /skin_sim barycenters false exits 0" "[ $rc -eq 0 ]"
+"$probe" stream 1000 10 > "$ROS_ENV_DIR/probe2.log" 2>&1 &
+ppid=$!
 n2=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 wait_stats $((n2 + 20))
 dynparam get /skin_sim > "$ROS_ENV_DIR/get2.txt" 2>&1
@@ -112,8 +118,8 @@ check "parameter server mirrors it (rosparam get /skin_sim/young: 500.0, poisson
   "[ \"\$(rosparam get /skin_sim/young)\" = 500.0 ] && [ \"\$(rosparam get /skin_sim/poisson)\" = 0.3 ]"
 check "barycenters false: no reset before, one after (the skin created again), output goes on" \
   "grep -q RESETS_OK '$ROS_ENV_DIR/seq.txt'"
-check "log: says the skin is created again" \
-  "grep -q 'the skin is created again on the next kinematic_mesh' '$log' && grep -q 'skin created again with the new settings' '$log'"
+check "log: says the skin is created again, without barycenter anchors (576 for 576 vertices)" \
+  "grep -q 'the skin is created again on the next kinematic_mesh' '$log' && grep -q 'skin created again with the new settings' '$log' && grep -q '576 anchors' '$log'"
 check "dynparam get: barycenters False" "grep -qF \"'barycenters': False\" '$ROS_ENV_DIR/get2.txt'"
 ros_env_stop "$lpid"
 if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$log"; then
