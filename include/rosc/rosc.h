@@ -311,6 +311,43 @@ int rosc_diag_period(rosc_diag *d, double *out);
 int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv *kv, size_t n);
 int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
 
+/* ------------------------------------------------------------------ dynamic_reconfigure */
+/* A dynamic_reconfigure server spoken from a table given at run time (no .cfg file):
+ * the ~set_parameters service (dynamic_reconfigure/Reconfigure) and the latched
+ * ~parameter_descriptions (ConfigDescription) and ~parameter_updates (Config)
+ * topics, so that rqt_reconfigure and `rosrun dynamic_reconfigure dynparam` work.
+ * Every value in force is also written to the parameter server as ~NAME, as
+ * dynamic_reconfigure's own server does. Implemented in src/rosc/rosc_dynreconf.cpp. */
+enum { ROSC_DR_INT = 0, ROSC_DR_DOUBLE = 1, ROSC_DR_BOOL = 2, ROSC_DR_STR = 3 };
+#define ROSC_DR_STR_MAX 128
+typedef struct rosc_dr_param {
+  const char *name;            /* e.g. "slide" */
+  int type;                    /* ROSC_DR_* */
+  const char *description;     /* one line, shown by rqt_reconfigure */
+  unsigned level;              /* ORed over the changed parameters (dynamic_reconfigure's level) */
+  double min, max;             /* numbers: the bounds clients are told (may be infinite) */
+  const char *const *choices;  /* str: NULL-terminated names offered as a menu; NULL: free text */
+} rosc_dr_param;
+typedef struct rosc_dr_value {
+  double num;                  /* int, double, bool (0/1) */
+  char str[ROSC_DR_STR_MAX];   /* str */
+} rosc_dr_value;
+/* Called inside rosc_spin_* for a set_parameters request: values (n, in the order of the
+ * table) hold the configuration asked for (parameters the request did not name keep the
+ * value in force), changed[i] is 1 where it differs. The callback applies what it accepts
+ * and leaves in values what is IN FORCE afterwards (a refused value back to its old one):
+ * that is what the caller gets back and what ~parameter_updates publishes. */
+typedef void (*rosc_dr_cb)(rosc_dr_value *values, const int *changed, size_t n, void *user);
+typedef struct rosc_dynreconf rosc_dynreconf;
+/* params and dflt, current: n entries each (copied). Publishes the description and the
+ * current configuration at once. */
+int rosc_dynreconf_create(rosc_dynreconf **out, const rosc_dr_param *params,
+                          const rosc_dr_value *dflt, const rosc_dr_value *current, size_t n,
+                          rosc_dr_cb cb, void *user);
+/* The values in force changed outside a request: publishes them (n as at create). */
+int rosc_dynreconf_update(rosc_dynreconf *dr, const rosc_dr_value *values, size_t n);
+int rosc_dynreconf_destroy(rosc_dynreconf *dr);   /* NULL is fine */
+
 /* ------------------------------------------------------------------ logging */
 /* Levels as rosconsole's. Messages go to the console and, once the node runs, to
  * /rosout (logger "ros.skin_sim"); the level threshold is rosconsole's (DEBUG is

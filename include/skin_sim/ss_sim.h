@@ -38,7 +38,9 @@ const char *ss_solver_name(int solver);
 int ss_solver_parse(const char *name);
 
 /* Definition of a simulation; get one from ss_sim_default_settings() and
- * change what you need. Stiffnesses are per unit REST AREA of skin, so a
+ * change what you need. Every field but face_mask is described once, with its
+ * default, range and unit, in the settings table (ss_settings.h, src/core/settings.c,
+ * `skinsim settings`), which ss_sim_default_settings() and the checks read. Stiffnesses are per unit REST AREA of skin, so a
  * refined mesh behaves the same. */
 typedef struct ss_sim_settings {
   int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */
@@ -129,6 +131,19 @@ void ss_sim_reset(ss_sim *sim);
  * to start from a deformed state. SS_E_NONFINITE if any value is not finite
  * (the state is then untouched). */
 int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *err, int err_sz);
+
+/* Changes the settings of a simulation from its next step on, keeping its state
+ * and anchors (live tuning). Checks them first: SS_E_ARG naming the bad setting,
+ * nothing changed. What needs new masses, springs or matrices (young, poisson,
+ * density, stiffness, bending, damping: SS_APPLY_REFACTOR in ss_settings.h) is
+ * rebuilt here and refactored on the next substep. A setting that changes the
+ * skin's structure (SS_APPLY_RECREATE: solver, method, rings, walk_max_steps,
+ * barycenters, lbfgs_history, threads; bending turned on or off) cannot change in
+ * place: then nothing changes, *recreate (may be NULL) is set to 1, err names the
+ * setting and SS_OK is returned: create the simulation again with the settings.
+ * settings->face_mask is ignored (the simulated region stays). Allocates nothing. */
+int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recreate, char *err,
+                        int err_sz);
 
 /* ---- stepping -------------------------------------------------------------- */
 

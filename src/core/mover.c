@@ -19,13 +19,7 @@ struct ss_mover {
   ss_nring *nring; /* nring only */
 };
 
-ss_mover_settings ss_mover_default_settings(void) {
-  ss_mover_settings s;
-  s.method = SS_METHOD_WALK;
-  s.walk_max_steps = 512;
-  s.nring_rings = 2;
-  return s;
-}
+/* ss_mover_default_settings(): from the settings table (settings.c). */
 
 int ss_mover_create(ss_mover **out, const ss_topo *topo, const ss_mover_settings *settings,
                     char *err, int err_sz) {

@@ -18,6 +18,7 @@
  * A solve that meets a non-finite value keeps the last finite state and is
  * counted in the statistics; nothing non-finite ever enters the state. */
 #include <float.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,7 @@
 static void openmp_warm_up(int nthread);
 #endif
 #include "ss_err.h"
+#include "skin_sim/ss_settings.h"
 
 static const char *const solver_names[] = {"newton", "quasi-newton"};
 
@@ -46,69 +48,10 @@ int ss_solver_parse(const char *name) {
   return -1;
 }
 
-ss_sim_settings ss_sim_default_settings(void) {
-  ss_sim_settings s;
-  memset(&s, 0, sizeof s);
-  s.solver = SS_SOLVER_QUASI_NEWTON;
-  s.dt = 1.0 / 30.0;
-  s.substeps = 1;
-  s.iterations = 8;
-  s.tol = 1e-4;
-  s.lbfgs_history = 6;
-  s.safety_residual = 0.05;
-  s.iterations_max = 32;
-  s.young = 50.0;
-  s.poisson = 0.3;
-  s.density = 1.0;
-  s.anchor_stiffness = 1e3;
-  s.barycenter_anchors = 1;
-  s.bending = 0.0;
-  s.damping = 0.0;
-  s.slide = 30.0 * log(2.0); /* half the way per 1/30 s frame: the former per-substep 0.5 */
-  s.tether = 0.0;
-  s.mover = ss_mover_default_settings();
-  s.threads = 1;
-  s.face_mask = NULL;
-  return s;
-}
-
+/* ss_sim_default_settings() and every range check: the settings table
+ * (settings.c, include/skin_sim/ss_settings.h). */
 static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
-  if (s->solver != SS_SOLVER_NEWTON && s->solver != SS_SOLVER_QUASI_NEWTON)
-    return ss_fail(err, err_sz, SS_E_ARG, "unknown solver %d", s->solver);
-  if (!(isfinite(s->dt) && s->dt > 0.0)) return ss_fail(err, err_sz, SS_E_ARG, "dt must be > 0 (got %g)", s->dt);
-  if (s->substeps < 1 || s->substeps > 1000)
-    return ss_fail(err, err_sz, SS_E_ARG, "substeps must be in [1, 1000] (got %d)", s->substeps);
-  if (s->iterations < 0) return ss_fail(err, err_sz, SS_E_ARG, "iterations must be >= 0 (got %d)", s->iterations);
-  if (!(s->tol >= 0.0)) return ss_fail(err, err_sz, SS_E_ARG, "tol must be >= 0 (got %g)", s->tol);
-  if (!(isfinite(s->safety_residual) && s->safety_residual >= 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "safety_residual must be >= 0 (got %g)", s->safety_residual);
-  if (s->iterations_max < 0)
-    return ss_fail(err, err_sz, SS_E_ARG, "iterations_max must be >= 0 (got %d)", s->iterations_max);
-  if (s->lbfgs_history < 1 || s->lbfgs_history > 32)
-    return ss_fail(err, err_sz, SS_E_ARG, "lbfgs_history must be in [1, 32] (got %d)", s->lbfgs_history);
-  if (!(isfinite(s->young) && s->young >= 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "young must be >= 0 (got %g)", s->young);
-  if (!(s->poisson >= 0.0 && s->poisson < 0.5))
-    return ss_fail(err, err_sz, SS_E_ARG, "poisson must be in [0, 0.5) (got %g)", s->poisson);
-  if (!(isfinite(s->density) && s->density > 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "density must be > 0 (got %g)", s->density);
-  if (!(isfinite(s->anchor_stiffness) && s->anchor_stiffness >= 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "anchor_stiffness must be >= 0 (got %g)", s->anchor_stiffness);
-  if (!(isfinite(s->bending) && s->bending >= 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "bending must be >= 0 (got %g)", s->bending);
-  if (!(isfinite(s->damping) && s->damping >= 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "damping must be >= 0 (got %g)", s->damping);
-  if (!(s->slide >= 0.0)) /* +inf: frictionless */
-    return ss_fail(err, err_sz, SS_E_ARG, "slide must be a rate >= 0 per second (got %g)", s->slide);
-  if (!(isfinite(s->tether) && s->tether >= 0.0))
-    return ss_fail(err, err_sz, SS_E_ARG, "tether must be a finite rate >= 0 per second (got %g)", s->tether);
-  for (int i = 0; i < 3; i++)
-    if (!isfinite(s->gravity[i])) return ss_fail(err, err_sz, SS_E_ARG, "gravity must be finite");
-  if (s->threads < 1 || s->threads > 64)
-    return ss_fail(err, err_sz, SS_E_ARG, "threads must be in [1, 64] (got %d)", s->threads);
-  if (s->mover.method < SS_METHOD_WALK || s->mover.method > SS_METHOD_NRING)
-    return ss_fail(err, err_sz, SS_E_ARG, "unknown anchor method %d", s->mover.method);
-  return SS_OK;
+  return ss_settings_check(s, err, err_sz);
 }
 
 void ss_sim_destroy(ss_sim *sim) {
@@ -319,6 +262,42 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
     memcpy(sim->v, vel, nv3 * sizeof(double));
   else
     memset(sim->v, 0, nv3 * sizeof(double));
+  return SS_OK;
+}
+
+int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recreate, char *err,
+                        int err_sz) {
+  if (recreate) *recreate = 0;
+  if (!sim || !settings) return ss_fail(err, err_sz, SS_E_ARG, "sim or settings are NULL");
+  int status = ss_settings_check(settings, err, err_sz);
+  if (status != SS_OK) return status;
+  int n = 0, refactor = 0;
+  const ss_setting *table = ss_settings_table(&n);
+  for (int i = 0; i < n; i++) {
+    const ss_setting *d = &table[i];
+    if (ss_setting_equal(d, &sim->set, settings)) continue;
+    const int on_off = d->offset == offsetof(ss_sim_settings, bending) &&
+                       (sim->set.bending > 0.0) != (settings->bending > 0.0);
+    if (d->apply == SS_APPLY_RECREATE || on_off) {
+      if (recreate) *recreate = 1;
+      return ss_fail(err, err_sz, SS_OK, "%s %s: the simulation must be created again", d->name,
+                     on_off ? "turned on or off" : "changed");
+    }
+    refactor |= d->apply == SS_APPLY_REFACTOR;
+  }
+  const double old_bending = sim->set.bending;
+  const unsigned char *mask = sim->set.face_mask;
+  sim->set = *settings;
+  sim->set.face_mask = mask; /* the region stays */
+  if (refactor) {
+    ss_sim_build_material(sim);
+    if (old_bending > 0.0 && sim->set.bending != old_bending)
+      for (int e = 0; e < sim->nhinge; e++)
+        sim->hinge_weight[e] = sim->hinge_weight[e] / old_bending * sim->set.bending;
+    ss_sim_diag_const(sim);
+    sim->a_h = 0.0;       /* quasi-Newton: factor A again on the next substep */
+    sim->h_const_h = 0.0; /* Newton: rebuild the constant Hessian */
+  }
   return SS_OK;
 }
 

@@ -148,10 +148,32 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
   return SS_OK;
 }
 
+void ss_sim_build_material(ss_sim *sim) {
+  const int nv = sim->nvert, nf = sim->nface;
+  const ss_sim_settings *set = &sim->set;
+  ss_membrane_lame(set->young, set->poisson, &sim->mu, &sim->lam);
+  double area_sum = 0.0;
+  for (int f = 0; f < nf; f++) area_sum += sim->rest_area[f];
+  /* A vertex whose faces all have zero area still needs a little mass. */
+  double mass_floor = 1e-6 * set->density * area_sum / nf;
+  for (int v = 0; v < nv; v++) sim->mass[v] = fmax(set->density * sim->vert_area[v], mass_floor);
+  /* Springs: vertices (free only) and barycenters of faces with a free corner. */
+  double share = set->barycenter_anchors ? 0.5 : 1.0;
+  for (int f = 0; f < nf; f++) {
+    const int *fv = sim->faces + 3 * f;
+    int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
+    int has_area = sim->rest_area[f] > 0.0;
+    /* A zero-area face represents no skin: no spring. */
+    sim->k_face[f] = set->barycenter_anchors && any_free && has_area
+                         ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
+  }
+  for (int v = 0; v < nv; v++)
+    sim->k_vert[v] = sim->dof[v] >= 0 ? share * set->anchor_stiffness * sim->vert_area[v] : 0.0;
+}
+
 int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
   int nv = sim->nvert, nf = sim->nface;
   const ss_sim_settings *set = &sim->set;
-  ss_membrane_lame(set->young, set->poisson, &sim->mu, &sim->lam);
   /* Rest data and lumped areas. */
   double edge_sum = 0.0, area_sum = 0.0;
   int edge_count = 0;
@@ -172,9 +194,6 @@ int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
   }
   sim->edge_len = edge_count && edge_sum > 0.0 ? edge_sum / edge_count : 1.0;
   if (!(area_sum > 0.0)) return ss_fail(err, err_sz, SS_E_MESH, "the skin has no area at rest");
-  /* A vertex whose faces all have zero area still needs a little mass. */
-  double mass_floor = 1e-6 * set->density * area_sum / nf;
-  for (int v = 0; v < nv; v++) sim->mass[v] = fmax(set->density * sim->vert_area[v], mass_floor);
 
   /* Vertex kinds: free if it touches only simulated faces. */
   unsigned char *touch_in = sim->kind; /* bit 1: simulated face, bit 2: other face */
@@ -192,20 +211,14 @@ int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
   for (int v = 0; v < nv; v++)
     if (sim->dof[v] >= 0) sim->dof_vert[sim->dof[v]] = v;
 
-  /* Simulated faces and springs. */
-  double share = set->barycenter_anchors ? 0.5 : 1.0;
+  /* Simulated faces. */
   sim->nsimface = 0;
   for (int f = 0; f < nf; f++) {
     const int *fv = sim->faces + 3 * f;
     int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
-    int has_area = sim->rest_area[f] > 0.0;
-    /* A zero-area face represents no skin: no spring. */
-    sim->k_face[f] = set->barycenter_anchors && any_free && has_area
-                         ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
-    if (any_free && has_area) sim->simface[sim->nsimface++] = f;
+    if (any_free && sim->rest_area[f] > 0.0) sim->simface[sim->nsimface++] = f;
   }
-  for (int v = 0; v < nv; v++)
-    sim->k_vert[v] = sim->dof[v] >= 0 ? share * set->anchor_stiffness * sim->vert_area[v] : 0.0;
+  ss_sim_build_material(sim);
   if (set->bending > 0.0) return build_hinges(sim, err, err_sz);
   sim->nhinge = 0;
   return SS_OK;

@@ -123,6 +123,9 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
                 int err_sz);
 /* Vertex kinds, dofs, simulated faces, masses, spring stiffnesses, hinges. */
 int ss_sim_build_model(ss_sim *sim, char *err, int err_sz);
+/* From the settings: Lame parameters, masses and spring stiffnesses (part of
+ * ss_sim_build_model; again on ss_sim_set_settings). */
+void ss_sim_build_material(ss_sim *sim);
 
 /* ---- sim_pattern.c ---- */
 int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);

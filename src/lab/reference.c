@@ -21,6 +21,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "skin_sim/ss_settings.h"
 #include "skin_sim/ss_track.h"
 #include "bvh.h"
 #include "ss_err.h"
@@ -120,15 +121,20 @@ int ss_reference_key(const ss_body *body, const ss_run_settings *run, unsigned l
            ss_hash_bytes(body->rest, sizeof(double) * 3 * (size_t)body->nvert),
            ss_hash_bytes(body->faces, sizeof(int) * 3 * (size_t)body->nface), motion, body->fps,
            frames);
-  text_add(&t, "solver %d substeps %d iterations %d tol %a lbfgs %d dt %a\n", s->solver,
-           s->substeps, s->iterations, s->tol, s->lbfgs_history, s->dt);
-  text_add(&t, "young %a poisson %a density %a anchor %a barycenters %d bending %a\n", s->young,
-           s->poisson, s->density, s->anchor_stiffness, s->barycenter_anchors, s->bending);
-  text_add(&t, "gravity %a %a %a damping %a slide %a\n", s->gravity[0], s->gravity[1],
-           s->gravity[2], s->damping, s->slide);
-  if (s->tether != 0.0) text_add(&t, "tether %a\n", s->tether); /* absent: keys of before */
-  text_add(&t, "mover %d steps %d rings %d\n", s->mover.method, s->mover.walk_max_steps,
-           s->mover.nring_rings);
+  /* every setting of the table that can change the result (threads cannot) */
+  int nset = 0;
+  const ss_setting *table = ss_settings_table(&nset);
+  for (int i = 0; i < nset; i++) {
+    const ss_setting *d = &table[i];
+    if (!d->in_key) continue;
+    if (d->type == SS_SETTING_DOUBLE)
+      text_add(&t, "%s %a\n", d->name, ss_setting_get(d, s, 0));
+    else if (d->type == SS_SETTING_VEC3)
+      text_add(&t, "%s %a %a %a\n", d->name, ss_setting_get(d, s, 0), ss_setting_get(d, s, 1),
+               ss_setting_get(d, s, 2));
+    else
+      text_add(&t, "%s %d\n", d->name, (int)ss_setting_get(d, s, 0));
+  }
   if (s->face_mask)
     text_add(&t, "mask %016llx\n", ss_hash_bytes(s->face_mask, (size_t)body->nface));
   else

@@ -6,6 +6,10 @@
 #define SKIN_SIM_NODE_PARAMS_H
 
 #include "rosc/rosc.h"
+#include "skin_sim/ss_settings.h"
+
+#include <stdio.h>
+#include <string.h>
 
 #include <stddef.h>
 
@@ -43,6 +47,50 @@ static inline int param_range(const char *name, int v, int lo, int hi)
   if (v >= lo && v <= hi) return 1;
   ROSC_ERROR("%s = %d is out of range [%d, %d]", name, v, lo, hi);
   return 0;
+}
+
+/* ---- the simulation settings (the table of ss_settings.h) ---- */
+
+/* ~NAME of one setting of the table into *set: read as its type (a wrong type is
+ * named), then range-checked by the core. 1 if good; else one error, 0. */
+static inline int get_setting(const ss_setting *d, ss_sim_settings *set)
+{
+  char name[80], buf[256], err[512] = "";
+  snprintf(name, sizeof name, "~%s", d->name);
+  int ok = 1;
+  if (d->type == SS_SETTING_INT || d->type == SS_SETTING_BOOL) {
+    int v = (int)ss_setting_get(d, set, 0);
+    ok = d->type == SS_SETTING_INT ? get_int(name, &v, v) : get_bool(name, &v, v);
+    if (ok) ss_setting_set(d, set, 0, v);
+  } else if (d->type == SS_SETTING_DOUBLE) {
+    double v = ss_setting_get(d, set, 0);
+    ok = get_double(name, &v, v);
+    if (ok) ss_setting_set(d, set, 0, v);
+  } else { /* enum: its name; vec3: "x y z" */
+    char def[128];
+    ss_setting_format(d, set, def, sizeof def);
+    ok = get_string(name, buf, sizeof buf, def);
+    if (ok && ss_setting_parse(d, buf, set, err, sizeof err) != SS_OK) {
+      ROSC_ERROR("%s: %s", name, err);
+      return 0;
+    }
+  }
+  if (ok && ss_setting_check(d, set, err, sizeof err) != SS_OK) {
+    ROSC_ERROR("bad skin parameters: %s", err);
+    return 0;
+  }
+  return ok;
+}
+
+/* Every setting of the table on dynamic_reconfigure (rqt_reconfigure, dynparam): ints,
+ * doubles and bools as such, enums and vectors as text. */
+static inline void dr_value(const ss_setting *d, const ss_sim_settings *s, rosc_dr_value *v)
+{
+  memset(v, 0, sizeof *v);
+  if (d->type == SS_SETTING_ENUM || d->type == SS_SETTING_VEC3)
+    ss_setting_format(d, s, v->str, sizeof v->str);
+  else
+    v->num = ss_setting_get(d, s, 0);
 }
 
 #endif

@@ -57,6 +57,8 @@ typedef struct params {
   int queue_size;
   int have_box;
   double box[6];      /* xmin ymin zmin xmax ymax zmax */
+  char frame_id[ROSC_FRAME_ID_MAX]; /* "" : the input's frame; else the outputs' frame */
+  char tf_prefix[128];              /* "" : none; else "PREFIX/" before the outputs' frame */
 } params;
 
 typedef struct mailbox {
@@ -107,6 +109,9 @@ typedef struct node {
   double last_marker_wall;
   /* ~reset (std_srvs/Empty): the next mesh creates the skin again on its pose */
   int reset_req;
+  /* dynamic_reconfigure changed a setting the skin cannot change in place: the same */
+  int recreate_req;
+  rosc_dynreconf *dr;
   /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
   rosc_diag *diag;
   double diag_wall;       /* wall time of the last status */
@@ -122,38 +127,14 @@ static int get_params(params *p)
 {
   char buf[256];
   int ok = 1;
+  /* every simulation setting: ~NAME, from the table (ss_settings.h) */
   p->set = ss_sim_default_settings();
-  ok &= get_string("~solver", buf, sizeof buf, ss_solver_name(p->set.solver));
-  if ((p->set.solver = ss_solver_parse(buf)) < 0) {
-    ROSC_ERROR("~solver: unknown solver '%s' (newton, quasi-newton)", buf);
-    ok = 0;
-  }
-  ok &= get_string("~method", buf, sizeof buf, ss_method_name(p->set.mover.method));
-  if ((p->set.mover.method = ss_method_parse(buf)) < 0) {
-    ROSC_ERROR("~method: unknown anchor method '%s' (walk, project, nring)", buf);
-    ok = 0;
-  }
-  ok &= get_int("~rings", &p->set.mover.nring_rings, p->set.mover.nring_rings);
-  ok &= get_int("~walk_max_steps", &p->set.mover.walk_max_steps, p->set.mover.walk_max_steps);
-  ok &= get_double("~stiffness", &p->set.anchor_stiffness, p->set.anchor_stiffness);
-  ok &= get_double("~young", &p->set.young, p->set.young);
-  ok &= get_double("~poisson", &p->set.poisson, p->set.poisson);
-  ok &= get_double("~density", &p->set.density, p->set.density);
-  ok &= get_double("~slide", &p->set.slide, p->set.slide);
-  ok &= get_double("~tether", &p->set.tether, p->set.tether);
-  ok &= get_int("~substeps", &p->set.substeps, p->set.substeps);
-  ok &= get_int("~iterations", &p->set.iterations, p->set.iterations);
-  ok &= get_double("~tol", &p->set.tol, p->set.tol);
-  ok &= get_int("~lbfgs_history", &p->set.lbfgs_history, p->set.lbfgs_history);
-  ok &= get_double("~bending", &p->set.bending, p->set.bending);
-  ok &= get_int("~threads", &p->set.threads, p->set.threads);
-  ok &= get_double("~damping", &p->set.damping, p->set.damping);
-  ok &= get_bool("~barycenters", &p->set.barycenter_anchors, p->set.barycenter_anchors);
-  ok &= get_string("~gravity", buf, sizeof buf, "0 0 0");
-  if (sscanf(buf, "%lf %lf %lf", &p->set.gravity[0], &p->set.gravity[1], &p->set.gravity[2]) != 3) {
-    ROSC_ERROR("~gravity: '%s' is not three numbers 'x y z' (m/s^2)", buf);
-    ok = 0;
-  }
+  int nset = 0;
+  const ss_setting *table = ss_settings_table(&nset);
+  for (int i = 0; i < nset; i++)
+    ok &= get_setting(&table[i], &p->set);
+  ok &= get_string("~frame_id", p->frame_id, sizeof p->frame_id, "");
+  ok &= get_string("~tf_prefix", p->tf_prefix, sizeof p->tf_prefix, "");
   ok &= get_string("~mask_box", buf, sizeof buf, "");
   p->have_box = 0;
   if (buf[0]) {
@@ -181,19 +162,6 @@ static int get_params(params *p)
   if (!(p->max_gap > 0.0)) {
     ROSC_ERROR("~max_gap must be > 0 s");
     ok = 0;
-  }
-  if (ok) {
-    /* the core judges its settings: try them on a tetrahedron */
-    static const double tv[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-    static const int tf[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-    char err[ERR_SZ] = "";
-    ss_sim *t = NULL;
-    int st = ss_sim_create(&t, 4, tv, 4, tf, NULL, &p->set, err, sizeof err);
-    ss_sim_destroy(t);
-    if (st == SS_E_ARG) {
-      ROSC_ERROR("bad skin parameters: %s", err);
-      ok = 0;
-    }
   }
   return ok;
 }
@@ -363,9 +331,24 @@ static int create_sim(node *nd, const mailbox *b)
 }
 
 /* ------------------------------------------------------------------ output */
-static void publish(node *nd, const rosc_header *hdr, const ss_sim_stats *acc, double total_ms,
-                    int substeps)
+static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc,
+                    double total_ms, int substeps)
 {
+  /* the input's stamp; its frame unless ~frame_id names another (two skins told apart) */
+  rosc_header own = *in_hdr;
+  if (nd->p.frame_id[0]) snprintf(own.frame_id, sizeof own.frame_id, "%s", nd->p.frame_id);
+  if (nd->p.tf_prefix[0]) {
+    const char *pre = nd->p.tf_prefix + (nd->p.tf_prefix[0] == '/');
+    const char *f = own.frame_id[0] == '/' ? own.frame_id + 1 : own.frame_id;
+    char joined[ROSC_FRAME_ID_MAX];
+    size_t lp = strlen(pre), lf = strlen(f), k = 0;
+    for (size_t i = 0; i < lp && k + 1 < sizeof joined; i++) joined[k++] = pre[i];
+    if (lp && pre[lp - 1] != '/' && k + 1 < sizeof joined) joined[k++] = '/';
+    for (size_t i = 0; i < lf && k + 1 < sizeof joined; i++) joined[k++] = f[i];
+    joined[k] = '\0';
+    memcpy(own.frame_id, joined, sizeof joined);
+  }
+  const rosc_header *hdr = &own;
   /* in the body's layout: every seam copy from its welded skin vertex */
   const double *x = ss_sim_skin_positions(nd->sim);
   size_t n3 = 3 * (size_t)nd->nvert;
@@ -470,8 +453,12 @@ static void process(node *nd, const mailbox *b)
   rosc_wall_now_s(&t0);
   int nsplit = 0;
   if (!nd->sim || b->topology_id != nd->topology_id || kind == SS_TIME_BACKWARDS ||
-      kind == SS_TIME_GAP || nd->reset_req) {
-    if (nd->sim && nd->reset_req) {
+      kind == SS_TIME_GAP || nd->reset_req || nd->recreate_req) {
+    if (nd->sim && nd->recreate_req && !nd->reset_req) {
+      nd->resets++;
+      ROSC_INFO("dynamic_reconfigure: skin created again with the new settings on the body's "
+                "pose at %.3f s (%u resets so far)", 1e-9 * (double)now_ns, (unsigned)nd->resets);
+    } else if (nd->sim && nd->reset_req) {
       nd->resets++;
       ROSC_INFO("~reset: skin created again on the body's pose at %.3f s (%u resets so far)",
                 1e-9 * (double)now_ns, (unsigned)nd->resets);
@@ -484,7 +471,7 @@ static void process(node *nd, const mailbox *b)
                          "so far)", kind == SS_TIME_GAP ? "jumped forward" : "went backwards",
                          1e-9 * (double)now_ns, (unsigned)nd->resets);
     }
-    nd->reset_req = 0;
+    nd->reset_req = nd->recreate_req = 0;
     if (!create_sim(nd, b)) return;
     nd->skin_ns = now_ns;
     nd->prev_periods = 0;
@@ -549,6 +536,101 @@ static int on_reset(void *user)
   nd->reset_req = 1;
   ROSC_INFO("~reset: the skin is created again on the next kinematic_mesh");
   return 0;
+}
+
+/* ------------------------------------------------------------------ live tuning */
+/* A set_parameters request (inside rosc_spin_once, between steps): each changed value
+ * is checked by the core and refused with a log line naming it, or taken; the skin then
+ * gets them from its next step (ss_sim_set_settings refactors what needs it), or is
+ * created again on the next mesh when the change needs a new skin. values go back as
+ * what is in force. */
+static void on_reconfigure(rosc_dr_value *v, const int *changed, size_t n, void *user)
+{
+  node *nd = user;
+  int nset = 0;
+  const ss_setting *t = ss_settings_table(&nset);
+  ss_sim_settings want = nd->p.set;
+  char err[ERR_SZ] = "", was[128], now[128];
+  int any = 0, refactor = 0;
+  for (size_t i = 0; i < n && i < (size_t)nset; i++) {
+    if (!changed[i]) continue;
+    const ss_setting *d = &t[i];
+    ss_sim_settings trial = want;
+    int rc;
+    if (d->type == SS_SETTING_ENUM || d->type == SS_SETTING_VEC3) {
+      rc = ss_setting_parse(d, v[i].str, &trial, err, sizeof err);
+    } else {
+      ss_setting_set(d, &trial, 0, v[i].num);
+      rc = ss_setting_check(d, &trial, err, sizeof err);
+    }
+    ss_setting_format(d, &want, was, sizeof was);
+    if (rc != SS_OK) {
+      ROSC_WARN("dynamic_reconfigure: %s refused: %s; it stays %s", d->name, err, was);
+      continue;
+    }
+    ss_setting_format(d, &trial, now, sizeof now);
+    ROSC_INFO("dynamic_reconfigure: %s %s -> %s", d->name, was, now);
+    want = trial;
+    any = 1;
+    refactor |= d->apply == SS_APPLY_REFACTOR;
+  }
+  if (any && nd->sim) {
+    int recreate = 0;
+    if (ss_sim_set_settings(nd->sim, &want, &recreate, err, sizeof err) != SS_OK) {
+      ROSC_WARN("dynamic_reconfigure: refused: %s", err);
+      want = nd->p.set;
+    } else if (recreate) {
+      nd->recreate_req = 1;
+      ROSC_WARN("dynamic_reconfigure: %s: the skin is created again on the next "
+                "kinematic_mesh, on its pose", err);
+    } else {
+      ROSC_INFO("dynamic_reconfigure: in force from the next step%s",
+                refactor ? " (masses, springs and matrices rebuilt and refactored)" : "");
+    }
+  }
+  nd->p.set = want;
+  for (size_t i = 0; i < n && i < (size_t)nset; i++) dr_value(&t[i], &nd->p.set, &v[i]);
+}
+
+/* Serves every setting of the table; 1 on success. */
+static int serve_settings(node *nd)
+{
+  int nset = 0;
+  const ss_setting *t = ss_settings_table(&nset);
+  rosc_dr_param *par = calloc((size_t)nset, sizeof *par);
+  rosc_dr_value *dflt = calloc((size_t)nset, sizeof *dflt);
+  rosc_dr_value *cur = calloc((size_t)nset, sizeof *cur);
+  char (*desc)[256] = calloc((size_t)nset, sizeof *desc);
+  int ok = par && dflt && cur && desc;
+  const ss_sim_settings def = ss_sim_default_settings();
+  for (int i = 0; ok && i < nset; i++) {
+    const ss_setting *d = &t[i];
+    char range[160];
+    ss_setting_format_range(d, range, sizeof range);
+    snprintf(desc[i], sizeof desc[i], "%s (%s%s%s; %s)", d->help, d->unit, d->unit[0] ? ", " : "",
+             range, d->apply == SS_APPLY_STEP ? "from the next step"
+             : d->apply == SS_APPLY_REFACTOR ? "from the next step, refactors"
+                                             : "creates the skin again");
+    par[i].name = d->name;
+    par[i].type = d->type == SS_SETTING_INT ? ROSC_DR_INT
+                  : d->type == SS_SETTING_DOUBLE ? ROSC_DR_DOUBLE
+                  : d->type == SS_SETTING_BOOL ? ROSC_DR_BOOL : ROSC_DR_STR;
+    par[i].description = desc[i];
+    par[i].level = 1u << d->apply;
+    par[i].min = d->min;
+    par[i].max = d->max;
+    par[i].choices = d->type == SS_SETTING_ENUM ? d->choices : NULL;
+    dr_value(d, &def, &dflt[i]);
+    dr_value(d, &nd->p.set, &cur[i]);
+  }
+  if (ok)
+    ok = rosc_dynreconf_create(&nd->dr, par, dflt, cur, (size_t)nset, on_reconfigure, nd) ==
+         ROSC_OK;
+  free(par);
+  free(dflt);
+  free(cur);
+  free(desc);
+  return ok;
 }
 
 /* Publishes the status of the last window on /diagnostics when ~diagnostic_period has
@@ -649,6 +731,11 @@ int main(int argc, char **argv)
     else status = 0;
     goto done;
   }
+  if (!serve_settings(nd)) {
+    ROSC_ERROR("cannot serve dynamic_reconfigure (~set_parameters)");
+    rosc_shutdown();
+    return 1;
+  }
   rosc_wall_now_s(&nd->diag_wall);
   ROSC_INFO("skin_sim: solver %s, method %s, stiffness %g N/m/m^2, young %g N/m, slide %g, "
             "substeps %d, iterations %d, marker %g Hz", ss_solver_name(nd->p.set.solver),
@@ -670,6 +757,7 @@ int main(int argc, char **argv)
   status = 0;
 done:
   rosc_srv_destroy(srv_reset);
+  rosc_dynreconf_destroy(nd->dr);
   rosc_diag_destroy(nd->diag);
   rosc_sub_destroy(sub);
   rosc_pub_destroy(nd->pub_mesh);

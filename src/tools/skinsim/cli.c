@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "skin_sim/ss_anchor.h"
+#include "skin_sim/ss_settings.h"
 #include "skin_sim/ss_track.h"
 
 void cli_error(const char *fmt, ...) {
@@ -150,22 +151,61 @@ void progress_end(progress *p) {
   if (p->enabled) fputs("\r\033[K", stderr);
 }
 
-int cli_mover_option(int argc, char **argv, int *i, struct ss_mover_settings *mover) {
-  const char *a = argv[*i], *v = NULL;
-  if (strcmp(a, "--method") == 0) {
-    if (!(v = cli_value(argc, argv, i))) return -1;
-    mover->method = ss_method_parse(v);
-    if (mover->method < 0) {
-      cli_error("--method expects walk, project or nring, got '%s'", v);
-      return -1;
-    }
+int cli_setting_option(int argc, char **argv, int *i, struct ss_sim_settings *sim) {
+  const char *a = argv[*i];
+  if (strcmp(a, "--no-barycenters") == 0) {
+    sim->barycenter_anchors = 0;
     return 1;
   }
-  if (strcmp(a, "--rings") == 0)
-    return (!(v = cli_value(argc, argv, i)) || cli_int(a, v, 0, 64, &mover->nring_rings)) ? -1 : 1;
-  if (strcmp(a, "--max-steps") == 0)
-    return (!(v = cli_value(argc, argv, i)) || cli_int(a, v, 1, 1000000, &mover->walk_max_steps))
-               ? -1
-               : 1;
-  return 0;
+  if (strncmp(a, "--", 2) != 0) return 0;
+  const ss_setting *d = ss_setting_find_cli(a);
+  if (!d) return 0;
+  const char *v = cli_value(argc, argv, i);
+  if (!v) return -1;
+  char err[512] = "", one[128];
+  double g = 0.0;
+  char *end = NULL;
+  if (d->type == SS_SETTING_VEC3 && *v && (g = strtod(v, &end), end && *end == '\0')) {
+    /* --gravity G: down the z axis, as before the table (G = 0 gives 0 0 -0) */
+    if (!isfinite(g)) {
+      cli_error("%s expects a finite number G (for 0 0 -G) or 'x y z', got '%s'", a, v);
+      return -1;
+    }
+    snprintf(one, sizeof one, "0 0 %.17g", -g);
+    v = one;
+  }
+  if (ss_setting_parse(d, v, sim, err, sizeof err)) {
+    cli_error("%s: %s", a, err);
+    return -1;
+  }
+  return 1;
+}
+
+void cli_settings_help(FILE *f) {
+  int n = 0;
+  const ss_setting *t = ss_settings_table(&n);
+  for (int k = 0; k < n; k++) {
+    const ss_setting *d = &t[k];
+    if (!ss_setting_cli(d)[0]) continue;
+    char def[96], range[160], flag[64];
+    ss_setting_format_default(d, def, sizeof def);
+    ss_setting_format_range(d, range, sizeof range);
+    snprintf(flag, sizeof flag, "--%s %s", ss_setting_cli(d),
+             d->type == SS_SETTING_INT ? "N" : d->type == SS_SETTING_BOOL ? "BOOL"
+             : d->type == SS_SETTING_ENUM ? "NAME" : d->type == SS_SETTING_VEC3 ? "'X Y Z'" : "X");
+    fprintf(f, "        %-26s %s; default %s%s%s, range %s\n", flag, d->help, def,
+            d->unit[0] ? " " : "", d->unit, range);
+  }
+}
+
+int cli_mover_option(int argc, char **argv, int *i, struct ss_mover_settings *mover) {
+  const char *a = argv[*i];
+  if (strcmp(a, "--method") != 0 && strcmp(a, "--rings") != 0 && strcmp(a, "--max-steps") != 0)
+    return 0;
+  /* the same names, ranges and messages as the simulation settings (ss_settings.h) */
+  ss_sim_settings s = ss_sim_default_settings();
+  s.mover = *mover;
+  int r = cli_setting_option(argc, argv, i, &s);
+  if (r > 0) *mover = s.mover;
+  return r;
 }

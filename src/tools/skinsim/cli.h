@@ -22,6 +22,16 @@ int cli_double(const char *opt, const char *text, double min, double max, double
 struct ss_mover_settings;
 int cli_mover_option(int argc, char **argv, int *i, struct ss_mover_settings *mover);
 
+/* A simulation setting from the table (ss_settings.h) given as `--FLAG VALUE`:
+ * returns 1 if argv[*i] is one (value parsed and range-checked into *sim, *i
+ * advanced), 0 if it is no setting flag, -1 on a bad value (one message naming
+ * the flag, the value and the range). --gravity also takes one number G for
+ * 0 0 -G; --no-barycenters is --barycenters false. */
+struct ss_sim_settings;
+int cli_setting_option(int argc, char **argv, int *i, struct ss_sim_settings *sim);
+/* The settings flags, one per line ("  --young N/m ..."), for the help text. */
+void cli_settings_help(FILE *f);
+
 /* Returns the value after argv[*i] (advancing *i), or NULL with a message. */
 const char *cli_value(int argc, char **argv, int *i);
 

@@ -84,64 +84,17 @@ int cmd_run(int argc, char **argv) {
   ss_run_settings s = ss_run_default_settings();
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
-    const int mover_opt = cli_mover_option(argc, argv, &i, &s.sim.mover);
-    if (mover_opt < 0) return EXIT_USAGE;
-    if (mover_opt > 0) continue;
+    /* every simulation setting: the table (ss_settings.h; skinsim help lists them) */
+    const int set_opt = cli_setting_option(argc, argv, &i, &s.sim);
+    if (set_opt < 0) return EXIT_USAGE;
+    if (set_opt > 0) continue;
     if (strcmp(a, "--scene") == 0) {
       if (!(scene_name = cli_value(argc, argv, &i))) return EXIT_USAGE;
-    } else if (strcmp(a, "--solver") == 0) {
-      if (!(v = cli_value(argc, argv, &i))) return EXIT_USAGE;
-      s.sim.solver = ss_solver_parse(v);
-      if (s.sim.solver < 0) {
-        cli_error("--solver expects newton or quasi-newton, got '%s'", v);
-        return EXIT_USAGE;
-      }
     } else if (strcmp(a, "--tris") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 5000000, &tris)) return EXIT_USAGE;
     } else if (strcmp(a, "--frames") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000000, &s.frames))
         return EXIT_USAGE;
-    } else if (strcmp(a, "--dt") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 1e-6, 10.0, &s.sim.dt))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--substeps") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000, &s.sim.substeps))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--iterations") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 100000, &s.sim.iterations))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--tol") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tol))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--bending") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.bending))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--slide") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e9, &s.sim.slide))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--young") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e12, &s.sim.young))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--poisson") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 0.499, &s.sim.poisson))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--stiffness") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) ||
-          cli_double(a, v, 0.0, 1e12, &s.sim.anchor_stiffness))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--damping") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.damping))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--gravity") == 0) {
-      double g = 0.0;
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, -1e4, 1e4, &g)) return EXIT_USAGE;
-      s.sim.gravity[0] = s.sim.gravity[1] = 0.0;
-      s.sim.gravity[2] = -g;
-    } else if (strcmp(a, "--threads") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 64, &s.sim.threads))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--no-barycenters") == 0) {
-      s.sim.barycenter_anchors = 0;
     } else if (strcmp(a, "--avatar") == 0) {
       if (!(av.avatar = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--urdf") == 0) {
@@ -184,9 +137,6 @@ int cmd_run(int argc, char **argv) {
         return EXIT_USAGE;
     } else if (strcmp(a, "--import-mem-mb") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 16.0, 1048576.0, &av.import_mem_mb))
-        return EXIT_USAGE;
-    } else if (strcmp(a, "--tether") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tether))
         return EXIT_USAGE;
     } else if (strcmp(a, "--settle") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.settle))

@@ -13,6 +13,7 @@ int cmd_track(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_run(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
+int cmd_settings(int argc, char **argv);
 
 void track_json(FILE *f, const char *scene, const ss_track_settings *s, const ss_track_stats *st);
 

@@ -19,12 +19,8 @@ static void usage(FILE *f) {
       "                              edge lengths off the surface, default 0.1) and moved there by\n"
       "                              the method; counts snags and failures\n"
       "  compare [--frames N]        every scene with every method: the table of where methods snag\n"
-      "  run BODY [--frames N] [--method walk|project|nring] [--rings N]\n"
-      "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
-      "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
-      "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide RATE]\n"
-      "        [--tether RATE] [--settle SECONDS] [--truth]\n"
-      "        [--threads N] [--reference [--cache DIR]] [--json FILE|-] [--out DIR]\n"
+      "  run BODY [--frames N] [SETTINGS] [--settle SECONDS] [--truth]\n"
+      "        [--reference [--cache DIR]] [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
       "                              summary (speed, snags, failures, hugging, area ratios,\n"
       "                              final_hash); --out writes skin_NNNN.ply and body_NNNN.ply;\n"
@@ -52,10 +48,16 @@ static void usage(FILE *f) {
       "                              and avatars; DIR/results.csv and charts (pareto, stability,\n"
       "                              scaling, breakdown, options .png; stability.md, options.md).\n"
       "                              --quick: small sizes, a few minutes; full: under 30 minutes\n"
+      "  settings [--tsv]            the simulation settings: name (the node's ~parameter),\n"
+      "                              flag, type, default, range, unit, how a live change\n"
+      "                              applies (step, refactor, recreate), help\n"
       "  help                        this text\n"
       "\n"
-      "exit status: 0 ok, 1 the run failed, 2 bad usage or input\n",
+      "exit status: 0 ok, 1 the run failed, 2 bad usage or input\n"
+      "\n"
+      "SETTINGS of run (from the settings table; --no-barycenters = --barycenters false):\n",
       f);
+  cli_settings_help(f);
 }
 
 int main(int argc, char **argv) {
@@ -73,6 +75,7 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "compare") == 0) return cmd_compare(argc - 1, argv + 1);
   if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
   if (strcmp(cmd, "bench") == 0) return cmd_bench(argc - 1, argv + 1);
+  if (strcmp(cmd, "settings") == 0) return cmd_settings(argc - 1, argv + 1);
   cli_error("unknown command '%s' (try: skinsim help)", cmd);
   return EXIT_USAGE;
 }
