@@ -126,6 +126,7 @@ int ss_reference_key(const ss_body *body, const ss_run_settings *run, unsigned l
   text_add(&t, "gravity %a %a %a damping %a slide %a\n", s->gravity[0], s->gravity[1],
            s->gravity[2], s->damping, s->slide);
   if (s->tether != 0.0) text_add(&t, "tether %a\n", s->tether); /* absent: keys of before */
+  if (s->orient != 0.0) text_add(&t, "orient %a\n", s->orient);
   text_add(&t, "mover %d steps %d rings %d\n", s->mover.method, s->mover.walk_max_steps,
            s->mover.nring_rings);
   if (s->face_mask)

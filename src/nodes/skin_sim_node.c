@@ -139,6 +139,7 @@ static int get_params(params *p)
   ok &= get_double("~density", &p->set.density, p->set.density);
   ok &= get_double("~slide", &p->set.slide, p->set.slide);
   ok &= get_double("~tether", &p->set.tether, p->set.tether);
+  ok &= get_double("~orient", &p->set.orient, p->set.orient);
   ok &= get_int("~substeps", &p->set.substeps, p->set.substeps);
   ok &= get_int("~iterations", &p->set.iterations, p->set.iterations);
   ok &= get_double("~tol", &p->set.tol, p->set.tol);

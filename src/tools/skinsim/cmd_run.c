@@ -178,6 +178,9 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--tether") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.sim.tether))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--orient") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e9, &s.sim.orient))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--settle") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e6, &s.settle))
         return EXIT_USAGE;

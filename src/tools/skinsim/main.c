@@ -23,7 +23,7 @@ static void usage(FILE *f) {
       "        [--max-steps N] [--solver newton|quasi-newton] [--dt S] [--substeps K]\n"
       "        [--iterations K] [--tol X] [--young E] [--poisson NU] [--stiffness K]\n"
       "        [--no-barycenters] [--bending K] [--gravity G] [--damping D] [--slide RATE]\n"
-      "        [--tether RATE] [--settle SECONDS] [--truth]\n"
+      "        [--tether RATE] [--orient K] [--settle SECONDS] [--truth]\n"
       "        [--threads N] [--reference [--cache DIR]] [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
       "                              summary (speed, snags, failures, hugging, area ratios,\n"
