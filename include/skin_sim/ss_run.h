@@ -18,9 +18,11 @@
  *    maximum over all frames, in mean edge lengths (the silhouette must
  *    follow the animation);
  *  - inverted faces: simulated skin faces whose normal points against the
- *    body's normal where the face is anchored (its barycenter anchor's body
- *    face, else the sum over its vertices' anchor faces; a skin of its own
- *    wound the other way at rest is judged against its rest orientation):
+ *    body's normal under the face: halfway between the normal where it is
+ *    anchored (its barycenter anchor's body face, else the sum over its
+ *    vertices' anchor faces) and that of the body face it was bound to; not
+ *    judged where those two differ by more than 120 degrees (a skin of its
+ *    own wound the other way at rest is judged against its rest orientation):
  *    the most in one frame. A face can turn over at full area, which the
  *    area ratios do not see;
  *  - inside: how deep a skin vertex goes under the body surface (behind the

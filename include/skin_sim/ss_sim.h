@@ -88,6 +88,12 @@ typedef struct ss_sim_settings {
                             in a substep of h seconds: a relaxation rate independent of the step
                             (a time constant of 1/tether s). 0 = the paper's free sliding;
                             default 0 */
+  double orient;         /* N/m (energy per m^2 of rest skin, as young), >= 0: the skin lies face up
+                            on its body. Each skin face whose area projected on the tangent plane
+                            of the body under it (signed, over its rest area: 1 flat, 0 on edge,
+                            -1 turned over) falls below 0.2 pays orient (0.2 - s)^2 / 2 per m^2;
+                            without it a face can turn over at full area at no cost and a
+                            crease folded flat locks (orient.c). 0 = off */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   int threads;           /* threads for per-face energies and anchor walks (OpenMP), 1..64;
                             default 1. The results are the same bits for any count; 2 pays

@@ -76,6 +76,10 @@ static const ss_setting table[] = {
      "how fast anchors follow the skin (time constant 1/slide); 0 glued, inf frictionless"},
     {"tether", NULL, SS_SETTING_DOUBLE, OFF(tether), 0.0, 0, INF, 0, 1, "1/s", SS_APPLY_STEP, 1,
      NULL, "rate at which anchors walk back home (connective tissue); 0 free sliding"},
+    {"orient", NULL, SS_SETTING_DOUBLE, OFF(orient), 200.0, 0, INF, 0, 1, "N/m",
+     SS_APPLY_REFACTOR, 1, NULL,
+     "skin faces resist turning over against the body and vertices resist going under it "
+     "(energy per m^2 of skin, as young); 0 off, the paper's skin"},
     {"threads", NULL, SS_SETTING_INT, OFF(threads), 1, 1, 64, 0, 0, "", SS_APPLY_RECREATE, 0,
      NULL, "threads for energies and anchor walks (the same bits for any count)"},
 };

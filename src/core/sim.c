@@ -86,7 +86,7 @@ void ss_sim_destroy(ss_sim *sim) {
                     sim->dir,       sim->xt,           sim->gt,           sim->xfull_t,     sim->h_const,
                     sim->lb_s,      sim->lb_y,         sim->lb_rho,       sim->lb_alpha,
                     sim->body_rest,  sim->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path,
-                    sim->face_energy, sim->face_grad};
+                    sim->face_energy, sim->face_grad, sim->orient_sign};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
   free(sim);
 }
@@ -235,6 +235,10 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   }
   ss_sim_diag_const(sim);
   ss_sim_reset(sim);
+  if (ss_sim_orient_init(sim) != SS_OK) {
+    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+    goto fail;
+  }
   cholmod_start(&sim->cc);
   sim->cc_started = 1;
   sim->cc.print = 0; /* the core never prints: errors come back as status */
@@ -319,6 +323,23 @@ static void openmp_warm_up(int nthread) {
 }
 #endif
 
+/* 1 if body faces f and g share a corner (welded). */
+static int share_corner(const ss_topo *t, int f, int g) {
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      if (t->vert_weld[t->face_vert[3 * f + i]] == t->vert_weld[t->face_vert[3 * g + j]]) return 1;
+  return 0;
+}
+
+/* The tether's home stretch: the anchor goes to the point of home face h
+ * closest to `target` (robust on slivers and degenerate faces). */
+static void home_stretch(const ss_frames *fr, int h, const double target[3], double uv[2]) {
+  const double *o = fr->origin + 3 * h, *e = fr->edge + 6 * h;
+  const double b[3] = {o[0] + e[0], o[1] + e[1], o[2] + e[2]};
+  const double c[3] = {o[0] + e[3], o[1] + e[4], o[2] + e[5]};
+  ss_closest_point_triangle(target, o, b, c, uv);
+}
+
 typedef struct anchor_counts {
   long long moved, steps, boundary, crease, step_limit;
 } anchor_counts;
@@ -371,7 +392,19 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
       target[i] = here[i] + sim->tether_frac * (home[i] - here[i]);
       pull2 += (target[i] - here[i]) * (target[i] - here[i]);
     }
-    if (pull2 > 0.0) {
+    const int h = sim->anchor_face0[a];
+    if (pull2 > 0.0 && share_corner(sim->btopo, res.face, h)) {
+      /* Next to home (its face shares a corner with the home face): the
+       * rest of the way in the home face's own frame. A bind point is often
+       * a body vertex (a skin copied from the body), where the faces around
+       * meet at angles: walking onto it, the face the walk ends in - and the
+       * plane it projects on - would flip with the last bits of the skin's
+       * position, and Newton and quasi-Newton (or a copied and a bound skin)
+       * would part ways within frames (0.4 edge lengths on quadruped). */
+      home_stretch(fr, h, target, res.uv);
+      res.face = h;
+      sim->anchor_pull[a] += sqrt(pull2);
+    } else if (pull2 > 0.0) {
       const int face = res.face;
       const double uv[2] = {res.uv[0], res.uv[1]};
       ss_walk_result back;

@@ -123,6 +123,7 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     if (g)
       for (int c = 0; c < 4; c++) add_grad(sim, g, hv[c], g12 + 3 * c);
   }
+  e += ss_sim_orient_energy(sim, xfull, g); /* orient.c */
   return e;
 }
 
@@ -201,6 +202,7 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
     ss_hinge_eval(x12, sim->hinge_theta0[q], sim->hinge_weight[q], NULL, h144);
     scatter_element(sim, hv, 4, sim->hinge_rank + 16 * q, h144, vals);
   }
+  ss_sim_orient_hessian(sim, xfull, vals); /* orient.c */
 }
 
 /* Adds w (x I3) to block (rank, column j): scalar != 0 in the n x n values,

@@ -81,6 +81,7 @@ struct ss_sim {
   double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
   int nthread;                /* threads stepping uses (OpenMP; 1 without it) */
   ss_walker **walkers;        /* (nthread) walk scratch, one per thread */
+  signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
   double *face_grad;          /* (nsimface x 9) and their gradients */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
@@ -126,6 +127,20 @@ int ss_sim_build_model(ss_sim *sim, char *err, int err_sz);
 /* From the settings: Lame parameters, masses and spring stiffnesses (part of
  * ss_sim_build_model; again on ss_sim_set_settings). */
 void ss_sim_build_material(ss_sim *sim);
+
+/* ---- orient.c: skin faces resist turning over against the body ---- */
+#define SS_ORIENT_S0 0.2 /* signed projected area ratio below which the term acts */
+#define SS_ORIENT_MIN_AREA 0.01 /* faces of rest area below this times l^2 are not judged */
+#define SS_ORIENT_DEPTH 0.1 /* depth spring of a vertex under the body, per orient (orient.c) */
+/* orient_sign from the rest skin and the anchors at rest (after ss_sim_reset). */
+int ss_sim_orient_init(ss_sim *sim);
+/* The unit body normal skin face f is judged against, in the pose of fr;
+ * 0 where the face is not judged (see orient.c). */
+int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]);
+/* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0. */
+double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g);
+/* Adds its (Gauss-Newton, PSD) Hessian to the 3n x 3n upper-triangular values. */
+void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals);
 
 /* ---- sim_pattern.c ---- */
 int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);

@@ -83,10 +83,9 @@ typedef struct run_meas {
   long long hug_count;
 } run_meas;
 
-/* The body normal under skin face f where it is anchored: the barycenter
- * anchor's face, else the sum over its vertices' anchor faces. */
-static void anchored_normal(const run_meas *m, const ss_sim *sim, int f, double n[3]) {
-  const int *af = ss_sim_anchor_faces(sim);
+/* Unit sum of the body normals under skin face f for anchor faces af: the
+ * barycenter anchor's face, else the normalised sum over its vertices'. */
+static void normal_under(const run_meas *m, const ss_sim *sim, const int *af, int f, double n[3]) {
   const int nv = m->skin_nvert;
   n[0] = n[1] = n[2] = 0.0;
   if (ss_sim_nanchors(sim) > nv && af[nv + f] >= 0) {
@@ -98,6 +97,23 @@ static void anchored_normal(const run_meas *m, const ss_sim *sim, int f, double 
     if (b < 0) continue;
     for (int k = 0; k < 3; k++) n[k] += m->fr->normal[3 * b + k];
   }
+  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (len > 0.0)
+    for (int k = 0; k < 3; k++) n[k] /= len;
+}
+
+/* The body normal skin face f is judged against: halfway between the normal
+ * where it is anchored and the normal of the body face it was bound to (as
+ * the orient term of the sim, orient.c, for the same reasons: near a sharp
+ * edge an anchor settles on the neighbouring face, and skin slid around a
+ * rim thinner than an edge is anchored on its far side). Zero (not judged)
+ * where the two differ by more than 120 degrees. */
+static void anchored_normal(const run_meas *m, const ss_sim *sim, int f, double n[3]) {
+  double a[3], h[3];
+  normal_under(m, sim, ss_sim_anchor_faces(sim), f, a);
+  normal_under(m, sim, m->face0, f, h);
+  for (int k = 0; k < 3; k++) n[k] = a[k] + h[k];
+  if (!(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 1.0)) n[0] = n[1] = n[2] = 0.0;
 }
 
 /* Skin face f's (unnormalised) normal and its area ratio. */

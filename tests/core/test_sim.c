@@ -269,6 +269,7 @@ static void test_gravity_sag(void) {
   for (int bary = 0; bary < 2; bary++) {
     ss_sim_settings set = ss_sim_default_settings();
     set.young = 0.0;
+    set.orient = 0.0; /* the sag goes into the flat body, which orient's depth spring resists */
     set.density = 2.0;
     set.anchor_stiffness = 500.0;
     set.barycenter_anchors = bary;

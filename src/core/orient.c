@@ -1,0 +1,236 @@
+/* The orientation term: skin that lies on a body cannot turn over.
+ *
+ * The membrane (2D Stable Neo-Hookean, membrane.c) sees only the metric of a
+ * skin triangle, F^T F: a triangle rotated half a turn about one of its edges
+ * (turned face down onto the body) has exactly the energy of the same
+ * triangle face up. A sheet folded flat over itself (a Z crease) therefore
+ * costs nothing, and on a triangle mesh its fold lines can only move by
+ * bending a triangle across its interior, which the membrane resists: the
+ * crease locks. That is why skin dragged into a crease during a motion did
+ * not come home after it (rest error 0.7 edge lengths on the demo avatar with
+ * any tether) and why faces were seen turned over at full area.
+ *
+ * Real skin lies on its body, face up. The term compares each simulated skin
+ * face with the body's normal n under it (ss_sim_orient_normal: halfway
+ * between the normal where it is anchored and the normal of the body face it
+ * was bound to), in the current substep pose (fixed during a solve, like the
+ * anchors):
+ *   s = sign_f ((x1 - x0) x (x2 - x0)) . n / (2 A_f),
+ * the face's area projected on the body's tangent plane over its rest area,
+ * signed: 1 at rest, 0 standing on edge, -1 turned over. sign_f is +1, or -1
+ * for a skin of its own wound the other way at rest (0: not judged). Energy
+ *   E_f = orient A_f psi(s),  psi(s) = (s0 - s)^2 / 2 for s < s0, else 0,
+ * s0 = SS_ORIENT_S0: zero for faces lying within ~80 degrees of the body's
+ * tangent plane at their rest area (the usual state of a skin), so it leaves
+ * the ordinary skin alone and pushes back on a face as it tilts past that,
+ * harder the further it turns. orient (N/m, energy per rest area, as young).
+ * s is linear in each corner: ds/dx1 = c (x2 - x0) x n, ds/dx2 = c n x
+ * (x1 - x0), ds/dx0 = -(ds/dx1 + ds/dx2), c = sign_f / (2 A_f).
+ * Hessian: the Gauss-Newton part orient A_f grad(s) grad(s)^T where s < s0
+ * (PSD; the dropped psi'(s) Hess(s) is constant and indefinite).
+ *
+ * The same body cannot be entered either: a free vertex v deeper than its
+ * anchor a_v under the body's surface, d = -(x_v - a_v) . n_v > 0 (n_v
+ * halfway between the normals of its anchor's face and of the face it was
+ * bound to), pays SS_ORIENT_DEPTH orient A_v (d / l)^2 / 2, l the mean rest
+ * edge length, Hessian SS_ORIENT_DEPTH orient A_v / l^2 n n^T. Without it a
+ * vertex at a convex tip (the demo's hand and sole) pushed through the plane
+ * of its neighbours stays there: the mirrored cap has the same edge lengths,
+ * so the membrane holds it and the soft anchor spring (orient A / l^2 is
+ * ~200x the anchor stiffness 1e3 at the demo's 3 cm edges) cannot pull it back.
+ *
+ * Measured (`skinsim run --avatar demo --motion all --frames 720 --settle 3`):
+ * orient 0: rest error rms/max 0.070 / 0.71 edges (tether 0), 0.030 / 0.73
+ * (tether 3); orient 200: 0.0026 / 0.019 (tether 0), 0.0014 / 0.016 (tether 3).
+ *
+ * Sums in face order: deterministic. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim_internal.h"
+
+/* Sum of the unit normals of the body faces under skin face f: its
+ * barycenter anchor's (else the normalised sum over its vertices' anchors),
+ * from `face` (the anchors now, or as bound at rest). */
+static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face, int f,
+                         double n[3]) {
+  const int nv = sim->nvert;
+  n[0] = n[1] = n[2] = 0.0;
+  if (sim->nanchor > nv && face[nv + f] >= 0) {
+    memcpy(n, fr->normal + 3 * face[nv + f], 3 * sizeof(double));
+    return;
+  }
+  for (int c = 0; c < 3; c++) {
+    int b = face[sim->faces[3 * f + c]];
+    if (b < 0) continue;
+    for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * b + k];
+  }
+  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (len > 0.0)
+    for (int k = 0; k < 3; k++) n[k] /= len;
+}
+
+/* The body's "out" under skin face f: the normal where the face is anchored
+ * and the normal (in this pose) of the body face it was bound to, halfway
+ * between (unit). One alone misleads: an anchor walking home near a sharp
+ * edge settles on the neighbouring face, at the projection of home onto its
+ * plane (110 degrees off on the demo's hand), and skin slid around a rim
+ * thinner than an edge is anchored on the far side while its home is on the
+ * near side. Returns 0 (not judged) where the two disagree by more than 120
+ * degrees: the body turns over within the face's reach. */
+int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]) {
+  double a[3], h[3];
+  normal_under(sim, fr, sim->anchor_face, f, a);
+  normal_under(sim, fr, sim->anchor_face0, f, h);
+  for (int k = 0; k < 3; k++) n[k] = a[k] + h[k];
+  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 1.0)) return 0;
+  for (int k = 0; k < 3; k++) n[k] /= len;
+  return 1;
+}
+
+/* s of face f at positions xfull and its gradient (9, corners in face order). */
+static double signed_ratio(const ss_sim *sim, const double *xfull, int f, const double n[3],
+                           double grad[9]) {
+  const int *fv = sim->faces + 3 * f;
+  const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
+  const double c = sim->orient_sign[f] / (2.0 * sim->rest_area[f]);
+  double d1[3] = {e2[1] * n[2] - e2[2] * n[1], e2[2] * n[0] - e2[0] * n[2], e2[0] * n[1] - e2[1] * n[0]};
+  double d2[3] = {n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
+  for (int i = 0; i < 3; i++) {
+    grad[3 + i] = c * d1[i];
+    grad[6 + i] = c * d2[i];
+    grad[i] = -grad[3 + i] - grad[6 + i];
+  }
+  return c * (e1[0] * d1[0] + e1[1] * d1[1] + e1[2] * d1[2]);
+}
+
+/* How deep free vertex q (dof) is below the body surface at its anchor:
+ * -(x - a) . n with n the unit normal halfway between its anchor's face and
+ * the face it was bound to (0 where they disagree by over 120 degrees, or
+ * where it has no anchor face). */
+static double vertex_depth(const ss_sim *sim, const ss_frames *fr, int q, const double *xfull,
+                           double n[3]) {
+  const int v = sim->dof_vert[q], fa = sim->anchor_face[v], fh = sim->anchor_face0[v];
+  if (fa < 0 || fh < 0 || sim->k_vert[v] == 0.0) return 0.0; /* held on the body only */
+  /* a sliver's normal swings with the smallest move of its corners: not trusted */
+  const double min_area = SS_ORIENT_MIN_AREA * sim->edge_len * sim->edge_len;
+  if (!(fr->area[fa] >= min_area && fr->area[fh] >= min_area)) return 0.0;
+  for (int k = 0; k < 3; k++) n[k] = fr->normal[3 * fa + k] + fr->normal[3 * fh + k];
+  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 1.0)) return 0.0;
+  double d = 0.0;
+  for (int k = 0; k < 3; k++) {
+    n[k] /= len;
+    d -= (xfull[3 * v + k] - sim->anchor_pos[3 * v + k]) * n[k];
+  }
+  return d;
+}
+
+/* The depth spring: SS_ORIENT_DEPTH orient per rest area, the depth in mean
+ * edge lengths (a vertex one edge length deep pays a tenth of a face turned
+ * on edge). Stiffer springs cost line-search halvings in the quasi-Newton
+ * solve (its constant preconditioner does not hold them): on `elbow` 3.6x
+ * the time per frame at 1, 1.6x at 0.1, for no better rest return on the
+ * demo avatar (measured: rest error max 0.024 / 0.029 edges at 0.3 / 0.1). */
+static double depth_weight(const ss_sim *sim, int q) {
+  return SS_ORIENT_DEPTH * sim->set.orient * sim->vert_area[sim->dof_vert[q]] / (sim->edge_len * sim->edge_len);
+}
+
+int ss_sim_orient_init(ss_sim *sim) {
+  free(sim->orient_sign);
+  sim->orient_sign = calloc((size_t)(sim->nface ? sim->nface : 1), 1);
+  if (!sim->orient_sign) return SS_E_NOMEM;
+  const ss_frames *fr = ss_mover_frames(sim->mover);
+  const double min_area = SS_ORIENT_MIN_AREA * sim->edge_len * sim->edge_len;
+  for (int f = 0; f < sim->nface; f++) {
+    /* judged: faces held on the body by a spring (not a free flap), not
+     * slivers: s of a sliver swings with the smallest move of its apex, and
+     * so would its stiffness (the slivers scene: aspect ~300) */
+    const int *fv = sim->faces + 3 * f;
+    if (!(sim->rest_area[f] >= min_area)) continue;
+    if (sim->k_face[f] == 0.0 && sim->k_vert[fv[0]] == 0.0 && sim->k_vert[fv[1]] == 0.0 &&
+        sim->k_vert[fv[2]] == 0.0)
+      continue;
+    double n[3], g[9];
+    if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
+    sim->orient_sign[f] = 1;
+    double s = signed_ratio(sim, sim->rest, f, n, g);
+    sim->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
+  }
+  return SS_OK;
+}
+
+double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
+  const double k = sim->set.orient;
+  if (!(k > 0.0)) return 0.0;
+  const ss_frames *fr = ss_mover_frames(sim->mover);
+  double e = 0.0;
+  for (int q = 0; q < sim->nsimface; q++) {
+    const int f = sim->simface[q];
+    if (!sim->orient_sign[f]) continue;
+    double n[3], gs[9];
+    if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
+    const double s = signed_ratio(sim, xfull, f, n, gs);
+    if (!(s < SS_ORIENT_S0)) continue;
+    const double w = k * sim->rest_area[f], d = SS_ORIENT_S0 - s;
+    e += 0.5 * w * d * d;
+    if (!g) continue;
+    const int *fv = sim->faces + 3 * f;
+    for (int c = 0; c < 3; c++) {
+      const int j = sim->dof[fv[c]];
+      if (j < 0) continue;
+      for (int i = 0; i < 3; i++) g[3 * j + i] -= w * d * gs[3 * c + i];
+    }
+  }
+  /* no free vertex below the body surface at its anchor */
+  for (int q = 0; q < sim->ndof; q++) {
+    double n[3];
+    const double depth = vertex_depth(sim, fr, q, xfull, n);
+    if (!(depth > 0.0)) continue;
+    const double w = depth_weight(sim, q);
+    e += 0.5 * w * depth * depth;
+    if (g)
+      for (int i = 0; i < 3; i++) g[3 * q + i] -= w * depth * n[i];
+  }
+  return e;
+}
+
+void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals) {
+  const double k = sim->set.orient;
+  if (!(k > 0.0)) return;
+  const ss_frames *fr = ss_mover_frames(sim->mover);
+  for (int q = 0; q < sim->nsimface; q++) {
+    const int f = sim->simface[q];
+    if (!sim->orient_sign[f]) continue;
+    double n[3], gs[9];
+    if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
+    if (!(signed_ratio(sim, xfull, f, n, gs) < SS_ORIENT_S0)) continue;
+    const double w = k * sim->rest_area[f];
+    const int *fv = sim->faces + 3 * f;
+    /* upper triangle through the face's block ranks, as the membrane's */
+    for (int a = 0; a < 3; a++) {
+      const int i = sim->dof[fv[a]];
+      if (i < 0) continue;
+      for (int b = 0; b < 3; b++) {
+        const int j = sim->dof[fv[b]];
+        if (j < i) continue;
+        const int r = sim->face_rank[9 * f + 3 * a + b];
+        for (int c1 = 0; c1 < 3; c1++)
+          for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
+            vals[ss_sim_slot3(sim, j, r, c1, c2)] += w * gs[3 * a + c1] * gs[3 * b + c2];
+      }
+    }
+  }
+  for (int q = 0; q < sim->ndof; q++) {
+    double n[3];
+    if (!(vertex_depth(sim, fr, q, xfull, n) > 0.0)) continue;
+    const double w = depth_weight(sim, q);
+    const int diag_rank = sim->bcolp[q + 1] - sim->bcolp[q] - 1;
+    for (int c1 = 0; c1 < 3; c1++)
+      for (int c2 = c1; c2 < 3; c2++) vals[ss_sim_slot3(sim, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
+  }
+}
