@@ -32,6 +32,7 @@
 static void openmp_warm_up(int nthread);
 #endif
 #include "ss_err.h"
+#include "closest.h" /* the tether's home stretch */
 #include "skin_sim/ss_settings.h"
 
 static const char *const solver_names[] = {"newton", "quasi-newton"};
