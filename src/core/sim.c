@@ -129,6 +129,7 @@ void ss_sim_destroy(ss_sim *sim) {
     cholmod_free_dense(&sim->qe, &sim->cc);
     cholmod_finish(&sim->cc);
   }
+  ss_sim_energy_free(sim);
   ss_mover_destroy(sim->mover);
   if (sim->walkers)
     for (int t = 0; t < sim->nthread; t++) ss_walker_destroy(sim->walkers[t]);
@@ -276,6 +277,8 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   status = ss_sim_build_model(sim, err, err_sz);
   if (status != SS_OK) goto fail;
   status = ss_sim_build_pattern(sim, err, err_sz);
+  if (status != SS_OK) goto fail;
+  status = ss_sim_energy_layout(sim, err, err_sz);
   if (status != SS_OK) goto fail;
   size_t nd3 = 3 * (size_t)sim->ndof;
   sim->mi = alloc_n((size_t)sim->ndof, sizeof(double));

@@ -81,7 +81,12 @@ struct ss_sim {
   int nthread;                /* threads stepping uses (OpenMP; 1 without it) */
   ss_walker **walkers;        /* (nthread) walk scratch, one per thread */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
-  double *face_grad;          /* (nsimface x 9) and their gradients */
+  double *face_grad;          /* their gradients, and the barycenter springs': blocks of
+                                 SS_MEMBRANE_LANES faces (energy.h), membrane then springs */
+  struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
+  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
+  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
+  int bary_base;              /* first slot of the springs' part of face_grad */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
@@ -130,6 +135,11 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
 /* Sets up the inertia weights and targets of a substep of length h from
  * x_prev, v and the settings. */
 void ss_sim_energy_begin(ss_sim *sim, double h);
+/* The packed layout the energy evaluation runs on (mface, face_grad,
+ * grad_ptr, grad_slot), once after the model and the pattern; freed with
+ * ss_sim_energy_free. */
+int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz);
+void ss_sim_energy_free(ss_sim *sim);
 /* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).
