@@ -35,9 +35,8 @@ double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_a
 /* ---- membrane, many faces at once (the stepping kernel) -------------------
  * Energy and gradient of the faces of `face` (n records, one 64-byte line
  * each: the offsets 3 v of the corners into the position array, Dm^-1 and
- * the rest area) at the positions x: energy[q], and the gradient in blocks of
- * SS_MEMBRANE_LANES faces, component-major inside a block: coordinate i of
- * corner c of face q is grad[ss_membrane_grad_slot(q, c) + i * SS_MEMBRANE_LANES].
+ * the rest area) at the positions x: energy[q] and the gradient
+ * grad[9 q .. 9 q + 8] (corner-major, as ss_membrane_eval).
  * Faces are evaluated SS_MEMBRANE_LANES at a time by one loop the compiler
  * vectorises (no reassociation: every lane computes exactly what
  * ss_membrane_eval computes, bit for bit; a collapsed face, J = 0, is handed
@@ -50,9 +49,6 @@ typedef struct ss_membrane_face {
   double area;    /* rest area */
   double pad2;
 } ss_membrane_face;
-static inline int ss_membrane_grad_slot(int q, int c) {
-  return (q / SS_MEMBRANE_LANES) * 9 * SS_MEMBRANE_LANES + 3 * c * SS_MEMBRANE_LANES + q % SS_MEMBRANE_LANES;
-}
 /* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. */
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
                             double mu, double lam, double *energy, double *grad);

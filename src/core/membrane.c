@@ -419,7 +419,8 @@ void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const 
       }
       energy[qb + l] = en[l];
     }
-    double *gb = grad + (size_t)(qb / L) * 9 * L;
-    for (int r = 0; r < 9; r++) memcpy(gb + r * L, gr[r], (size_t)m * sizeof(double));
+    double *gb = grad + 9 * (size_t)qb;
+    for (int l = 0; l < m; l++)
+      for (int r = 0; r < 9; r++) gb[9 * l + r] = gr[r][l];
   }
 }

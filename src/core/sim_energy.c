@@ -53,13 +53,11 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
 }
 
 int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
-  enum { L = SS_MEMBRANE_LANES };
   const int nsim = sim->nsimface, nf = sim->nface, n = sim->ndof;
   const int bary = sim->set.barycenter_anchors;
-  size_t mblocks = ((size_t)nsim + L - 1) / L, fblocks = ((size_t)nf + L - 1) / L;
-  sim->bary_base = (int)(mblocks * 9 * L);
+  sim->bary_base = 9 * nsim;
   free(sim->face_grad);
-  sim->face_grad = calloc(mblocks * 9 * L + (bary ? fblocks * 3 * L : 0) + 1, sizeof(double));
+  sim->face_grad = calloc(9 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1, sizeof(double));
   sim->mface = aligned_alloc(64, ((size_t)nsim + 1) * sizeof(ss_membrane_face));
   sim->grad_ptr = calloc((size_t)n + 2, sizeof(int));
   sim->grad_slot = malloc((3 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
@@ -90,7 +88,7 @@ int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
         if (pass == 0)
           cnt[k]++;
         else
-          sim->grad_slot[cnt[k]++] = sim->bary_base + (f / L) * 3 * L + f % L;
+          sim->grad_slot[cnt[k]++] = sim->bary_base + 3 * f;
       }
     }
     for (int q = 0; q < nsim; q++)
@@ -100,7 +98,7 @@ int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
         if (pass == 0)
           cnt[k]++;
         else
-          sim->grad_slot[cnt[k]++] = ss_membrane_grad_slot(q, c);
+          sim->grad_slot[cnt[k]++] = 9 * q + 3 * c;
       }
   }
   /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
@@ -119,7 +117,6 @@ void ss_sim_energy_free(ss_sim *sim) {
 /* Gradient of dof k: its own terms (inertia, vertex spring), then the
  * per-face parts it shares, summed in the order of grad_slot. */
 static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
-  enum { L = SS_MEMBRANE_LANES };
   int v = sim->dof_vert[k];
   const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
   double mi = sim->mi[k], kv = sim->k_vert[v];
@@ -130,8 +127,8 @@ static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, do
   for (int e = sim->grad_ptr[k]; e < sim->grad_ptr[k + 1]; e++) {
     const double *p = fg + sim->grad_slot[e];
     g0 += p[0];
-    g1 += p[L];
-    g2 += p[2 * L];
+    g1 += p[1];
+    g2 += p[2];
   }
   g[3 * k] = g0, g[3 * k + 1] = g1, g[3 * k + 2] = g2;
 }
@@ -168,8 +165,8 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
       for (int i = 0; i < 3; i++)
         d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
       e += 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      double *gb = fg + sim->bary_base + (f / L) * 3 * L + f % L;
-      for (int i = 0; i < 3; i++) gb[i * L] = kf * d[i] / 3.0;
+      double *gb = fg + sim->bary_base + 3 * f;
+      for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
     }
   }
   /* Membrane: blocks of faces on all threads, energies summed in face order

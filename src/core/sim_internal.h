@@ -81,8 +81,8 @@ struct ss_sim {
   int nthread;                /* threads stepping uses (OpenMP; 1 without it) */
   ss_walker **walkers;        /* (nthread) walk scratch, one per thread */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
-  double *face_grad;          /* their gradients, and the barycenter springs': blocks of
-                                 SS_MEMBRANE_LANES faces (energy.h), membrane then springs */
+  double *face_grad;          /* their gradients (9 per simulated face), then the
+                                 barycenter springs' (3 per face) */
   struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
   int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
   int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
