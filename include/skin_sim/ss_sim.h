@@ -87,10 +87,11 @@ typedef struct ss_sim_settings {
                             (a time constant of 1/tether s). 0 = the paper's free sliding;
                             default 0 */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
-  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 1..64;
-                            default 1. The results are the same bits for any count; 2 pays
-                            on an idle 2-core machine, and costs where the cores are busy
-                            (e.g. tests running in parallel) */
+  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 0..64;
+                            default 0: all cores for a skin of 4000 faces or more, else 1.
+                            The results are the same bits for any count; 2 pays on an idle
+                            2-core machine, and costs where the cores are busy (e.g. tests
+                            running in parallel: ask for 1 there) */
   const unsigned char *face_mask; /* (skin nface) non-zero: simulate this face; NULL = all.
                                      Copied at create. Vertices of no simulated face follow
                                      the body; vertices on the region's border are pinned. */

@@ -29,6 +29,15 @@
 #include "sim_internal.h"
 #ifdef _OPENMP
 static void openmp_warm_up(int nthread);
+/* threads 0: every core the process may use, on a skin big enough for a
+ * second thread to pay for its barriers (below SS_AUTO_THREADS_MIN_FACES
+ * faces one thread was as fast). */
+#define SS_AUTO_THREADS_MIN_FACES 4000
+static int auto_threads(int nface) {
+  if (nface < SS_AUTO_THREADS_MIN_FACES) return 1;
+  int n = omp_get_num_procs();
+  return n < 1 ? 1 : n > 64 ? 64 : n;
+}
 #endif
 #include "ss_err.h"
 #include "skin_sim/ss_track.h"
@@ -68,7 +77,7 @@ ss_sim_settings ss_sim_default_settings(void) {
   s.slide = 30.0 * log(2.0); /* half the way per 1/30 s frame: the former per-substep 0.5 */
   s.tether = 0.0;
   s.mover = ss_mover_default_settings();
-  s.threads = 1;
+  s.threads = 0; /* every core, where it pays (auto_threads) */
   s.face_mask = NULL;
   return s;
 }
@@ -105,8 +114,8 @@ static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
     return ss_fail(err, err_sz, SS_E_ARG, "tether must be a finite rate >= 0 per second (got %g)", s->tether);
   for (int i = 0; i < 3; i++)
     if (!isfinite(s->gravity[i])) return ss_fail(err, err_sz, SS_E_ARG, "gravity must be finite");
-  if (s->threads < 1 || s->threads > 64)
-    return ss_fail(err, err_sz, SS_E_ARG, "threads must be in [1, 64] (got %d)", s->threads);
+  if (s->threads < 0 || s->threads > 64)
+    return ss_fail(err, err_sz, SS_E_ARG, "threads must be in [0, 64] (0: all cores) (got %d)", s->threads);
   if (s->mover.method < SS_METHOD_WALK || s->mover.method > SS_METHOD_NRING)
     return ss_fail(err, err_sz, SS_E_ARG, "unknown anchor method %d", s->mover.method);
   return SS_OK;
@@ -217,7 +226,7 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
    * allocates nothing (the OpenMP runtime keeps its threads) */
   sim->nthread = 1;
 #ifdef _OPENMP
-  sim->nthread = set->threads;
+  sim->nthread = set->threads > 0 ? set->threads : auto_threads(sim->nface);
   openmp_warm_up(sim->nthread);
 #endif
   sim->walkers = calloc((size_t)sim->nthread, sizeof *sim->walkers);

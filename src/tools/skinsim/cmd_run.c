@@ -138,7 +138,7 @@ int cmd_run(int argc, char **argv) {
       s.sim.gravity[0] = s.sim.gravity[1] = 0.0;
       s.sim.gravity[2] = -g;
     } else if (strcmp(a, "--threads") == 0) {
-      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 64, &s.sim.threads))
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 64, &s.sim.threads))
         return EXIT_USAGE;
     } else if (strcmp(a, "--no-barycenters") == 0) {
       s.sim.barycenter_anchors = 0;
