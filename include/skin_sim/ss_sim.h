@@ -88,7 +88,9 @@ typedef struct ss_sim_settings {
                             default 0 */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   int threads;           /* threads for per-face energies and anchor walks (OpenMP), 0..64;
-                            default 0: all cores for a skin of 4000 faces or more, else 1.
+                            default 0: all cores for a skin of 4000 faces or more, else 1,
+                            and only while they pay (every 50 steps 3 run on all, 3 on one,
+                            the rest on the faster).
                             The results are the same bits for any count; 2 pays on an idle
                             2-core machine, and costs where the cores are busy (e.g. tests
                             running in parallel: ask for 1 there) */

@@ -78,8 +78,11 @@ struct ss_sim {
   int *anchor_face;           /* (nanchor) */
   double *anchor_uv;          /* (nanchor x 2) */
   double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
-  int nthread;                /* threads stepping uses (OpenMP; 1 without it) */
-  ss_walker **walkers;        /* (nthread) walk scratch, one per thread */
+  int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
+  int nthread_max;            /* threads made at create (walkers, team) */
+  int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
+  double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
+  ss_walker **walkers;        /* (nthread_max) walk scratch, one per thread */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
   double *face_grad;          /* their gradients (9 per simulated face), then the
                                  barycenter springs' (3 per face) */
