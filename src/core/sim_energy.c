@@ -13,7 +13,10 @@
  * Only free vertices are unknowns; terms touching only fixed vertices are
  * constants and skipped.
  *
- * Sums run in a fixed order, single-threaded: bit-for-bit deterministic. */
+ * Sums run in a fixed order: per-face and per-vertex work may run on
+ * several threads, but every total is summed in one order, so the bits do
+ * not depend on the thread count. A new term adds its energy to the total
+ * and its gradient to g after the per-vertex gather, as the hinges do. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
