@@ -5,8 +5,8 @@
 # reports (total, cpu, pose, walk, assemble, factor, solve), the iterations,
 # the hash, and the ratio B/A of each time.
 #
-#   bench/ab.sh A_BENCH_SIM B_BENCH_SIM ROUNDS [bench_sim arguments...]
-#   e.g. bench/ab.sh /tmp/base/devel/lib/skin_sim/bench_sim \
+#   bash bench/ab.sh A_BENCH_SIM B_BENCH_SIM ROUNDS [bench_sim arguments...]
+#   e.g. bash bench/ab.sh /tmp/base/devel/lib/skin_sim/bench_sim \
 #          build/release/devel/lib/skin_sim/bench_sim 5 quadruped 19000 60 quasi-newton 1 8 1e-4 walk 1
 #
 # Read "cpu" (process CPU time per step) for one thread on a loaded machine:

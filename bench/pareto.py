@@ -6,7 +6,7 @@ bench_sim the per-frame medians (CPU ms at one thread: the figure to compare
 on a shared machine; wall ms at the given thread counts). Prints a table,
 marks the Pareto front and, with --png, draws it.
 
-  bench/pareto.py SKINSIM BENCH_SIM [--tris 19000] [--frames 60] [--configs 1x8,2x8,...]
+  /usr/bin/python3 bench/pareto.py SKINSIM BENCH_SIM [--tris 19000] [--frames 60] [--configs 1x8,2x8,...]
                   [--cache DIR] [--threads 1,2] [--png FILE]
 """
 import argparse

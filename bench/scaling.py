@@ -5,7 +5,7 @@ growing triangle counts, one process per size, recording per-frame medians
 least squares in log-log over all sizes and prints a table (and with --png
 FILE a chart: ms per frame and peak RSS per triangle against triangles).
 
-  bench/scaling.py BENCH_SIM [--sizes 2000,5000,...] [--frames N] [--threads T] [--png FILE]
+  /usr/bin/python3 bench/scaling.py BENCH_SIM [--sizes 2000,5000,...] [--frames N] [--threads T] [--png FILE]
 
 Read "cpu" (CPU time of the process per step) at one thread on a shared
 machine: wall-clock there mostly measures the other jobs.
