@@ -95,10 +95,13 @@ typedef struct ss_sim_settings {
                             without it a face can turn over at full area at no cost and a
                             crease folded flat locks (orient.c). 0 = off */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
-  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 1..64;
-                            default 1. The results are the same bits for any count; 2 pays
-                            on an idle 2-core machine, and costs where the cores are busy
-                            (e.g. tests running in parallel) */
+  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 0..64;
+                            default 0: all cores for a skin of 4000 faces or more, else 1,
+                            and only while they pay (every 50 steps 3 run on all, 3 on one,
+                            the rest on the faster).
+                            The results are the same bits for any count; 2 pays on an idle
+                            2-core machine, and costs where the cores are busy (e.g. tests
+                            running in parallel: ask for 1 there) */
   const unsigned char *face_mask; /* (skin nface) non-zero: simulate this face; NULL = all.
                                      Copied at create. Vertices of no simulated face follow
                                      the body; vertices on the region's border are pinned. */

@@ -32,6 +32,27 @@ int ss_membrane_rest(const double x0[3], const double x1[3], const double x2[3],
 double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_area,
                         double mu, double lam, double *grad, double *hess);
 
+/* ---- membrane, many faces at once (the stepping kernel) -------------------
+ * Energy and gradient of the faces of `face` (n records, one 64-byte line
+ * each: the offsets 3 v of the corners into the position array, Dm^-1 and
+ * the rest area) at the positions x: energy[q] and the gradient
+ * grad[9 q .. 9 q + 8] (corner-major, as ss_membrane_eval).
+ * Faces are evaluated SS_MEMBRANE_LANES at a time by one loop the compiler
+ * vectorises (no reassociation: every lane computes exactly what
+ * ss_membrane_eval computes, bit for bit; a collapsed face, J = 0, is handed
+ * to ss_membrane_eval). */
+#define SS_MEMBRANE_LANES 8
+typedef struct ss_membrane_face {
+  int xo[3];      /* 3 * vertex index of each corner */
+  int pad;
+  double dm_inv[4];
+  double area;    /* rest area */
+  double pad2;
+} ss_membrane_face;
+/* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. */
+void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
+                            double mu, double lam, double *energy, double *grad);
+
 /* ---- bending: dihedral hinge ------------------------------------------------
  * x: 12 doubles, vertices (e0, e1, o0, o1): the shared edge e0-e1 and the two
  * opposite vertices, o0 in the face (e0, e1, o0) and o1 in (e1, e0, o1).

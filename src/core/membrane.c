@@ -340,3 +340,78 @@ double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double re
         }
   return energy;
 }
+
+/* ---- the batch kernel ------------------------------------------------------
+ * The same arithmetic as membrane_state_init + energy_and_gradient, in the
+ * same order, on SS_MEMBRANE_LANES faces per loop: gathered into lanes, one
+ * `omp simd` loop (elementwise only: vectorising changes no bit), results
+ * written per lane. The normal n = c / J of a collapsed face (J <= 1e-280)
+ * needs the fallback of membrane_state_init: such lanes are recomputed by
+ * ss_membrane_eval. */
+void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
+                            double mu, double lam, double *energy, double *grad) {
+  enum { L = SS_MEMBRANE_LANES };
+  const double alpha = alpha_of(mu, lam);
+  const double rest_offset = lam > 0.0 ? 0.5 * mu * mu / lam : 0.0;
+  for (int qb = q0; qb < q1; qb += L) {
+    const int m = q1 - qb < L ? q1 - qb : L;
+    double xs[9][L], dm[4][L], area[L], en[L], gr[9][L];
+    double jl[L]; /* J per lane: a flag array of ints would stop the vectoriser */
+    for (int l = 0; l < L; l++) {
+      const ss_membrane_face *fc = face + qb + (l < m ? l : 0);
+      for (int c = 0; c < 3; c++)
+        for (int i = 0; i < 3; i++) xs[3 * c + i][l] = x[fc->xo[c] + i];
+      for (int i = 0; i < 4; i++) dm[i][l] = fc->dm_inv[i];
+      area[l] = fc->area;
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      /* no inner loops: the vectoriser wants one flat body */
+      const double e1x = xs[3][l] - xs[0][l], e1y = xs[4][l] - xs[1][l], e1z = xs[5][l] - xs[2][l];
+      const double e2x = xs[6][l] - xs[0][l], e2y = xs[7][l] - xs[1][l], e2z = xs[8][l] - xs[2][l];
+      const double d10 = dm[0][l], d11 = dm[1][l], d20 = dm[2][l], d21 = dm[3][l];
+      const double f0x = e1x * d10 + e2x * d20, f0y = e1y * d10 + e2y * d20, f0z = e1z * d10 + e2z * d20;
+      const double f1x = e1x * d11 + e2x * d21, f1y = e1y * d11 + e2y * d21, f1z = e1z * d11 + e2z * d21;
+      const double cx = f0y * f1z - f0z * f1y, cy = f0z * f1x - f0x * f1z, cz = f0x * f1y - f0y * f1x;
+      const double ic = (f0x * f0x + f0y * f0y + f0z * f0z) + (f1x * f1x + f1y * f1y + f1z * f1z);
+      const double j = sqrt(cx * cx + cy * cy + cz * cz);
+      jl[l] = j;
+      const double nx = cx / j, ny = cy / j, nz = cz / j;
+      const double psi = 0.5 * mu * (ic - 2.0) + 0.5 * lam * (j - alpha) * (j - alpha) - rest_offset;
+      /* dJ/df0 = f1 x n, dJ/df1 = n x f0 */
+      const double a0x = f1y * nz - f1z * ny, a0y = f1z * nx - f1x * nz, a0z = f1x * ny - f1y * nx;
+      const double a1x = ny * f0z - nz * f0y, a1y = nz * f0x - nx * f0z, a1z = nx * f0y - ny * f0x;
+      const double k = lam * (j - alpha);
+      const double p0x = mu * f0x + k * a0x, p0y = mu * f0y + k * a0y, p0z = mu * f0z + k * a0z;
+      const double p1x = mu * f1x + k * a1x, p1y = mu * f1y + k * a1y, p1z = mu * f1z + k * a1z;
+      const double d00 = -d10 - d20, d01 = -d11 - d21;
+      const double ar = area[l];
+      gr[0][l] = ar * (d00 * p0x + d01 * p1x);
+      gr[1][l] = ar * (d00 * p0y + d01 * p1y);
+      gr[2][l] = ar * (d00 * p0z + d01 * p1z);
+      gr[3][l] = ar * (d10 * p0x + d11 * p1x);
+      gr[4][l] = ar * (d10 * p0y + d11 * p1y);
+      gr[5][l] = ar * (d10 * p0z + d11 * p1z);
+      gr[6][l] = ar * (d20 * p0x + d21 * p1x);
+      gr[7][l] = ar * (d20 * p0y + d21 * p1y);
+      gr[8][l] = ar * (d20 * p0z + d21 * p1z);
+      en[l] = ar * psi;
+    }
+    for (int l = 0; l < m; l++) {
+      if (!(jl[l] > 1e-280)) {
+        const ss_membrane_face *fc = face + qb + l;
+        double x9[9], g9[9];
+        for (int c = 0; c < 3; c++)
+          for (int i = 0; i < 3; i++) x9[3 * c + i] = x[fc->xo[c] + i];
+        en[l] = ss_membrane_eval(x9, fc->dm_inv, fc->area, mu, lam, g9, NULL);
+        for (int r = 0; r < 9; r++) gr[r][l] = g9[r];
+      }
+      energy[qb + l] = en[l];
+    }
+    double *gb = grad + 9 * (size_t)qb;
+    for (int l = 0; l < m; l++)
+      for (int r = 0; r < 9; r++) gb[9 * l + r] = gr[r][l];
+  }
+}

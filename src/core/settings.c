@@ -80,8 +80,9 @@ static const ss_setting table[] = {
      SS_APPLY_REFACTOR, 1, NULL,
      "skin faces resist turning over against the body and vertices resist going under it "
      "(energy per m^2 of skin, as young); 0 off, the paper's skin"},
-    {"threads", NULL, SS_SETTING_INT, OFF(threads), 1, 1, 64, 0, 0, "", SS_APPLY_RECREATE, 0,
-     NULL, "threads for energies and anchor walks (the same bits for any count)"},
+    {"threads", NULL, SS_SETTING_INT, OFF(threads), 0, 0, 64, 0, 0, "", SS_APPLY_RECREATE, 0,
+     NULL, "threads for energies and anchor walks; 0: all cores where they pay (the same bits "
+     "for any count)"},
 };
 
 #define NSET ((int)(sizeof table / sizeof table[0]))

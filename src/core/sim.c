@@ -30,6 +30,16 @@
 #include "sim_internal.h"
 #ifdef _OPENMP
 static void openmp_warm_up(int nthread);
+/* threads 0: every core the process may use, on a skin big enough for a
+ * second thread to pay for its barriers (below SS_AUTO_THREADS_MIN_FACES
+ * faces one thread was as fast), and only while they pay: see
+ * choose_threads. */
+#define SS_AUTO_THREADS_MIN_FACES 4000
+static int auto_threads(int nface) {
+  if (nface < SS_AUTO_THREADS_MIN_FACES) return 1;
+  int n = omp_get_num_procs();
+  return n < 1 ? 1 : n > 64 ? 64 : n;
+}
 #endif
 #include "ss_err.h"
 #include "closest.h" /* the tether's home stretch */
@@ -72,9 +82,10 @@ void ss_sim_destroy(ss_sim *sim) {
     cholmod_free_dense(&sim->qe, &sim->cc);
     cholmod_finish(&sim->cc);
   }
+  ss_sim_energy_free(sim);
   ss_mover_destroy(sim->mover);
   if (sim->walkers)
-    for (int t = 0; t < sim->nthread; t++) ss_walker_destroy(sim->walkers[t]);
+    for (int t = 0; t < sim->nthread_max; t++) ss_walker_destroy(sim->walkers[t]);
   free(sim->walkers);
   ss_topo_destroy(sim->btopo);
   void *arrays[] = {sim->faces,     sim->rest,         sim->mask,         sim->dm_inv,      sim->rest_area,
@@ -158,10 +169,13 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   /* one walker per thread; the team is started here, so that stepping
    * allocates nothing (the OpenMP runtime keeps its threads) */
   sim->nthread = 1;
+  sim->thread_probe = -1;
 #ifdef _OPENMP
-  sim->nthread = set->threads;
+  sim->nthread = set->threads > 0 ? set->threads : auto_threads(sim->nface);
+  if (set->threads == 0 && sim->nthread > 1) sim->thread_probe = 0;
   openmp_warm_up(sim->nthread);
 #endif
+  sim->nthread_max = sim->nthread;
   sim->walkers = calloc((size_t)sim->nthread, sizeof *sim->walkers);
   if (!sim->walkers) status = SS_E_NOMEM;
   for (int t = 0; t < sim->nthread && !status; t++)
@@ -219,6 +233,8 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   status = ss_sim_build_model(sim, err, err_sz);
   if (status != SS_OK) goto fail;
   status = ss_sim_build_pattern(sim, err, err_sz);
+  if (status != SS_OK) goto fail;
+  status = ss_sim_energy_layout(sim, err, err_sz);
   if (status != SS_OK) goto fail;
   size_t nd3 = 3 * (size_t)sim->ndof;
   sim->mi = alloc_n((size_t)sim->ndof, sizeof(double));
@@ -486,6 +502,31 @@ static int all_finite(const double *a, size_t n) {
   return 1;
 }
 
+/* threads 0: whether all cores pay is measured, not guessed (on a machine
+ * whose cores are busy, every barrier waits for a descheduled thread and two
+ * threads can be several times slower than one). Every SS_PROBE_PERIOD
+ * steps, SS_PROBE_STEPS run with all threads and SS_PROBE_STEPS with one;
+ * the rest of the period uses the faster (sum of wall-clock step times).
+ * The bits do not depend on the thread count, so switching changes no
+ * result. */
+#define SS_PROBE_PERIOD 50
+#define SS_PROBE_STEPS 3
+static void choose_threads(ss_sim *sim, double step_ms) {
+  int p = sim->thread_probe;
+  if (p < 0) return;
+  if (p == 0) sim->probe_ms[0] = sim->probe_ms[1] = 0.0;
+  if (p < 2 * SS_PROBE_STEPS) sim->probe_ms[p < SS_PROBE_STEPS ? 0 : 1] += step_ms;
+  p++;
+  if (p < SS_PROBE_STEPS)
+    sim->nthread = sim->nthread_max;
+  else if (p < 2 * SS_PROBE_STEPS)
+    sim->nthread = 1;
+  else if (p == 2 * SS_PROBE_STEPS)
+    sim->nthread = sim->probe_ms[0] <= sim->probe_ms[1] ? sim->nthread_max : 1;
+  sim->thread_probe = p >= SS_PROBE_PERIOD ? 0 : p;
+  if (sim->thread_probe == 0) sim->nthread = sim->nthread_max;
+}
+
 int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *stats, char *err,
                 int err_sz) {
   ss_sim_stats local;
@@ -590,6 +631,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   memcpy(sim->body_prev, body_pos, nb3 * sizeof(double));
   area_ratios(sim, st);
   st->total_ms = ss_now_ms() - t_start;
+  choose_threads(sim, st->total_ms);
   sim->st = NULL;
   if (status != SS_OK)
     return ss_fail(err, err_sz, status, "the linear solver failed (CHOLMOD status %d); last good state kept",

@@ -13,13 +13,17 @@
  * Only free vertices are unknowns; terms touching only fixed vertices are
  * constants and skipped.
  *
- * Sums run in a fixed order, single-threaded: bit-for-bit deterministic. */
+ * Sums run in a fixed order: per-face and per-vertex work may run on
+ * several threads, but every total is summed in one order, so the bits do
+ * not depend on the thread count. A new term adds its energy to the total
+ * and its gradient to g after the per-vertex gather, as the hinges do. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "energy.h"
 #include "sim_internal.h"
+#include "ss_err.h"
 
 void ss_sim_energy_begin(ss_sim *sim, double h) {
   double c = sim->set.damping;
@@ -50,22 +54,98 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
   g[3 * k + 2] += gv[2];
 }
 
-/* Energy (and gradient into fg + 9 q, if fg) of the membrane of simulated face q. */
-static inline void membrane_face(const ss_sim *sim, int q, const double *xfull, double *fe,
-                                 double *fg) {
-  const int f = sim->simface[q];
-  const int *fv = sim->faces + 3 * f;
-  double x9[9];
-  for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
-  fe[q] = ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam,
-                           fg ? fg + 9 * q : NULL, NULL);
+int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
+  const int nsim = sim->nsimface, nf = sim->nface, n = sim->ndof;
+  const int bary = sim->set.barycenter_anchors;
+  sim->bary_base = 9 * nsim;
+  free(sim->face_grad);
+  sim->face_grad = calloc(9 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1, sizeof(double));
+  sim->mface = aligned_alloc(64, ((size_t)nsim + 1) * sizeof(ss_membrane_face));
+  sim->grad_ptr = calloc((size_t)n + 2, sizeof(int));
+  sim->grad_slot = malloc((3 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
+  if (!sim->face_grad || !sim->mface || !sim->grad_ptr || !sim->grad_slot)
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the energy layout");
+  for (int q = 0; q < nsim; q++) {
+    int f = sim->simface[q];
+    ss_membrane_face *r = sim->mface + q;
+    for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->faces[3 * f + c];
+    r->pad = 0;
+    memcpy(r->dm_inv, sim->dm_inv + 4 * f, 4 * sizeof(double));
+    r->area = sim->rest_area[f];
+    r->pad2 = 0.0;
+  }
+  /* Slots per dof in the order of the sum: springs (face order), membrane
+   * (simulated face order), each corner in turn. */
+  int *cnt = sim->grad_ptr + 1;
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass == 1) {
+      for (int k = 0; k < n; k++) sim->grad_ptr[k + 1] += sim->grad_ptr[k];
+      cnt = sim->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
+    }
+    for (int f = 0; bary && f < nf; f++) {
+      if (sim->k_face[f] == 0.0) continue;
+      for (int c = 0; c < 3; c++) {
+        int k = sim->dof[sim->faces[3 * f + c]];
+        if (k < 0) continue;
+        if (pass == 0)
+          cnt[k]++;
+        else
+          sim->grad_slot[cnt[k]++] = sim->bary_base + 3 * f;
+      }
+    }
+    for (int q = 0; q < nsim; q++)
+      for (int c = 0; c < 3; c++) {
+        int k = sim->dof[sim->faces[3 * sim->simface[q] + c]];
+        if (k < 0) continue;
+        if (pass == 0)
+          cnt[k]++;
+        else
+          sim->grad_slot[cnt[k]++] = 9 * q + 3 * c;
+      }
+  }
+  /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
+  memmove(sim->grad_ptr + 1, sim->grad_ptr, (size_t)n * sizeof(int));
+  sim->grad_ptr[0] = 0;
+  return SS_OK;
 }
 
+void ss_sim_energy_free(ss_sim *sim) {
+  free(sim->mface);
+  free(sim->grad_ptr);
+  free(sim->grad_slot);
+  sim->mface = NULL, sim->grad_ptr = NULL, sim->grad_slot = NULL;
+}
+
+/* Gradient of dof k: its own terms (inertia, vertex spring), then the
+ * per-face parts it shares, summed in the order of grad_slot. */
+static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
+  int v = sim->dof_vert[k];
+  const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
+  double mi = sim->mi[k], kv = sim->k_vert[v];
+  double g0 = mi * (x[0] - t[0]) + kv * (x[0] - a[0]);
+  double g1 = mi * (x[1] - t[1]) + kv * (x[1] - a[1]);
+  double g2 = mi * (x[2] - t[2]) + kv * (x[2] - a[2]);
+  const double *fg = sim->face_grad;
+  for (int e = sim->grad_ptr[k]; e < sim->grad_ptr[k + 1]; e++) {
+    const double *p = fg + sim->grad_slot[e];
+    g0 += p[0];
+    g1 += p[1];
+    g2 += p[2];
+  }
+  g[3 * k] = g0, g[3 * k + 1] = g1, g[3 * k + 2] = g2;
+}
+
+/* Every term's energy is summed into one total in a fixed order (vertex
+ * terms, barycenter springs, membrane, hinges: the place for a new term is
+ * between the membrane and the hinges, or after them), and every dof's
+ * gradient is summed in the same order of terms: bit-for-bit the same for
+ * any thread count. */
 double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
+  enum { L = SS_MEMBRANE_LANES };
   double e = 0.0;
   int n = sim->ndof;
-  if (g) memset(g, 0, 3 * (size_t)n * sizeof *g);
-  /* Inertia (with damping and gravity) and vertex springs. */
+  double *fg = sim->face_grad;
+  /* Inertia (with damping and gravity) and vertex springs: energy. */
   for (int k = 0; k < n; k++) {
     int v = sim->dof_vert[k];
     const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
@@ -73,10 +153,10 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     for (int i = 0; i < 3; i++) {
       double dt = x[i] - t[i], da = x[i] - a[i];
       e += 0.5 * (mi * dt * dt + kv * da * da);
-      if (g) g[3 * k + i] = mi * dt + kv * da;
     }
   }
-  /* Barycenter springs. */
+  /* Barycenter springs: energy, and each face's gradient (the same for its
+   * three corners) into face_grad. */
   if (sim->set.barycenter_anchors) {
     for (int f = 0; f < sim->nface; f++) {
       double kf = sim->k_face[f];
@@ -87,31 +167,36 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
       for (int i = 0; i < 3; i++)
         d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
       e += 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      if (g) {
-        double gv[3] = {kf * d[0] / 3.0, kf * d[1] / 3.0, kf * d[2] / 3.0};
-        for (int c = 0; c < 3; c++) add_grad(sim, g, fv[c], gv);
-      }
+      double *gb = fg + sim->bary_base + 3 * f;
+      for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
     }
   }
-  /* Membrane: every face on its own (on all threads), then summed and
-   * scattered in face order on one, so the bits do not depend on the thread
-   * count. */
+  /* Membrane: blocks of faces on all threads, energies summed in face order
+   * on one. */
   const int nsim = sim->nsimface;
-  double *fe = sim->face_energy, *fg = g ? sim->face_grad : NULL;
+  const int nblock = (nsim + L - 1) / L;
+  double *fe = sim->face_energy;
 #ifdef _OPENMP
   if (sim->nthread > 1 && nsim > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
-    for (int q = 0; q < nsim; q++) membrane_face(sim, q, xfull, fe, fg);
+    for (int b = 0; b < nblock; b++)
+      ss_membrane_eval_batch(sim->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull, sim->mu,
+                             sim->lam, fe, fg);
   } else
 #endif
   {
-    for (int q = 0; q < nsim; q++) membrane_face(sim, q, xfull, fe, fg);
+    ss_membrane_eval_batch(sim->mface, 0, nsim, xfull, sim->mu, sim->lam, fe, fg);
   }
-  for (int q = 0; q < nsim; q++) {
-    e += fe[q];
-    if (g) {
-      const int *fv = sim->faces + 3 * sim->simface[q];
-      for (int c = 0; c < 3; c++) add_grad(sim, g, fv[c], fg + 9 * q + 3 * c);
+  for (int q = 0; q < nsim; q++) e += fe[q];
+  if (g) {
+#ifdef _OPENMP
+    if (sim->nthread > 1 && n > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+      for (int k = 0; k < n; k++) gather_grad(sim, k, xfull, g);
+    } else
+#endif
+    {
+      for (int k = 0; k < n; k++) gather_grad(sim, k, xfull, g);
     }
   }
   /* Bending. */

@@ -79,11 +79,19 @@ struct ss_sim {
   int *anchor_face;           /* (nanchor) */
   double *anchor_uv;          /* (nanchor x 2) */
   double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
-  int nthread;                /* threads stepping uses (OpenMP; 1 without it) */
-  ss_walker **walkers;        /* (nthread) walk scratch, one per thread */
+  int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
+  int nthread_max;            /* threads made at create (walkers, team) */
+  int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
+  double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
+  ss_walker **walkers;        /* (nthread_max) walk scratch, one per thread */
   signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
-  double *face_grad;          /* (nsimface x 9) and their gradients */
+  double *face_grad;          /* their gradients (9 per simulated face), then the
+                                 barycenter springs' (3 per face) */
+  struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
+  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
+  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
+  int bary_base;              /* first slot of the springs' part of face_grad */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
@@ -149,6 +157,11 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
 /* Sets up the inertia weights and targets of a substep of length h from
  * x_prev, v and the settings. */
 void ss_sim_energy_begin(ss_sim *sim, double h);
+/* The packed layout the energy evaluation runs on (mface, face_grad,
+ * grad_ptr, grad_slot), once after the model and the pattern; freed with
+ * ss_sim_energy_free. */
+int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz);
+void ss_sim_energy_free(ss_sim *sim);
 /* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).

@@ -71,7 +71,13 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
   for (int tries = 0; tries < 40; tries++, alpha *= 0.5) {
     for (int i = 0; i < n3; i++) sim->xt[i] = xd[i] + alpha * dir[i];
     double et = ss_sim_energy_at(sim, sim->xt, sim->gt);
-    if (!isfinite(et) || !isfinite(dot(sim->gt, sim->gt, n3))) continue;
+    /* |g_t|^2 (finite?) and the slope g_t.d in one pass */
+    double gg = 0.0, st_slope = 0.0;
+    for (int i = 0; i < n3; i++) {
+      gg += sim->gt[i] * sim->gt[i];
+      st_slope += sim->gt[i] * dir[i];
+    }
+    if (!isfinite(et) || !isfinite(gg)) continue;
     any_finite = 1;
     /* Armijo, on the difference (exact for nearby values): it asks for a
      * strict decrease even when 1e-4 a g.d is below the last bit of E. */
@@ -79,7 +85,6 @@ int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const dou
     /* Near the minimum the change of E drowns in round-off: Hager and
      * Zhang's approximate Wolfe conditions (CG_DESCENT, 2005), E not above
      * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
-    double st_slope = dot(sim->gt, dir, n3);
     int roundoff = et <= *e + 1e-12 * fabs(*e) && st_slope >= 0.9 * slope && st_slope <= -0.8 * slope;
     if (armijo || roundoff) {
       memcpy(xd, sim->xt, (size_t)n3 * sizeof *xd);

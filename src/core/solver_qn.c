@@ -150,10 +150,18 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
      * half the memory traffic). */
     int count = sim->lb_count;
     double next = 0.0;
-    for (int i = 0; i < n3; i++) dir[i] = g[i];
     if (count > 0) {
+      /* dir = g and the first dot in one pass */
       int slot = (sim->lb_head - 1 + m) % m;
-      next = sim->lb_rho[slot] * dot(sim->lb_s + (size_t)slot * n3, dir, n3);
+      const double *s0 = sim->lb_s + (size_t)slot * n3;
+      double acc = 0.0;
+      for (int i = 0; i < n3; i++) {
+        dir[i] = g[i];
+        acc += s0[i] * dir[i];
+      }
+      next = sim->lb_rho[slot] * acc;
+    } else {
+      memcpy(dir, g, (size_t)n3 * sizeof *dir);
     }
     for (int c = 0; c < count; c++) {
       int slot = (sim->lb_head - 1 - c + m) % m;
@@ -178,6 +186,8 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
       int slot = (sim->lb_head - count + m) % m;
       next = sim->lb_rho[slot] * dot(sim->lb_y + (size_t)slot * n3, dir, n3);
     }
+    /* The last pass also negates dir and forms the slope g.dir. */
+    double slope = 0.0;
     for (int c = count - 1; c >= 0; c--) {
       int slot = (sim->lb_head - 1 - c + m) % m;
       const double *sv = sim->lb_s + (size_t)slot * n3;
@@ -192,11 +202,18 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
         }
         next = sim->lb_rho[nslot] * acc;
       } else {
-        for (int i = 0; i < n3; i++) dir[i] += coef * sv[i];
+        for (int i = 0; i < n3; i++) {
+          dir[i] = -(dir[i] + coef * sv[i]);
+          slope += dir[i] * g[i];
+        }
       }
     }
-    for (int i = 0; i < n3; i++) dir[i] = -dir[i];
-    if (!(dot(dir, g, n3) < 0.0) && sim->lb_count > 0) {
+    if (count == 0)
+      for (int i = 0; i < n3; i++) {
+        dir[i] = -dir[i];
+        slope += dir[i] * g[i];
+      }
+    if (!(slope < 0.0) && sim->lb_count > 0) {
       /* Not a descent direction: drop the history, use -A^-1 g. */
       sim->lb_count = 0;
       if (apply_inverse(sim, g, dir) != SS_OK) return SS_E_SOLVER;
@@ -218,12 +235,15 @@ int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, in
     if (!ss_sim_after_line_search(sim, ls, g, e, &best_res, &roundoff_steps, converged, stalled,
                                   nonfinite))
       break;
+    /* the new pair and its three dots in one pass */
+    double sy = 0.0, ss = 0.0, yy = 0.0;
     for (int i = 0; i < n3; i++) {
       s_new[i] = xd[i] - s_new[i];
       y_new[i] = g[i] - y_new[i];
+      sy += s_new[i] * y_new[i];
+      ss += s_new[i] * s_new[i];
+      yy += y_new[i] * y_new[i];
     }
-    double sy = dot(s_new, y_new, n3);
-    double ss = dot(s_new, s_new, n3), yy = dot(y_new, y_new, n3);
     if (sy > 1e-12 * sqrt(ss * yy)) {
       sim->lb_rho[sim->lb_head] = 1.0 / sy;
       sim->lb_head = (sim->lb_head + 1) % m;

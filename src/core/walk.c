@@ -53,8 +53,10 @@ int ss_frames_create(ss_frames **out, int nface) {
   fr->normal = malloc(sizeof(double) * 3 * (size_t)nface);
   fr->area = malloc(sizeof(double) * (size_t)nface);
   fr->degenerate = malloc((size_t)nface);
+  fr->walk = aligned_alloc(64, sizeof(double) * 16 * (size_t)nface);
+  fr->cross = malloc(sizeof(int) * 3 * (size_t)nface);
   if (!fr->origin || !fr->edge || !fr->to_canon || !fr->normal || !fr->area ||
-      !fr->degenerate) {
+      !fr->degenerate || !fr->walk || !fr->cross) {
     ss_frames_destroy(fr);
     return SS_E_NOMEM;
   }
@@ -70,6 +72,8 @@ void ss_frames_destroy(ss_frames *fr) {
   free(fr->normal);
   free(fr->area);
   free(fr->degenerate);
+  free(fr->walk);
+  free(fr->cross);
   free(fr);
 }
 
@@ -111,7 +115,24 @@ static int canonical_map(const double e1[3], const double e2[3], double t[6]) {
   return 1;
 }
 
+/* The crossings of every edge (see ss_frames.cross), once per topology. */
+static void build_crossings(ss_frames *fr, const ss_topo *topo) {
+  for (int f = 0; f < topo->nface; f++)
+    for (int k = 0; k < 3; k++) {
+      const int g = topo->face_adj[3 * f + k], kg = topo->face_adj_edge[3 * f + k];
+      if (g < 0 || kg < 0) {
+        fr->cross[3 * f + k] = -1;
+        continue;
+      }
+      const int start_f = topo->vert_weld[topo->face_vert[3 * f + k]];
+      const int start_g = topo->vert_weld[topo->face_vert[3 * g + kg]];
+      fr->cross[3 * f + k] = 8 * g + 2 * kg + (start_f == start_g ? 0 : 1);
+    }
+  fr->cross_topo = topo;
+}
+
 void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
+  if (fr->cross_topo != topo) build_crossings(fr, topo);
   for (int f = 0; f < topo->nface; f++) {
     const double *v0 = pos + 3 * topo->face_vert[3 * f];
     const double *v1 = pos + 3 * topo->face_vert[3 * f + 1];
@@ -133,6 +154,11 @@ void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
       n[0] = n[1] = n[2] = 0.0;
     }
     fr->degenerate[f] = (unsigned char)canonical_map(e, e + 3, fr->to_canon + 6 * f);
+    double *w = fr->walk + 16 * f;
+    memcpy(w, o, 3 * sizeof(double));
+    memcpy(w + 3, e, 6 * sizeof(double));
+    memcpy(w + 9, fr->to_canon + 6 * f, 6 * sizeof(double));
+    w[15] = fr->degenerate[f] ? 1.0 : 0.0;
   }
 }
 
@@ -243,17 +269,16 @@ static double edge_dist2(const ss_frames *fr, int f, int k, const double x[3], d
 /* Crosses edge k of face *f at parameter s into the neighbour: updates *f
  * and p (canonical point in the new face) and returns SS_STOP_INSIDE, or
  * returns why it cannot (boundary, crease, step bound), leaving *f and p. */
-static int cross_edge(ss_walker *walker, const ss_topo *topo, int *f, int k, double s, double p[2],
-                      int max_steps, ss_walk_result *res) {
-  const int g = topo->face_adj[3 * *f + k];
-  if (g < 0) return SS_STOP_BOUNDARY;
+static inline int cross_edge(ss_walker *walker, const int *cross, int *f, int k, double s, double p[2],
+                             int max_steps, ss_walk_result *res) {
+  const int cr = cross[3 * *f + k];
+  if (cr < 0) return SS_STOP_BOUNDARY;
+  const int g = cr >> 3;
   if (walker->visited[g] == walker->stamp) return SS_STOP_CREASE;
   if (res->steps >= max_steps) return SS_STOP_STEP_LIMIT;
   /* the same point of the shared edge, in g, matched by welded end points */
-  const int kg = topo->face_adj_edge[3 * *f + k];
-  const int start_f = topo->vert_weld[topo->face_vert[3 * *f + k]];
-  const int start_g = topo->vert_weld[topo->face_vert[3 * g + kg]];
-  edge_point(kg, start_f == start_g ? s : 1.0 - s, p);
+  const int kg = (cr >> 1) & 3;
+  edge_point(kg, (cr & 1) == 0 ? s : 1.0 - s, p);
   *f = g;
   walker->visited[g] = walker->stamp;
   res->steps++;
@@ -289,8 +314,7 @@ static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const
 }
 
 /* World length of the canonical displacement (du, dv) on face f: |Dm (du, dv)|. */
-static inline double canonical_length(const ss_frames *fr, int f, double du, double dv) {
-  const double *e = fr->edge + 6 * f;
+static inline double canonical_length(const double *e, double du, double dv) {
   double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
   return sqrt(x * x + y * y + z * z);
 }
@@ -312,13 +336,15 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
     walker->stamp = 1;
   }
   int f = face;
+  const int *cross = fr->cross;
   walker->visited[f] = walker->stamp;
   for (;;) {
     /* direction towards a* in f's canonical space */
+    const double *w = fr->walk + 16 * f; /* origin, e1, e2, to_canon */
     double here[3], d[3];
-    face_point(fr, f, p, here);
+    for (int i = 0; i < 3; i++) here[i] = w[i] + p[0] * w[3 + i] + p[1] * w[6 + i];
     for (int i = 0; i < 3; i++) d[i] = target[i] - here[i];
-    const double *t = fr->to_canon + 6 * f;
+    const double *t = w + 9;
     const double du = dot3(t, d), dv = dot3(t + 3, d);
     if (!(isfinite(du) && isfinite(dv))) break; /* stay where we are */
 
@@ -342,19 +368,19 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       p[0] += du;
       p[1] += dv;
       clamp_uv(p);
-      res->length += canonical_length(fr, f, p[0] - p0u, p[1] - p0v);
+      res->length += canonical_length(w + 3, p[0] - p0u, p[1] - p0v);
       break;
     }
     if (t_exit < 0.0) t_exit = 0.0;
     double h[2] = {p[0] + t_exit * du, p[1] + t_exit * dv};
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
-    res->length += canonical_length(fr, f, p[0] - p0u, p[1] - p0v);
-    int stop = cross_edge(walker, topo, &f, k_exit, s, p, max_steps, res);
-    while (stop == SS_STOP_INSIDE && fr->degenerate[f]) {
+    res->length += canonical_length(w + 3, p[0] - p0u, p[1] - p0v);
+    int stop = cross_edge(walker, cross, &f, k_exit, s, p, max_steps, res);
+    while (stop == SS_STOP_INSIDE && fr->walk[16 * f + 15] != 0.0) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
       if (k_pass < 0) break;
-      stop = cross_edge(walker, topo, &f, k_pass, s, p, max_steps, res);
+      stop = cross_edge(walker, cross, &f, k_pass, s, p, max_steps, res);
     }
     if (stop != SS_STOP_INSIDE) {
       res->stop = stop;

@@ -22,6 +22,15 @@ typedef struct ss_frames {
                                 inverted in this pose (zero area, collinear corners):
                                 to_canon is then the regularised pseudo-inverse and
                                 walks pass straight through the face */
+  /* The walk's own copy, one 128-byte record per face (two cache lines):
+   * origin, e1, e2, to_canon, then 1.0 where degenerate (else 0.0). */
+  double *walk;      /* (nface x 16) */
+  /* Crossing of edge k of face f: -1 (no neighbour), else
+   * 8 g + 2 kg + flip, g the neighbour, kg the edge's index in g, flip 1
+   * where g runs along the edge the other way. Built from the topology at the
+   * first update with it. */
+  int *cross;        /* (nface x 3) */
+  const ss_topo *cross_topo;
 } ss_frames;
 
 int ss_frames_create(ss_frames **out, int nface);

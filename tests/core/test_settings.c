@@ -26,7 +26,7 @@ static void defaults(void) {
   CHECK(s.slide == 30.0 * log(2.0)); /* the former default, bit for bit */
   CHECK(s.gravity[0] == 0.0 && s.gravity[1] == 0.0 && s.gravity[2] == 0.0);
   CHECK(s.mover.walk_max_steps == 512 && s.mover.nring_rings == 2 && s.face_mask == NULL);
-  CHECK(s.threads >= 1 && s.threads <= 64);
+  CHECK(s.threads == 0); /* all cores where they pay (sim.c: auto_threads) */
   CHECK(ss_settings_check(&s, NULL, 0) == SS_OK);
   ss_mover_settings m = ss_mover_default_settings();
   CHECK(memcmp(&m, &s.mover, sizeof m) == 0);
@@ -41,7 +41,7 @@ static void refusals(void) {
       {"density", "0", "density must be in (0, inf)"},
       {"young", "inf", "young must be in [0, inf)"},
       {"substeps", "0", "substeps must be in [1, 1000]"},
-      {"threads", "65", "threads must be in [1, 64]"},
+      {"threads", "65", "threads must be in [0, 64]"},
       {"substeps", "2.5", "substeps expects a whole number"},
       {"method", "crawl", "method expects walk, project, nring, got 'crawl'"},
       {"solver", "", "solver expects newton, quasi-newton"},

@@ -50,26 +50,32 @@ int main(void) {
   ss_scene *sc = NULL;
   CHECK_EQ_INT(ss_scene_create(&sc, "twist", 800, err, sizeof err), SS_OK);
   if (!sc) return ss_test_finish("test_sim_alloc");
-  int nv = ss_scene_nvert(sc);
-  double *pose = malloc(3 * (size_t)nv * sizeof(double));
-  for (int run = 0; run < 4; run++) {
-    /* every method on one thread, and the walk on two */
+  /* threads 0 on a skin of 4000+ faces: all cores, probing one thread
+   * against them (steps 1-3 all, 4-6 one, then the faster) */
+  ss_scene *big = NULL;
+  CHECK_EQ_INT(ss_scene_create(&big, "twist", 4200, err, sizeof err), SS_OK);
+  if (!big) return ss_test_finish("test_sim_alloc");
+  double *pose = malloc(3 * (size_t)ss_scene_nvert(big) * sizeof(double));
+  for (int run = 0; run < 5; run++) {
+    /* every method on one thread, and the walk on two and on threads 0 */
     const int method = run < 3 ? run : SS_METHOD_WALK;
     ss_sim_settings set = ss_sim_default_settings();
     set.mover.method = method;
-    set.threads = run < 3 ? 1 : 2;
+    set.threads = run < 3 ? 1 : run == 3 ? 2 : 0;
+    const ss_scene *sc_run = run == 4 ? big : sc;
+    const int nv = ss_scene_nvert(sc_run);
     set.bending = 1e-3;
     set.substeps = 2;
     set.damping = 1.0;
     ss_sim *sim = NULL;
-    CHECK_EQ_INT(ss_sim_create(&sim, nv, ss_scene_rest(sc), ss_scene_nface(sc), ss_scene_faces(sc), NULL,
+    CHECK_EQ_INT(ss_sim_create(&sim, nv, ss_scene_rest(sc_run), ss_scene_nface(sc_run), ss_scene_faces(sc_run), NULL,
                                &set, err, sizeof err),
                  SS_OK);
     if (!sim) continue;
     allocations = 0;
     int iterations = 0;
     for (int f = 1; f <= 10; f++) {
-      ss_scene_pose(sc, f, pose);
+      ss_scene_pose(sc_run, f, pose);
       ss_sim_stats st;
       counting = 1;
       ss_sim_step(sim, pose, 0.0, &st, NULL, 0);
@@ -83,6 +89,7 @@ int main(void) {
   }
   free(pose);
   ss_scene_destroy(sc);
+  ss_scene_destroy(big);
   return ss_test_finish("test_sim_alloc");
 #endif
 }

@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""Speed against accuracy for the real-time solver on one body: for each
+configuration (substeps x iterations) `skinsim run --truth` gives the error
+against the converged truth (cached, shared by all configurations) and
+bench_sim the per-frame medians (CPU ms at one thread: the figure to compare
+on a shared machine; wall ms at the given thread counts). Prints a table,
+marks the Pareto front and, with --png, draws it.
+
+  /usr/bin/python3 bench/pareto.py SKINSIM BENCH_SIM [--tris 19000] [--frames 60] [--configs 1x8,2x8,...]
+                  [--cache DIR] [--threads 1,2] [--png FILE]
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+
+def skinsim_error(skinsim, tris, frames, sub, it, cache):
+    out = subprocess.run([skinsim, "run", "--scene", "quadruped", "--tris", str(tris), "--frames", str(frames),
+                          "--substeps", str(sub), "--iterations", str(it), "--threads", "1", "--truth",
+                          "--cache", cache, "--json", "-"], check=True, capture_output=True, text=True,
+                         env=dict(os.environ, OPENBLAS_NUM_THREADS="1")).stdout
+    j = json.loads(out)
+    return j["error_vs_truth"], j.get("final_hash")
+
+
+def bench(bench_sim, tris, frames, sub, it, threads):
+    out = subprocess.run([bench_sim, "quadruped", str(tris), str(frames), "quasi-newton", str(sub), str(it), "1e-4",
+                          "walk", str(threads)], check=True, capture_output=True, text=True).stdout
+    get = lambda k: float(re.search(r"\b%s ([0-9.]+)" % k, out).group(1))
+    return {"total": get("total"), "cpu": get("cpu"), "iterations": get("iterations")}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("skinsim")
+    ap.add_argument("bench_sim")
+    ap.add_argument("--tris", type=int, default=19000)
+    ap.add_argument("--frames", type=int, default=60)
+    ap.add_argument("--configs", default="1x8,1x16,1x32,2x4,2x8,2x16,3x8,4x4,4x8")
+    ap.add_argument("--cache", default=os.path.expanduser("~/.cache/skin_sim"))
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--png")
+    a = ap.parse_args()
+    threads = [int(t) for t in a.threads.split(",")]
+    rows = []
+    for cfg in a.configs.split(","):
+        sub, it = (int(v) for v in cfg.split("x"))
+        err, fh = skinsim_error(a.skinsim, a.tris, a.frames, sub, it, a.cache)
+        r = {"substeps": sub, "iterations": it, "error": err, "hash": fh}
+        for t in threads:
+            b = bench(a.bench_sim, a.tris, a.frames, sub, it, t)
+            r["cpu%d" % t], r["wall%d" % t] = b["cpu"], b["total"]
+            r["its"] = b["iterations"]
+        rows.append(r)
+        print("substeps %d iterations %2d: error_vs_truth %.4f, %s, %.2f iterations/frame" %
+              (sub, it, err, ", ".join("%d thread(s) cpu %.2f wall %.2f ms/frame" % (t, r["cpu%d" % t], r["wall%d" % t])
+                                        for t in threads), r["its"]), flush=True)
+    key = "cpu%d" % threads[0]
+    front = [r for r in rows if not any(o[key] <= r[key] and o["error"] < r["error"] for o in rows if o is not r)]
+    print("Pareto front (cpu ms at %d thread(s) vs error): %s" %
+          (threads[0], ", ".join("%dx%d" % (r["substeps"], r["iterations"]) for r in front)))
+    if a.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6.5, 4.5))
+        for r in rows:
+            ax.plot(r[key], r["error"], "o", color="C0" if r in front else "C7")
+            ax.annotate("%dx%d" % (r["substeps"], r["iterations"]), (r[key], r["error"]), fontsize=8,
+                        xytext=(4, 2), textcoords="offset points")
+        ax.axvline(33.3, color="gray", lw=0.8)
+        ax.set_xlabel("CPU ms per frame, %d thread" % threads[0])
+        ax.set_ylabel("error vs truth (mean edge lengths)")
+        ax.set_title("quadruped %d triangles, %d frames: substeps x iterations" % (a.tris, a.frames))
+        fig.tight_layout()
+        fig.savefig(a.png, dpi=90)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
