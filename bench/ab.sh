@@ -1,41 +1,56 @@
 #!/usr/bin/env bash
-# A/B timing of two builds of bench_sim on a shared machine: runs the two
-# binaries alternately ROUNDS times with the same arguments and prints, per
-# binary, the median over the rounds of each per-frame median bench_sim
-# reports (total, cpu, pose, walk, assemble, factor, solve), the iterations,
-# the hash, and the ratio B/A of each time.
+# A/B timing of builds of bench_sim on a shared machine: runs the binaries
+# alternately ROUNDS times with the same arguments and prints, per binary,
+# the median over the rounds of each per-frame median bench_sim reports
+# (total, cpu, pose, walk, assemble, factor, solve), the iterations, the
+# energy evaluations per iteration (where the build reports them), the hash,
+# and the ratio of each time to the first binary's.
 #
 #   bash bench/ab.sh A_BENCH_SIM B_BENCH_SIM ROUNDS [bench_sim arguments...]
+#   bash bench/ab.sh --bins A,B,C ROUNDS [bench_sim arguments...]   (any number of builds)
 #   e.g. bash bench/ab.sh /tmp/base/devel/lib/skin_sim/bench_sim \
 #          build/release/devel/lib/skin_sim/bench_sim 5 quadruped 19000 60 quasi-newton 1 8 1e-4 walk 1
 #
-# Read "cpu" (process CPU time per step) for one thread on a loaded machine:
-# wall-clock times there mostly measure the other jobs.
+# Read "cpu" (process CPU time per step, all threads) for one thread on a
+# loaded machine: wall-clock times there mostly measure the other jobs.
 set -euo pipefail
-a="${1:?usage: ab.sh A B ROUNDS [bench_sim args]}"
-b="${2:?usage: ab.sh A B ROUNDS [bench_sim args]}"
-rounds="${3:?usage: ab.sh A B ROUNDS [bench_sim args]}"
-shift 3
+if [[ "${1:-}" == "--bins" ]]; then
+  IFS=, read -r -a bins <<<"${2:?usage: ab.sh --bins A,B[,C...] ROUNDS [bench_sim args]}"
+  shift 2
+else
+  bins=("${1:?usage: ab.sh A B ROUNDS [bench_sim args]}" "${2:?usage: ab.sh A B ROUNDS [bench_sim args]}")
+  shift 2
+fi
+rounds="${1:?usage: ab.sh A B ROUNDS [bench_sim args]}"
+shift 1
 out="$(mktemp)"
 trap 'rm -f "$out"' EXIT
+tags=(A B C D E F G H)
 for ((r = 0; r < rounds; r++)); do
-  echo "A $("$a" "$@")" >>"$out"
-  echo "B $("$b" "$@")" >>"$out"
+  for ((i = 0; i < ${#bins[@]}; i++)); do
+    echo "${tags[$i]} $("${bins[$i]}" "$@")" >>"$out"
+  done
 done
-/usr/bin/python3 - "$out" <<'EOF'
+for ((i = 0; i < ${#bins[@]}; i++)); do echo "${tags[$i]} = ${bins[$i]}"; done
+/usr/bin/python3 - "$out" <<'PYEOF'
 import re, statistics, sys
 keys = ["total", "cpu", "pose", "walk", "assemble", "factor", "solve"]
-rows = {"A": [], "B": []}
+rows = {}
 for line in open(sys.argv[1]):
     tag, rest = line.split(" ", 1)
     d = {k: float(re.search(r"\b%s ([0-9.]+)" % k, rest).group(1)) for k in keys if re.search(r"\b%s ([0-9.]+)" % k, rest)}
     d["iterations"] = float(re.search(r"iterations ([0-9.]+)", rest).group(1))
+    m = re.search(r"energy evaluations ([0-9.]+)", rest)
+    if m: d["evals/it"] = float(m.group(1))
     d["hash"] = re.search(r"hash ([0-9a-f]+)", rest).group(1)
-    rows[tag].append(d)
-med = {t: {k: statistics.median(r[k] for r in rows[t]) for k in keys + ["iterations"] if k in rows[t][0]} for t in rows}
-print("%-4s" % "" + "".join("%10s" % k for k in keys + ["iterations"]) + "  hash")
-for t in "AB":
-    print("%-4s" % t + "".join("%10.2f" % med[t].get(k, float("nan")) for k in keys + ["iterations"]) +
+    rows.setdefault(tag, []).append(d)
+cols = keys + ["iterations", "evals/it"]
+med = {t: {k: statistics.median(r[k] for r in rows[t]) for k in cols if k in rows[t][0]} for t in rows}
+tags = sorted(rows)
+print("%-6s" % "" + "".join("%10s" % k for k in cols) + "  hash")
+for t in tags:
+    print("%-6s" % t + "".join("%10.2f" % med[t].get(k, float("nan")) for k in cols) +
           "  " + ",".join(sorted(set(r["hash"] for r in rows[t]))))
-print("%-4s" % "B/A" + "".join("%10.2f" % (med["B"][k] / med["A"][k] if med["A"].get(k) else float("nan")) for k in keys))
-EOF
+for t in tags[1:]:
+    print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (med[t][k] / med[tags[0]][k] if med[tags[0]].get(k) else float("nan")) for k in keys))
+PYEOF

@@ -1,10 +1,11 @@
 /* bench_sim: times ss_sim on a built-in scene (a benchmark, not a test).
  *
- *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads]
+ *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads] [orient]
  *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings)
  *
  * Prints one line of medians per frame (ms): total, pose (body frames, anchor
- * positions), walk (anchor updates), assemble, factor, solve; mean iterations, failures, stalls, area
+ * positions), walk (anchor updates), assemble, factor, solve; mean iterations,
+ * energy evaluations per iteration (the first of each substep included), failures, stalls, area
  * ratio range over all frames, and an FNV-1a hash of the final positions.
  * "cpu" is the median CPU time of the process per step (all threads): on a
  * shared, loaded machine the figure to compare between builds at one thread,
@@ -46,6 +47,7 @@ int main(int argc, char **argv) {
   if (argc > 7) set.tol = atof(argv[7]);
   if (argc > 8) set.mover.method = ss_method_parse(argv[8]);
   if (argc > 9) set.threads = atoi(argv[9]);
+  if (argc > 10) set.orient = atof(argv[10]);
   char err[256];
   ss_scene *scene = NULL;
   if (ss_scene_create(&scene, scene_name, tris, err, sizeof err) != SS_OK) {
@@ -65,7 +67,7 @@ int main(int argc, char **argv) {
   double *t_sol = malloc((size_t)frames * sizeof(double));
   double *t_pose = malloc((size_t)frames * sizeof(double));
   double *t_cpu = malloc((size_t)frames * sizeof(double));
-  double it_sum = 0.0, amin = 1e300, amax = 0.0, res_sum = 0.0, rms_sum = 0.0;
+  double it_sum = 0.0, ev_sum = 0.0, amin = 1e300, amax = 0.0, res_sum = 0.0, rms_sum = 0.0;
   int failures = 0, stalls = 0, unconverged = 0;
   double dt = 1.0 / ss_scene_fps(scene);
   for (int f = 0; f < frames; f++) {
@@ -80,6 +82,7 @@ int main(int argc, char **argv) {
     t_total[f] = st.total_ms, t_walk[f] = st.walk_ms, t_asm[f] = st.assemble_ms;
     t_fac[f] = st.factor_ms, t_sol[f] = st.solve_ms, t_pose[f] = st.pose_ms;
     it_sum += st.iterations;
+    ev_sum += st.energy_evaluations;
     res_sum += st.residual;
     rms_sum += st.residual_rms;
     failures += st.failures;
@@ -93,10 +96,10 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < 3 * (size_t)nv * sizeof(double); i++) hash = (hash ^ bytes[i]) * 1099511628211ULL;
   printf("scene %s tris %d verts %d dofs %d solver %s method %s substeps %d frames %d: "
          "ms/frame total %.2f cpu %.2f pose %.2f walk %.2f assemble %.2f factor %.2f solve %.2f (medians); "
-         "iterations %.2f/frame, residual mean %.2g (rms %.2g), unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
+         "iterations %.2f/frame, energy evaluations %.2f/iteration, residual mean %.2g (rms %.2g), unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
          scene_name, nf, nv, ss_sim_ndof(sim), solver, ss_method_name(set.mover.method), set.substeps, frames,
          median(t_total, frames), median(t_cpu, frames), median(t_pose, frames), median(t_walk, frames), median(t_asm, frames), median(t_fac, frames),
-         median(t_sol, frames), it_sum / frames, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
+         median(t_sol, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
   ss_sim_destroy(sim);
   ss_scene_destroy(scene);
   free(pose), free(t_total), free(t_walk), free(t_asm), free(t_fac), free(t_sol), free(t_pose), free(t_cpu);

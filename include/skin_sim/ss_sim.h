@@ -168,6 +168,7 @@ typedef struct ss_sim_stats {
   int substeps;
   int iterations;      /* solver iterations, all substeps */
   int factorizations;
+  int energy_evaluations; /* energy-and-gradient evaluations by the solver, all substeps */
   double residual;     /* final convergence measure of the last substep (see tol): the
                           worst vertex */
   double residual_rms; /* the same measure, root mean square over the free vertices */

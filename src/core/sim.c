@@ -7,7 +7,7 @@
  *               vertices outside the simulated region put on their anchors;
  *   2. solve    implicit Euler as minimisation (sim_energy.c), starting from
  *               the skin carried along by its anchors, by Newton or L-BFGS
- *               (solver_*.c);
+ *               directions in one loop (solver.c);
  *   3. velocity v = (x - x_n) / h;
  *   4. anchors  the spring force drags each anchor of a free point towards the
  *               skin point it holds: a* = a0 + (1 - exp(-slide h)) (p - a0)
@@ -260,8 +260,7 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   sim->cc_started = 1;
   sim->cc.print = 0; /* the core never prints: errors come back as status */
   if (sim->ndof > 0) {
-    status = set->solver == SS_SOLVER_NEWTON ? ss_solver_newton_create(sim, err, err_sz)
-                                             : ss_solver_qn_create(sim, err, err_sz);
+    status = ss_solver_create(sim, err, err_sz);
     if (status != SS_OK) goto fail;
   }
   *out = sim;
@@ -594,10 +593,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
         for (int i = 0; i < 3; i++)
           sim->xd[3 * k + i] = sim->x_prev[3 * v + i] + (sim->anchor_pos[3 * v + i] - sim->guess[3 * k + i]);
       }
-      status = sim->set.solver == SS_SOLVER_NEWTON
-                   ? ss_solver_newton_solve(sim, sim->xd, &converged, &stalled, &nonfinite)
-                   : ss_solver_qn_solve(sim, sim->xd, &converged, &stalled, &nonfinite);
-      if (status == SS_OK && nonfinite != 1) st->residual_rms = ss_sim_residual_rms(sim, sim->gd);
+      status = ss_solver_solve(sim, sim->xd, &converged, &stalled, &nonfinite);
       if (status != SS_OK || nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->ndof)) {
         /* Keep the last good state of the free vertices, at rest. */
         for (int k = 0; k < sim->ndof; k++) {

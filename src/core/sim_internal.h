@@ -4,7 +4,8 @@
  *   sim_bind.c       anchors at create (copy or closest point), face mask, hinges
  *   sim_pattern.c    sparsity pattern of the unknowns and element-to-slot maps
  *   sim_energy.c     E(x), its gradient, and Hessian assembly over all terms
- *   solver_newton.c  projected Newton with CHOLMOD (3n x 3n)
+ *   solver.c         the one solver loop (solver.h); line_search.c its line search
+ *   solver_newton.c  projected Newton directions with CHOLMOD (3n x 3n)
  *   solver_qn.c      L-BFGS on the constant L (x) I3 matrix (scalar n x n CHOLMOD)
  *
  * The model (fixed at create) comes first, then the data of a run. Arrays are
@@ -86,12 +87,12 @@ struct ss_sim {
   ss_walker **walkers;        /* (nthread_max) walk scratch, one per thread */
   signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
-  double *face_grad;          /* their gradients (9 per simulated face), then the
-                                 barycenter springs' (3 per face) */
+  double *face_grad;          /* (grad_ptr[ndof] + 1) x 3: the per-face gradient parts, by dof in
+                                 the order of its sum (springs by face, then membrane by
+                                 face), then one spare entry for corners on fixed vertices */
   struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
-  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
-  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
-  int bary_base;              /* first slot of the springs' part of face_grad */
+  int *grad_ptr;              /* (ndof + 1) CSR: each dof's entries of face_grad */
+  int *grad_slot;             /* (nface x 3) offset in face_grad of each spring corner's part */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
@@ -192,32 +193,18 @@ static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b)
   return sim->colp3[3 * j + b] + 3 * rank + a;
 }
 
-/* ---- solvers: both minimise E from xd (in/out, dofs); return SS_OK or
- * SS_E_SOLVER. They fill stats (iterations, residual, ...). *nonfinite is 1
- * if E was not finite at the start (xd unusable), 2 if only trial points
- * were (xd is the last finite iterate). ---- */
+/* ---- solvers (solver.h: the one loop, line search and the solvers' hooks).
+ * ss_solver_solve minimises E from xd (in/out, dofs) with the solver of the
+ * settings; returns SS_OK or SS_E_SOLVER and fills stats (iterations,
+ * residual, residual_rms, ...). *nonfinite is 1 if E was not finite at the
+ * start (xd unusable), 2 if only trial points were (xd is the last finite
+ * iterate). ---- */
+int ss_solver_create(ss_sim *sim, char *err, int err_sz);
+int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite);
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz);
-int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled,
-                           int *nonfinite);
 int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz);
-int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite);
-
-/* Shared by both solvers: backtracking line search along dir from xd (energy
- * e0, gradient g0). On success xd, gd, e are updated to the accepted point
- * (gd is the gradient there) and 1 is returned (2 if E did not decrease:
- * accepted by the approximate Wolfe conditions, E flat to round-off); 0 if no step decreased E; -1 if
- * everything tried was non-finite. */
-#define SS_ROUNDOFF_STEPS 8
 /* Energy and gradient g at the unknowns xd (scattered into xfull_t), timed
  * into the step's assemble_ms. */
 double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g);
-int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir);
-/* What a solver does after a line search returned ls (1 step taken, 2 step
- * taken with E flat to round-off, 0 no step, < 0 non-finite): judges
- * round-off progress by the residual (best_res, roundoff_steps), sets
- * *converged, *stalled or *nonfinite and the step's residual and energy, and
- * returns 1 to go on iterating or 0 to stop. g is the gradient at xd. */
-int ss_sim_after_line_search(ss_sim *sim, int ls, const double *g, double e, double *best_res,
-                             int *roundoff_steps, int *converged, int *stalled, int *nonfinite);
 
 #endif

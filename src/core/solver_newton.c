@@ -1,5 +1,4 @@
-/* Projected Newton for the implicit Euler step, with CHOLMOD; and the
- * backtracking line search both solvers share.
+/* Projected Newton for the implicit Euler step, with CHOLMOD.
  *
  * Each iteration assembles H = (inertia + springs, constant per h) + the
  * elastic Hessian and factors it. It first tries the exact membrane Hessian;
@@ -16,86 +15,14 @@
  * (fill-reducing ordering, symbolic factor) runs once at create, then
  * cholmod_factorize per iteration and cholmod_solve2 with reused workspace.
  *
- * Line search: backtracking from the full step, Armijo's sufficient decrease
- * E(x + a d) <= E(x) + 1e-4 a g.d, halving a up to 40 times (Nocedal and
- * Wright, "Numerical Optimization", 3.1). Close to the minimum the decrease
- * g.d is below the round-off of E; a step is then also accepted by Hager and
- * Zhang's approximate Wolfe conditions (which use the slope, not E). A solver
- * whose energy does not decrease and whose residual does not improve over
- * SS_ROUNDOFF_STEPS accepted steps in a row has reached the floor of its
- * precision and stops (reported as stalled unless within tolerance). */
+ * The outer loop, the line search and convergence are solver.c's and
+ * line_search.c's; this file gives the directions: exact Newton, projected
+ * Newton, Jacobi-scaled gradient, in that order (ss_solver_newton_ops). */
 #include <math.h>
 #include <string.h>
 
-#include "sim_internal.h"
+#include "solver.h"
 #include "ss_err.h"
-
-static double dot(const double *a, const double *b, int n) {
-  double s = 0.0;
-  for (int i = 0; i < n; i++) s += a[i] * b[i];
-  return s;
-}
-
-int ss_sim_after_line_search(ss_sim *sim, int ls, const double *g, double e, double *best_res,
-                             int *roundoff_steps, int *converged, int *stalled, int *nonfinite) {
-  if (ls == 2) {
-    /* E flat to round-off: progress is judged by the residual. */
-    double r = ss_sim_residual(sim, g);
-    *roundoff_steps = r < *best_res ? 0 : *roundoff_steps + 1;
-    if (r < *best_res) *best_res = r;
-    if (*roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
-  }
-  if (ls < 0) {
-    *nonfinite = 2; /* xd is still the last finite iterate */
-    return 0;
-  }
-  if (ls == 0) {
-    ss_sim_stats *st = sim->st;
-    st->residual = ss_sim_residual(sim, g); /* g is at xd */
-    st->energy = e;
-    if (st->residual <= sim->set.tol)
-      *converged = 1;
-    else
-      *stalled = 1;
-    return 0;
-  }
-  return 1;
-}
-
-int ss_sim_line_search(ss_sim *sim, double *xd, double *gd, double *e, const double *dir) {
-  int n3 = 3 * sim->ndof;
-  double slope = dot(gd, dir, n3);
-  if (!(slope < 0.0)) return 0;
-  double alpha = 1.0;
-  int any_finite = 0;
-  for (int tries = 0; tries < 40; tries++, alpha *= 0.5) {
-    for (int i = 0; i < n3; i++) sim->xt[i] = xd[i] + alpha * dir[i];
-    double et = ss_sim_energy_at(sim, sim->xt, sim->gt);
-    /* |g_t|^2 (finite?) and the slope g_t.d in one pass */
-    double gg = 0.0, st_slope = 0.0;
-    for (int i = 0; i < n3; i++) {
-      gg += sim->gt[i] * sim->gt[i];
-      st_slope += sim->gt[i] * dir[i];
-    }
-    if (!isfinite(et) || !isfinite(gg)) continue;
-    any_finite = 1;
-    /* Armijo, on the difference (exact for nearby values): it asks for a
-     * strict decrease even when 1e-4 a g.d is below the last bit of E. */
-    int armijo = et - *e <= 1e-4 * alpha * slope;
-    /* Near the minimum the change of E drowns in round-off: Hager and
-     * Zhang's approximate Wolfe conditions (CG_DESCENT, 2005), E not above
-     * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
-    int roundoff = et <= *e + 1e-12 * fabs(*e) && st_slope >= 0.9 * slope && st_slope <= -0.8 * slope;
-    if (armijo || roundoff) {
-      memcpy(xd, sim->xt, (size_t)n3 * sizeof *xd);
-      memcpy(gd, sim->gt, (size_t)n3 * sizeof *gd);
-      int decreased = et < *e;
-      *e = et;
-      return decreased ? 1 : 2;
-    }
-  }
-  return any_finite ? 0 : -1;
-}
 
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
   int n3 = 3 * sim->ndof;
@@ -163,72 +90,66 @@ static int newton_direction(ss_sim *sim, const double *xd, const double *g, doub
   return 1;
 }
 
-int ss_solver_newton_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
-  ss_sim_stats *st = sim->st;
-  double *g = sim->gd, *dir = sim->dir;
-  *converged = *stalled = *nonfinite = 0;
-  int roundoff_steps = 0;
-  double best_res = INFINITY;
-  /* Projection on demand (in the spirit of Longva et al. 2023): the exact
-   * Hessian where it is positive definite and its step decreases E
-   * (quadratic convergence near the solution, where projecting element by
-   * element leaves only a linear rate in compressed regions); else the
-   * per-element projected one, trying the exact one again after 1, 2, 4, ...
-   * iterations; else (no decrease either) a Jacobi-scaled gradient step. */
-  int skip_exact = 0, backoff = 1;
+static int newton_begin(ss_solve *s) {
+  ss_sim *sim = s->sim;
   if (sim->h_const_h != sim->h) {
     ss_sim_constant_hessian(sim, sim->h_const);
     sim->h_const_h = sim->h;
   }
-  double e = ss_sim_energy_at(sim, xd, g);
-  double res = ss_sim_residual(sim, g);
-  if (!isfinite(e) || !isfinite(res)) {
-    *nonfinite = 1;
-    return SS_OK;
-  }
-  for (int it = 0;; it++) {
-    st->residual = res;
-    st->energy = e;
-    if (res <= sim->set.tol) {
-      *converged = 1;
-      break;
-    }
-    if (it >= sim->set.iterations) break;
-    st->iterations++;
-    int ls = 0;
-    if (skip_exact == 0) {
-      int d = newton_direction(sim, xd, g, dir, 1);
-      if (d < 0) return SS_E_SOLVER;
-      if (d > 0) ls = ss_sim_line_search(sim, xd, g, &e, dir);
-      if (ls != 0) {
-        backoff = 1;
-      } else {
-        skip_exact = backoff;
-        backoff = backoff < 64 ? 2 * backoff : backoff;
-      }
-    } else {
-      skip_exact--;
-    }
-    if (ls == 0) {
-      int d = newton_direction(sim, xd, g, dir, 0);
-      if (d < 0) return SS_E_SOLVER;
-      if (d > 0) ls = ss_sim_line_search(sim, xd, g, &e, dir);
-    }
-    if (ls == 0) {
-      /* No decrease along the projected step either (clamped eigenvalues can
-       * leave it nearly orthogonal to -g deep in compression): a
-       * Jacobi-scaled gradient step, a descent direction by construction. */
-      for (int k = 0; k < sim->ndof; k++) {
-        double inv = 1.0 / (sim->mi[k] + sim->diag_const[k]);
-        for (int c = 0; c < 3; c++) dir[3 * k + c] = -inv * g[3 * k + c];
-      }
-      ls = ss_sim_line_search(sim, xd, g, &e, dir);
-    }
-    if (!ss_sim_after_line_search(sim, ls, g, e, &best_res, &roundoff_steps, converged, stalled,
-                                  nonfinite))
-      break;
-    ss_sim_scatter(sim, xd, sim->xfull_t);
-    res = ss_sim_residual(sim, g);
-  }
   return SS_OK;
 }
+
+/* A failed exact step: wait 1, 2, 4, ... (at most 64) iterations before the
+ * exact Hessian is tried again. */
+static void exact_failed(ss_solve *s) {
+  s->skip_exact = s->backoff;
+  s->backoff = s->backoff < 64 ? 2 * s->backoff : s->backoff;
+}
+
+/* Projection on demand (in the spirit of Longva et al. 2023): the exact
+ * Hessian where it is positive definite and its step decreases E (quadratic
+ * convergence near the solution, where projecting element by element leaves
+ * only a linear rate in compressed regions); else the per-element projected
+ * one, trying the exact one again after 1, 2, 4, ... iterations; else (no
+ * decrease either) a Jacobi-scaled gradient step. */
+static int newton_dir(ss_solve *s, int attempt) {
+  ss_sim *sim = s->sim;
+  int d;
+  switch (attempt) {
+  case 0:
+    if (s->skip_exact > 0) {
+      s->skip_exact--;
+      return SS_DIR_SKIP;
+    }
+    d = newton_direction(sim, s->xd, s->g, s->dir, 1);
+    if (d < 0) return d;
+    if (d == 0) exact_failed(s);
+    return d > 0 ? SS_DIR_OK : SS_DIR_SKIP;
+  case 1:
+    d = newton_direction(sim, s->xd, s->g, s->dir, 0);
+    if (d < 0) return d;
+    return d > 0 ? SS_DIR_OK : SS_DIR_SKIP;
+  case 2:
+    /* No decrease along the projected step either (clamped eigenvalues can
+     * leave it nearly orthogonal to -g deep in compression): a Jacobi-scaled
+     * gradient step, a descent direction by construction. */
+    for (int k = 0; k < sim->ndof; k++) {
+      double inv = 1.0 / (sim->mi[k] + sim->diag_const[k]);
+      for (int c = 0; c < 3; c++) s->dir[3 * k + c] = -inv * s->g[3 * k + c];
+    }
+    return SS_DIR_OK;
+  default:
+    return SS_DIR_NONE;
+  }
+}
+
+static void newton_tried(ss_solve *s, int attempt, int ls) {
+  if (attempt != 0) return;
+  if (ls != 0)
+    s->backoff = 1;
+  else
+    exact_failed(s);
+}
+
+const ss_solver_ops ss_solver_newton_ops = {
+    .safety_net = 0, .begin = newton_begin, .direction = newton_dir, .tried = newton_tried, .accepted = NULL};

@@ -18,7 +18,9 @@
  * not a descent direction (possible when curvature pairs are stale) is
  * replaced by -A^-1 g, which always is (A is positive definite). Pairs with
  * s.y <= 1e-12 |s| |y| are skipped (keeps the implicit Hessian positive
- * definite). Energy-based backtracking line search, as in solver_newton.c.
+ * definite). The outer loop, the line search and convergence are solver.c's
+ * and line_search.c's; this file gives the directions: the L-BFGS one, then
+ * (if its line search fails with a history) -A^-1 g (ss_solver_qn_ops).
  *
  * Budget: `iterations` per substep, the real-time cost. A substep still far
  * from converged after it (residual above `safety_residual`, e.g. a skin
@@ -29,7 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sim_internal.h"
+#include "solver.h"
 #include "ss_err.h"
 
 static double dot(const double *a, const double *b, int n) {
@@ -106,150 +108,149 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
   return SS_OK;
 }
 
-int ss_solver_qn_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
-  int n3 = 3 * sim->ndof, m = sim->lb_m;
-  ss_sim_stats *st = sim->st;
-  double *g = sim->gd, *dir = sim->dir;
-  *converged = *stalled = *nonfinite = 0;
-  int roundoff_steps = 0;
-  double best_res = INFINITY;
+static int qn_begin(ss_solve *s) {
+  ss_sim *sim = s->sim;
   if (sim->a_h != sim->h) {
     double t = ss_now_ms();
     int status = factor_scalar(sim);
-    st->factor_ms += ss_now_ms() - t;
+    sim->st->factor_ms += ss_now_ms() - t;
     if (status != SS_OK) return status;
   }
   sim->lb_count = 0;
   sim->lb_head = 0;
-  double e = ss_sim_energy_at(sim, xd, g);
-  double res = ss_sim_residual(sim, g);
-  if (!isfinite(e) || !isfinite(res)) {
-    *nonfinite = 1;
-    return SS_OK;
-  }
-  /* s and y of the newest pair are formed in place in the ring buffer: the
-   * slot at lb_head holds x_old and g_old until the step is accepted. */
-  for (int it = 0;; it++) {
-    st->residual = res;
-    st->energy = e;
-    if (res <= sim->set.tol) {
-      *converged = 1;
-      break;
-    }
-    if (it >= sim->set.iterations) {
-      /* past the budget: go on only while far from converged (safety net) */
-      const int hard = sim->set.iterations_max > sim->set.iterations ? sim->set.iterations_max
-                                                                      : sim->set.iterations;
-      if (!(sim->set.safety_residual > 0.0 && res > sim->set.safety_residual) || it >= hard) break;
-    }
-    st->iterations++;
-    double t1 = ss_now_ms();
-    /* Two-loop recursion: dir = -H g. Each pass over the vectors applies
-     * one pair's update and already forms the next pair's dot product (the
-     * same operations in the same order as two separate loops: same bits,
-     * half the memory traffic). */
-    int count = sim->lb_count;
-    double next = 0.0;
-    if (count > 0) {
-      /* dir = g and the first dot in one pass */
-      int slot = (sim->lb_head - 1 + m) % m;
-      const double *s0 = sim->lb_s + (size_t)slot * n3;
-      double acc = 0.0;
-      for (int i = 0; i < n3; i++) {
-        dir[i] = g[i];
-        acc += s0[i] * dir[i];
-      }
-      next = sim->lb_rho[slot] * acc;
-    } else {
-      memcpy(dir, g, (size_t)n3 * sizeof *dir);
-    }
-    for (int c = 0; c < count; c++) {
-      int slot = (sim->lb_head - 1 - c + m) % m;
-      const double *y = sim->lb_y + (size_t)slot * n3;
-      double a = next;
-      sim->lb_alpha[slot] = a;
-      if (c + 1 < count) {
-        int nslot = (sim->lb_head - 2 - c + m) % m;
-        const double *sn = sim->lb_s + (size_t)nslot * n3;
-        double acc = 0.0;
-        for (int i = 0; i < n3; i++) {
-          dir[i] -= a * y[i];
-          acc += sn[i] * dir[i];
-        }
-        next = sim->lb_rho[nslot] * acc;
-      } else {
-        for (int i = 0; i < n3; i++) dir[i] -= a * y[i];
-      }
-    }
-    if (apply_inverse(sim, dir, dir) != SS_OK) return SS_E_SOLVER;
-    if (count > 0) {
-      int slot = (sim->lb_head - count + m) % m;
-      next = sim->lb_rho[slot] * dot(sim->lb_y + (size_t)slot * n3, dir, n3);
-    }
-    /* The last pass also negates dir and forms the slope g.dir. */
-    double slope = 0.0;
-    for (int c = count - 1; c >= 0; c--) {
-      int slot = (sim->lb_head - 1 - c + m) % m;
-      const double *sv = sim->lb_s + (size_t)slot * n3;
-      double coef = sim->lb_alpha[slot] - next;
-      if (c > 0) {
-        int nslot = (sim->lb_head - c + m) % m;
-        const double *yn = sim->lb_y + (size_t)nslot * n3;
-        double acc = 0.0;
-        for (int i = 0; i < n3; i++) {
-          dir[i] += coef * sv[i];
-          acc += yn[i] * dir[i];
-        }
-        next = sim->lb_rho[nslot] * acc;
-      } else {
-        for (int i = 0; i < n3; i++) {
-          dir[i] = -(dir[i] + coef * sv[i]);
-          slope += dir[i] * g[i];
-        }
-      }
-    }
-    if (count == 0)
-      for (int i = 0; i < n3; i++) {
-        dir[i] = -dir[i];
-        slope += dir[i] * g[i];
-      }
-    if (!(slope < 0.0) && sim->lb_count > 0) {
-      /* Not a descent direction: drop the history, use -A^-1 g. */
-      sim->lb_count = 0;
-      if (apply_inverse(sim, g, dir) != SS_OK) return SS_E_SOLVER;
-      for (int i = 0; i < n3; i++) dir[i] = -dir[i];
-    }
-    st->solve_ms += ss_now_ms() - t1;
-    /* Keep x and g before the step in the slot the new pair will use. */
-    double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
-    memcpy(s_new, xd, (size_t)n3 * sizeof *s_new);
-    memcpy(y_new, g, (size_t)n3 * sizeof *y_new);
-    int ls = ss_sim_line_search(sim, xd, g, &e, dir);
-    if (ls == 0 && sim->lb_count > 0) {
-      /* Retry once from the plain preconditioned gradient. */
-      sim->lb_count = 0;
-      if (apply_inverse(sim, g, dir) != SS_OK) return SS_E_SOLVER;
-      for (int i = 0; i < n3; i++) dir[i] = -dir[i];
-      ls = ss_sim_line_search(sim, xd, g, &e, dir);
-    }
-    if (!ss_sim_after_line_search(sim, ls, g, e, &best_res, &roundoff_steps, converged, stalled,
-                                  nonfinite))
-      break;
-    /* the new pair and its three dots in one pass */
-    double sy = 0.0, ss = 0.0, yy = 0.0;
-    for (int i = 0; i < n3; i++) {
-      s_new[i] = xd[i] - s_new[i];
-      y_new[i] = g[i] - y_new[i];
-      sy += s_new[i] * y_new[i];
-      ss += s_new[i] * s_new[i];
-      yy += y_new[i] * y_new[i];
-    }
-    if (sy > 1e-12 * sqrt(ss * yy)) {
-      sim->lb_rho[sim->lb_head] = 1.0 / sy;
-      sim->lb_head = (sim->lb_head + 1) % m;
-      if (sim->lb_count < m) sim->lb_count++;
-    }
-    res = ss_sim_residual(sim, g);
-  }
   return SS_OK;
 }
+
+/* dir = -A^-1 g, always a descent direction (A is positive definite). */
+static int preconditioned_gradient(ss_solve *s) {
+  int n3 = 3 * s->sim->ndof;
+  if (apply_inverse(s->sim, s->g, s->dir) != SS_OK) return SS_E_SOLVER;
+  for (int i = 0; i < n3; i++) s->dir[i] = -s->dir[i];
+  return SS_DIR_OK;
+}
+
+/* The L-BFGS direction. s and y of the newest pair are formed in place in
+ * the ring buffer: the slot at lb_head holds x_old and g_old until the step
+ * is accepted (qn_accepted). */
+static int lbfgs_direction(ss_solve *s) {
+  ss_sim *sim = s->sim;
+  int n3 = 3 * sim->ndof, m = sim->lb_m;
+  ss_sim_stats *st = sim->st;
+  const double *g = s->g;
+  double *dir = s->dir;
+  double t1 = ss_now_ms();
+  /* Two-loop recursion: dir = -H g. Each pass over the vectors applies
+   * one pair's update and already forms the next pair's dot product (the
+   * same operations in the same order as two separate loops: same bits,
+   * half the memory traffic). */
+  int count = sim->lb_count;
+  double next = 0.0;
+  if (count > 0) {
+    /* dir = g and the first dot in one pass */
+    int slot = (sim->lb_head - 1 + m) % m;
+    const double *s0 = sim->lb_s + (size_t)slot * n3;
+    double acc = 0.0;
+    for (int i = 0; i < n3; i++) {
+      dir[i] = g[i];
+      acc += s0[i] * dir[i];
+    }
+    next = sim->lb_rho[slot] * acc;
+  } else {
+    memcpy(dir, g, (size_t)n3 * sizeof *dir);
+  }
+  for (int c = 0; c < count; c++) {
+    int slot = (sim->lb_head - 1 - c + m) % m;
+    const double *y = sim->lb_y + (size_t)slot * n3;
+    double a = next;
+    sim->lb_alpha[slot] = a;
+    if (c + 1 < count) {
+      int nslot = (sim->lb_head - 2 - c + m) % m;
+      const double *sn = sim->lb_s + (size_t)nslot * n3;
+      double acc = 0.0;
+      for (int i = 0; i < n3; i++) {
+        dir[i] -= a * y[i];
+        acc += sn[i] * dir[i];
+      }
+      next = sim->lb_rho[nslot] * acc;
+    } else {
+      for (int i = 0; i < n3; i++) dir[i] -= a * y[i];
+    }
+  }
+  if (apply_inverse(sim, dir, dir) != SS_OK) return SS_E_SOLVER;
+  if (count > 0) {
+    int slot = (sim->lb_head - count + m) % m;
+    next = sim->lb_rho[slot] * dot(sim->lb_y + (size_t)slot * n3, dir, n3);
+  }
+  /* The last pass also negates dir and forms the slope g.dir. */
+  double slope = 0.0;
+  for (int c = count - 1; c >= 0; c--) {
+    int slot = (sim->lb_head - 1 - c + m) % m;
+    const double *sv = sim->lb_s + (size_t)slot * n3;
+    double coef = sim->lb_alpha[slot] - next;
+    if (c > 0) {
+      int nslot = (sim->lb_head - c + m) % m;
+      const double *yn = sim->lb_y + (size_t)nslot * n3;
+      double acc = 0.0;
+      for (int i = 0; i < n3; i++) {
+        dir[i] += coef * sv[i];
+        acc += yn[i] * dir[i];
+      }
+      next = sim->lb_rho[nslot] * acc;
+    } else {
+      for (int i = 0; i < n3; i++) {
+        dir[i] = -(dir[i] + coef * sv[i]);
+        slope += dir[i] * g[i];
+      }
+    }
+  }
+  if (count == 0)
+    for (int i = 0; i < n3; i++) {
+      dir[i] = -dir[i];
+      slope += dir[i] * g[i];
+    }
+  if (!(slope < 0.0) && sim->lb_count > 0) {
+    /* Not a descent direction: drop the history, use -A^-1 g. */
+    sim->lb_count = 0;
+    if (preconditioned_gradient(s) != SS_DIR_OK) return SS_E_SOLVER;
+  }
+  st->solve_ms += ss_now_ms() - t1;
+  /* Keep x and g before the step in the slot the new pair will use. */
+  double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
+  memcpy(s_new, s->xd, (size_t)n3 * sizeof *s_new);
+  memcpy(y_new, g, (size_t)n3 * sizeof *y_new);
+  return SS_DIR_OK;
+}
+
+static int qn_dir(ss_solve *s, int attempt) {
+  if (attempt == 0) return lbfgs_direction(s);
+  /* Retry once from the plain preconditioned gradient. */
+  if (attempt == 1 && s->sim->lb_count > 0) {
+    s->sim->lb_count = 0;
+    return preconditioned_gradient(s);
+  }
+  return SS_DIR_NONE;
+}
+
+/* The new pair and its three dots in one pass. */
+static void qn_accepted(ss_solve *s) {
+  ss_sim *sim = s->sim;
+  int n3 = 3 * sim->ndof, m = sim->lb_m;
+  const double *xd = s->xd, *g = s->g;
+  double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
+  double sy = 0.0, ss = 0.0, yy = 0.0;
+  for (int i = 0; i < n3; i++) {
+    s_new[i] = xd[i] - s_new[i];
+    y_new[i] = g[i] - y_new[i];
+    sy += s_new[i] * y_new[i];
+    ss += s_new[i] * s_new[i];
+    yy += y_new[i] * y_new[i];
+  }
+  if (sy > 1e-12 * sqrt(ss * yy)) {
+    sim->lb_rho[sim->lb_head] = 1.0 / sy;
+    sim->lb_head = (sim->lb_head + 1) % m;
+    if (sim->lb_count < m) sim->lb_count++;
+  }
+}
+
+const ss_solver_ops ss_solver_qn_ops = {
+    .safety_net = 1, .begin = qn_begin, .direction = qn_dir, .tried = NULL, .accepted = qn_accepted};

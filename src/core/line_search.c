@@ -1,0 +1,53 @@
+/* The backtracking line search both solvers use (solver.h).
+ *
+ * Backtracking from the full step, Armijo's sufficient decrease
+ * E(x + a d) <= E(x) + 1e-4 a g.d, halving a up to 40 times (Nocedal and
+ * Wright, "Numerical Optimization", 3.1). Each trial point's energy and
+ * gradient are computed in one evaluation; the accepted point's gradient is
+ * the next iteration's, so a full step that is accepted costs exactly one
+ * evaluation. Close to the minimum the decrease g.d is below the round-off
+ * of E; a step is then also accepted by Hager and Zhang's approximate Wolfe
+ * conditions (which use the slope, not E). */
+#include <math.h>
+#include <string.h>
+
+#include "solver.h"
+
+int ss_line_search(ss_solve *s) {
+  ss_sim *sim = s->sim;
+  int n3 = 3 * sim->ndof;
+  const double *dir = s->dir;
+  double *xd = s->xd, *xt = sim->xt, *gt = sim->gt;
+  double slope = 0.0;
+  for (int i = 0; i < n3; i++) slope += s->g[i] * dir[i];
+  if (!(slope < 0.0)) return 0;
+  double alpha = 1.0;
+  int any_finite = 0;
+  for (int tries = 0; tries < 40; tries++, alpha *= 0.5) {
+    for (int i = 0; i < n3; i++) xt[i] = xd[i] + alpha * dir[i];
+    double et = ss_sim_energy_at(sim, xt, gt);
+    /* |g_t|^2 (finite?) and the slope g_t.d in one pass */
+    double gg = 0.0, st_slope = 0.0;
+    for (int i = 0; i < n3; i++) {
+      gg += gt[i] * gt[i];
+      st_slope += gt[i] * dir[i];
+    }
+    if (!isfinite(et) || !isfinite(gg)) continue;
+    any_finite = 1;
+    /* Armijo, on the difference (exact for nearby values): it asks for a
+     * strict decrease even when 1e-4 a g.d is below the last bit of E. */
+    int armijo = et - s->e <= 1e-4 * alpha * slope;
+    /* Near the minimum the change of E drowns in round-off: Hager and
+     * Zhang's approximate Wolfe conditions (CG_DESCENT, 2005), E not above
+     * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
+    int roundoff = et <= s->e + 1e-12 * fabs(s->e) && st_slope >= 0.9 * slope && st_slope <= -0.8 * slope;
+    if (armijo || roundoff) {
+      memcpy(xd, xt, (size_t)n3 * sizeof *xd);
+      memcpy(s->g, gt, (size_t)n3 * sizeof *gt);
+      int decreased = et < s->e;
+      s->e = et;
+      return decreased ? 1 : 2;
+    }
+  }
+  return any_finite ? 0 : -1;
+}

@@ -1,0 +1,104 @@
+/* The one solver loop (solver.h): Newton and quasi-Newton plug their
+ * directions into it; convergence, the iteration budget, the safety net,
+ * round-off stalls and the statistics are decided here only.
+ *
+ * A solve starts with the energy and gradient at xd. Each iteration asks the
+ * solver for its directions in order of preference and line-searches each
+ * (line_search.c) until one takes a step; the gradient of the accepted point
+ * is the next iteration's. It stops when the residual is within tol, when
+ * the budget `iterations` is spent (a quasi-Newton substep still above
+ * safety_residual goes on up to iterations_max), when no direction decreases
+ * E (stalled, or converged if within tol), or when E is flat to round-off
+ * and the residual has not improved over SS_ROUNDOFF_STEPS accepted steps. */
+#include <math.h>
+
+#include "solver.h"
+#include "ss_err.h"
+
+static const ss_solver_ops *solver_ops(const ss_sim *sim) {
+  return sim->set.solver == SS_SOLVER_NEWTON ? &ss_solver_newton_ops : &ss_solver_qn_ops;
+}
+
+int ss_solver_create(ss_sim *sim, char *err, int err_sz) {
+  return sim->set.solver == SS_SOLVER_NEWTON ? ss_solver_newton_create(sim, err, err_sz)
+                                             : ss_solver_qn_create(sim, err, err_sz);
+}
+
+/* After a line search returned ls (1 step taken, 2 step taken with E flat to
+ * round-off, 0 no step, < 0 non-finite): judges round-off progress by the
+ * residual, sets *converged, *stalled or *nonfinite and the step's residual
+ * and energy; returns 1 to go on iterating, 0 to stop. */
+static int after_line_search(ss_solve *s, int ls, double *best_res, int *roundoff_steps, int *converged,
+                             int *stalled, int *nonfinite) {
+  ss_sim *sim = s->sim;
+  if (ls == 2) {
+    /* E flat to round-off: progress is judged by the residual. */
+    double r = ss_sim_residual(sim, s->g);
+    *roundoff_steps = r < *best_res ? 0 : *roundoff_steps + 1;
+    if (r < *best_res) *best_res = r;
+    if (*roundoff_steps >= SS_ROUNDOFF_STEPS) ls = 0;
+  }
+  if (ls < 0) {
+    *nonfinite = 2; /* xd is still the last finite iterate */
+    return 0;
+  }
+  if (ls == 0) {
+    ss_sim_stats *st = sim->st;
+    st->residual = ss_sim_residual(sim, s->g); /* g is at xd */
+    st->energy = s->e;
+    if (st->residual <= sim->set.tol)
+      *converged = 1;
+    else
+      *stalled = 1;
+    return 0;
+  }
+  return 1;
+}
+
+int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
+  const ss_solver_ops *ops = solver_ops(sim);
+  ss_sim_stats *st = sim->st;
+  ss_solve s = {.sim = sim, .xd = xd, .g = sim->gd, .dir = sim->dir, .e = 0.0, .skip_exact = 0, .backoff = 1};
+  *converged = *stalled = *nonfinite = 0;
+  int roundoff_steps = 0;
+  double best_res = INFINITY;
+  int status = ops->begin(&s);
+  if (status != SS_OK) return status;
+  s.e = ss_sim_energy_at(sim, xd, s.g);
+  double res = ss_sim_residual(sim, s.g);
+  if (!isfinite(s.e) || !isfinite(res)) {
+    *nonfinite = 1;
+    return SS_OK;
+  }
+  for (int it = 0;; it++) {
+    st->residual = res;
+    st->energy = s.e;
+    if (res <= sim->set.tol) {
+      *converged = 1;
+      break;
+    }
+    if (it >= sim->set.iterations) {
+      /* past the budget: go on only while far from converged (safety net) */
+      const int hard = sim->set.iterations_max > sim->set.iterations ? sim->set.iterations_max
+                                                                      : sim->set.iterations;
+      if (!ops->safety_net || !(sim->set.safety_residual > 0.0 && res > sim->set.safety_residual) || it >= hard)
+        break;
+    }
+    st->iterations++;
+    int ls = 0;
+    for (int attempt = 0; ls == 0; attempt++) {
+      int d = ops->direction(&s, attempt);
+      if (d < 0) return d;
+      if (d == SS_DIR_NONE) break;
+      if (d == SS_DIR_SKIP) continue;
+      ls = ss_line_search(&s);
+      if (ops->tried) ops->tried(&s, attempt, ls);
+    }
+    if (!after_line_search(&s, ls, &best_res, &roundoff_steps, converged, stalled, nonfinite)) break;
+    if (ops->accepted) ops->accepted(&s);
+    res = ss_sim_residual(sim, s.g);
+  }
+  /* the root mean square of the residual where the solve ended (g is at xd) */
+  st->residual_rms = ss_sim_residual_rms(sim, s.g);
+  return SS_OK;
+}

@@ -1,0 +1,67 @@
+/* Internal: the one solver loop and what a solver plugs into it.
+ *
+ * A step's implicit Euler system is minimised by one outer loop (solver.c):
+ * energy and gradient at the start, convergence test, iteration budget and
+ * the safety net (safety_residual / iterations_max), round-off stall
+ * detection, statistics. Newton (solver_newton.c) and quasi-Newton
+ * (solver_qn.c) differ only in how they compute a search direction; each
+ * direction is tried with the one line search (line_search.c). A solver
+ * offers its directions in order of preference (attempt 0, 1, ...): the loop
+ * line-searches each until one takes a step. */
+#ifndef SKIN_SIM_SOLVER_H
+#define SKIN_SIM_SOLVER_H
+
+#include "sim_internal.h"
+
+/* One solve's state, owned by the loop; the solver reads and may update it. */
+typedef struct ss_solve {
+  ss_sim *sim;
+  double *xd;      /* (ndof x 3) the iterate */
+  double *g;       /* (ndof x 3) the gradient of E at xd */
+  double *dir;     /* (ndof x 3) the direction a solver writes */
+  double e;        /* E at xd */
+  int skip_exact;  /* Newton: iterations left before the exact Hessian is tried again */
+  int backoff;     /* Newton: the next wait after a failed exact step */
+} ss_solve;
+
+/* What direction() returns besides an error code (< 0). */
+enum { SS_DIR_NONE = 0, /* no further attempt this iteration */
+       SS_DIR_OK = 1,   /* dir is set: line-search it */
+       SS_DIR_SKIP = 2  /* nothing for this attempt: go to the next */ };
+
+typedef struct ss_solver_ops {
+  /* Whether a substep above safety_residual after `iterations` goes on up to
+   * iterations_max (quasi-Newton; Newton stops at its budget). */
+  int safety_net;
+  /* Before the first energy evaluation of a solve (factorisations for a new
+   * h, history reset). SS_OK or an error code. */
+  int (*begin)(ss_solve *s);
+  /* Attempt number `attempt` of this iteration: writes s->dir (a descent
+   * direction) and returns SS_DIR_OK, or SS_DIR_SKIP / SS_DIR_NONE, or an
+   * error code (< 0). */
+  int (*direction)(ss_solve *s, int attempt);
+  /* The line search's outcome ls (see ss_sim_line_search) for an attempt
+   * that gave a direction (may be NULL). */
+  void (*tried)(ss_solve *s, int attempt, int ls);
+  /* After a step is taken and the loop goes on: s->xd, s->g, s->e are at the
+   * new point (may be NULL). */
+  void (*accepted)(ss_solve *s);
+} ss_solver_ops;
+
+extern const ss_solver_ops ss_solver_newton_ops;
+extern const ss_solver_ops ss_solver_qn_ops;
+
+/* ---- line_search.c ----
+ * Backtracking line search along s->dir from s->xd (energy s->e, gradient
+ * s->g), the energy and gradient of each trial point computed together. On
+ * success xd, g, e are updated to the accepted point (g is the gradient
+ * there, the next iteration's gradient: no second evaluation) and 1 is
+ * returned (2 if E did not decrease: accepted by the approximate Wolfe
+ * conditions, E flat to round-off); 0 if no step decreased E; -1 if
+ * everything tried was non-finite. */
+int ss_line_search(ss_solve *s);
+/* Accepted steps in a row without progress, E flat to round-off, after
+ * which a solve stops (stalled unless within tolerance). */
+#define SS_ROUNDOFF_STEPS 8
+
+#endif
