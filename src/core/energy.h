@@ -34,12 +34,9 @@ double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_a
 
 /* ---- membrane, many faces at once (the stepping kernel) -------------------
  * Energy and gradient of the faces of `face` (n records, one 64-byte line
- * each: the offsets 3 v of the corners into the position array, the offsets
- * where each corner's gradient goes, Dm^-1 and the rest area) at the
- * positions x: energy[q], and corner c's gradient (3 values, as
- * ss_membrane_eval's 3 c .. 3 c + 2) at grad[go[c]]. The stepping code
- * places them in the order each free vertex sums them (sim_energy.c), so
- * the sum reads them in one sequential pass.
+ * each: the offsets 3 v of the corners into the position array, Dm^-1 and
+ * the rest area) at the positions x: energy[q] and the gradient
+ * grad[9 q .. 9 q + 8] (corner-major, as ss_membrane_eval).
  * Faces are evaluated SS_MEMBRANE_LANES at a time by one loop the compiler
  * vectorises (no reassociation: every lane computes exactly what
  * ss_membrane_eval computes, bit for bit; a collapsed face, J = 0, is handed
@@ -47,9 +44,10 @@ double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_a
 #define SS_MEMBRANE_LANES 8
 typedef struct ss_membrane_face {
   int xo[3];      /* 3 * vertex index of each corner */
-  int go[3];      /* offset in grad of each corner's gradient */
-  double area;    /* rest area */
+  int pad;
   double dm_inv[4];
+  double area;    /* rest area */
+  double pad2;
 } ss_membrane_face;
 /* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. */
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,

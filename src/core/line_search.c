@@ -9,7 +9,6 @@
  * of E; a step is then also accepted by Hager and Zhang's approximate Wolfe
  * conditions (which use the slope, not E). */
 #include <math.h>
-#include <string.h>
 
 #include "solver.h"
 
@@ -17,7 +16,8 @@ int ss_line_search(ss_solve *s) {
   ss_sim *sim = s->sim;
   int n3 = 3 * sim->ndof;
   const double *dir = s->dir;
-  double *xd = s->xd, *xt = sim->xt, *gt = sim->gt;
+  const double *xd = s->xd;
+  double *xt = s->xt, *gt = s->gt;
   double slope = 0.0;
   for (int i = 0; i < n3; i++) slope += s->g[i] * dir[i];
   if (!(slope < 0.0)) return 0;
@@ -42,8 +42,8 @@ int ss_line_search(ss_solve *s) {
      * round-off and the slope along dir reduced: 0.9 s0 <= g_t.d <= 0.8 |s0|. */
     int roundoff = et <= s->e + 1e-12 * fabs(s->e) && st_slope >= 0.9 * slope && st_slope <= -0.8 * slope;
     if (armijo || roundoff) {
-      memcpy(xd, xt, (size_t)n3 * sizeof *xd);
-      memcpy(s->g, gt, (size_t)n3 * sizeof *gt);
+      s->xt = s->xd, s->xd = xt;
+      s->gt = s->g, s->g = gt;
       int decreased = et < s->e;
       s->e = et;
       return decreased ? 1 : 2;

@@ -410,12 +410,8 @@ void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const 
       }
       energy[qb + l] = en[l];
     }
-    for (int l = 0; l < m; l++) {
-      const ss_membrane_face *fc = face + qb + l;
-      for (int c = 0; c < 3; c++) {
-        double *gc = grad + fc->go[c];
-        gc[0] = gr[3 * c][l], gc[1] = gr[3 * c + 1][l], gc[2] = gr[3 * c + 2][l];
-      }
-    }
+    double *gb = grad + 9 * (size_t)qb;
+    for (int l = 0; l < m; l++)
+      for (int r = 0; r < 9; r++) gb[9 * l + r] = gr[r][l];
   }
 }

@@ -57,53 +57,50 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
 int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
   const int nsim = sim->nsimface, nf = sim->nface, n = sim->ndof;
   const int bary = sim->set.barycenter_anchors;
-  /* face_grad: allocated with the state (sim.c), replaced here, freed with it */
-  free(sim->face_grad), free(sim->grad_ptr), free(sim->grad_slot), free(sim->mface);
-  sim->face_grad = NULL, sim->grad_slot = NULL;
+  sim->bary_base = 9 * nsim;
+  free(sim->face_grad);
+  sim->face_grad = calloc(9 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1, sizeof(double));
   sim->mface = aligned_alloc(64, ((size_t)nsim + 1) * sizeof(ss_membrane_face));
   sim->grad_ptr = calloc((size_t)n + 2, sizeof(int));
-  if (!sim->mface || !sim->grad_ptr) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the energy layout");
+  sim->grad_slot = malloc((3 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
+  if (!sim->face_grad || !sim->mface || !sim->grad_ptr || !sim->grad_slot)
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the energy layout");
   for (int q = 0; q < nsim; q++) {
     int f = sim->simface[q];
     ss_membrane_face *r = sim->mface + q;
     for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->faces[3 * f + c];
+    r->pad = 0;
     memcpy(r->dm_inv, sim->dm_inv + 4 * f, 4 * sizeof(double));
     r->area = sim->rest_area[f];
+    r->pad2 = 0.0;
   }
-  /* Entries per dof in the order of the sum: springs (face order), membrane
-   * (simulated face order), each corner in turn; a corner on a fixed vertex
-   * writes to the one spare entry at the end. */
+  /* Slots per dof in the order of the sum: springs (face order), membrane
+   * (simulated face order), each corner in turn. */
   int *cnt = sim->grad_ptr + 1;
   for (int pass = 0; pass < 2; pass++) {
-    int spare = 0;
     if (pass == 1) {
       for (int k = 0; k < n; k++) sim->grad_ptr[k + 1] += sim->grad_ptr[k];
-      spare = sim->grad_ptr[n];
       cnt = sim->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
-      sim->face_grad = calloc(3 * ((size_t)spare + 1), sizeof(double));
-      sim->grad_slot = malloc(((bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
-      if (!sim->face_grad || !sim->grad_slot)
-        return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the energy layout");
     }
     for (int f = 0; bary && f < nf; f++) {
       if (sim->k_face[f] == 0.0) continue;
       for (int c = 0; c < 3; c++) {
         int k = sim->dof[sim->faces[3 * f + c]];
-        if (pass == 0) {
-          if (k >= 0) cnt[k]++;
-        } else {
-          sim->grad_slot[3 * f + c] = 3 * (k >= 0 ? cnt[k]++ : spare);
-        }
+        if (k < 0) continue;
+        if (pass == 0)
+          cnt[k]++;
+        else
+          sim->grad_slot[cnt[k]++] = sim->bary_base + 3 * f;
       }
     }
     for (int q = 0; q < nsim; q++)
       for (int c = 0; c < 3; c++) {
         int k = sim->dof[sim->faces[3 * sim->simface[q] + c]];
-        if (pass == 0) {
-          if (k >= 0) cnt[k]++;
-        } else {
-          sim->mface[q].go[c] = 3 * (k >= 0 ? cnt[k]++ : spare);
-        }
+        if (k < 0) continue;
+        if (pass == 0)
+          cnt[k]++;
+        else
+          sim->grad_slot[cnt[k]++] = 9 * q + 3 * c;
       }
   }
   /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
@@ -120,7 +117,7 @@ void ss_sim_energy_free(ss_sim *sim) {
 }
 
 /* Gradient of dof k: its own terms (inertia, vertex spring), then the
- * per-face parts it shares, summed in the order they are stored in. */
+ * per-face parts it shares, summed in the order of grad_slot. */
 static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
   int v = sim->dof_vert[k];
   const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
@@ -128,9 +125,9 @@ static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, do
   double g0 = mi * (x[0] - t[0]) + kv * (x[0] - a[0]);
   double g1 = mi * (x[1] - t[1]) + kv * (x[1] - a[1]);
   double g2 = mi * (x[2] - t[2]) + kv * (x[2] - a[2]);
-  const double *p = sim->face_grad + 3 * (size_t)sim->grad_ptr[k];
-  const double *end = sim->face_grad + 3 * (size_t)sim->grad_ptr[k + 1];
-  for (; p < end; p += 3) {
+  const double *fg = sim->face_grad;
+  for (int e = sim->grad_ptr[k]; e < sim->grad_ptr[k + 1]; e++) {
+    const double *p = fg + sim->grad_slot[e];
     g0 += p[0];
     g1 += p[1];
     g2 += p[2];
@@ -170,11 +167,8 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
       for (int i = 0; i < 3; i++)
         d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
       e += 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      const double g0 = kf * d[0] / 3.0, g1 = kf * d[1] / 3.0, g2 = kf * d[2] / 3.0;
-      for (int c = 0; c < 3; c++) {
-        double *gb = fg + sim->grad_slot[3 * f + c];
-        gb[0] = g0, gb[1] = g1, gb[2] = g2;
-      }
+      double *gb = fg + sim->bary_base + 3 * f;
+      for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
     }
   }
   /* Membrane: blocks of faces on all threads, energies summed in face order

@@ -87,12 +87,12 @@ struct ss_sim {
   ss_walker **walkers;        /* (nthread_max) walk scratch, one per thread */
   signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
-  double *face_grad;          /* (grad_ptr[ndof] + 1) x 3: the per-face gradient parts, by dof in
-                                 the order of its sum (springs by face, then membrane by
-                                 face), then one spare entry for corners on fixed vertices */
+  double *face_grad;          /* their gradients (9 per simulated face), then the
+                                 barycenter springs' (3 per face) */
   struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
-  int *grad_ptr;              /* (ndof + 1) CSR: each dof's entries of face_grad */
-  int *grad_slot;             /* (nface x 3) offset in face_grad of each spring corner's part */
+  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
+  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
+  int bary_base;              /* first slot of the springs' part of face_grad */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */

@@ -11,6 +11,7 @@
  * E (stalled, or converged if within tol), or when E is flat to round-off
  * and the residual has not improved over SS_ROUNDOFF_STEPS accepted steps. */
 #include <math.h>
+#include <string.h>
 
 #include "solver.h"
 #include "ss_err.h"
@@ -58,7 +59,7 @@ static int after_line_search(ss_solve *s, int ls, double *best_res, int *roundof
 int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
   const ss_solver_ops *ops = solver_ops(sim);
   ss_sim_stats *st = sim->st;
-  ss_solve s = {.sim = sim, .xd = xd, .g = sim->gd, .dir = sim->dir, .e = 0.0, .skip_exact = 0, .backoff = 1};
+  ss_solve s = {.sim = sim, .xd = xd, .g = sim->gd, .dir = sim->dir, .xt = sim->xt, .gt = sim->gt, .e = 0.0, .skip_exact = 0, .backoff = 1};
   *converged = *stalled = *nonfinite = 0;
   int roundoff_steps = 0;
   double best_res = INFINITY;
@@ -88,16 +89,23 @@ int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *
     int ls = 0;
     for (int attempt = 0; ls == 0; attempt++) {
       int d = ops->direction(&s, attempt);
-      if (d < 0) return d;
+      if (d < 0) {
+        status = d;
+        break;
+      }
       if (d == SS_DIR_NONE) break;
       if (d == SS_DIR_SKIP) continue;
       ls = ss_line_search(&s);
       if (ops->tried) ops->tried(&s, attempt, ls);
     }
+    if (status != SS_OK) break;
     if (!after_line_search(&s, ls, &best_res, &roundoff_steps, converged, stalled, nonfinite)) break;
     if (ops->accepted) ops->accepted(&s);
     res = ss_sim_residual(sim, s.g);
   }
+  /* the iterate back into the caller's array (accepted steps swap buffers) */
+  if (s.xd != xd) memcpy(xd, s.xd, 3 * (size_t)sim->ndof * sizeof *xd);
+  if (status != SS_OK) return status;
   /* the root mean square of the residual where the solve ended (g is at xd) */
   st->residual_rms = ss_sim_residual_rms(sim, s.g);
   return SS_OK;

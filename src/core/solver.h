@@ -19,6 +19,8 @@ typedef struct ss_solve {
   double *xd;      /* (ndof x 3) the iterate */
   double *g;       /* (ndof x 3) the gradient of E at xd */
   double *dir;     /* (ndof x 3) the direction a solver writes */
+  double *xt, *gt; /* (ndof x 3) the line search's trial point and its gradient; an
+                      accepted trial swaps with xd and g (no copy) */
   double e;        /* E at xd */
   int skip_exact;  /* Newton: iterations left before the exact Hessian is tried again */
   int backoff;     /* Newton: the next wait after a failed exact step */
@@ -54,8 +56,9 @@ extern const ss_solver_ops ss_solver_qn_ops;
 /* ---- line_search.c ----
  * Backtracking line search along s->dir from s->xd (energy s->e, gradient
  * s->g), the energy and gradient of each trial point computed together. On
- * success xd, g, e are updated to the accepted point (g is the gradient
- * there, the next iteration's gradient: no second evaluation) and 1 is
+ * success xd, g, e are the accepted point (xd and g swapped with xt and gt;
+ * g is the gradient there, the next iteration's gradient: no second
+ * evaluation) and 1 is
  * returned (2 if E did not decrease: accepted by the approximate Wolfe
  * conditions, E flat to round-off); 0 if no step decreased E; -1 if
  * everything tried was non-finite. */

@@ -408,7 +408,7 @@ static void test_batch_bits(unsigned long long *rng) {
     if (q % 13 == 9) /* coincident */
       for (int i = 0; i < 6; i++) cur[3 + i] = cur[i % 3];
     memcpy(x + 9 * q, cur, sizeof cur);
-    for (int c = 0; c < 3; c++) rec[q].xo[c] = rec[q].go[c] = 9 * q + 3 * c;
+    for (int c = 0; c < 3; c++) rec[q].xo[c] = 9 * q + 3 * c;
     double area;
     ss_membrane_rest(rest, rest + 3, rest + 6, rec[q].dm_inv, &area);
     rec[q].area = area;
