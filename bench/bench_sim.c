@@ -119,6 +119,7 @@ static void probe_after(probe *pr, const ss_sim *sim, const double *pose, double
   ss_walk_result res;
   double c0 = cpu_ms();
   for (int a = 0; a < pr->nanchor; a++) {
+    if (a + SS_WALK_PREFETCH < pr->nanchor) ss_frames_prefetch(fr, pr->face0[a + SS_WALK_PREFETCH]);
     if (pr->face0[a] < 0) continue;
     ss_mover_move(pr->walk, pr->face0[a], pr->uv0 + 2 * a, pr->target + 3 * a, &res);
     pr->face[a] = res.face;

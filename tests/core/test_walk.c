@@ -42,7 +42,7 @@ static int uv_inside(const double uv[2]) {
 static int locate(const walk_env *e, double x, double y, double uv[2]) {
   for (int f = 0; f < e->topo->nface; f++) {
     if (e->frames->degenerate[f]) continue;
-    const double *o = e->frames->origin + 3 * f, *t = e->frames->to_canon + 6 * f;
+    const double *o = ss_frames_origin(e->frames, f), *t = ss_frames_to_canon(e->frames, f);
     double d[3] = {x - o[0], y - o[1], -o[2]};
     double u = t[0] * d[0] + t[1] * d[1] + t[2] * d[2], v = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
     if (u >= -1e-12 && v >= -1e-12 && u + v <= 1.0 + 1e-12) {
@@ -195,7 +195,7 @@ static void test_seamed_cube_walk(void) {
   double uv[2];
   int f = -1;
   for (int g = 0; g < 2 && f < 0; g++) {
-    const double *o = e.frames->origin + 3 * g, *t = e.frames->to_canon + 6 * g;
+    const double *o = ss_frames_origin(e.frames, g), *t = ss_frames_to_canon(e.frames, g);
     double d[3] = {0.5 - o[0], 0.25 - o[1], -o[2]};
     uv[0] = t[0] * d[0] + t[1] * d[1] + t[2] * d[2];
     uv[1] = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
@@ -273,7 +273,7 @@ static void test_slivers_and_zero_area(void) {
   ss_walk_result r;
   ss_walk(e1.walker, e1.topo, e1.frames, 0, uv, target, 10, &r);
   CHECK(uv_inside(r.uv));
-  for (int i = 0; i < 6; i++) CHECK(isfinite(e1.frames->to_canon[i]));
+  for (int i = 0; i < 6; i++) CHECK(isfinite(ss_frames_to_canon(e1.frames, 0)[i]));
   env_free(&e1);
   env_free(&e);
   test_mesh_free(&m);
