@@ -1,7 +1,7 @@
 /* bench_sim: times ss_sim on a built-in scene (a benchmark, not a test).
  *
- *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads] [orient]
- *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings)
+ *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads] [orient] [anchors]
+ *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings) 0
  *
  * Prints one line of medians per frame (ms): total, pose (body frames, anchor
  * positions), walk (anchor updates), assemble, factor, solve; mean iterations,
@@ -9,8 +9,19 @@
  * ratio range over all frames, and an FNV-1a hash of the final positions.
  * "cpu" is the median CPU time of the process per step (all threads): on a
  * shared, loaded machine the figure to compare between builds at one thread,
- * where wall-clock times mostly measure the other jobs. */
+ * where wall-clock times mostly measure the other jobs.
+ *
+ * anchors 1 adds a per-anchor comparison of the walk and BVH projection on the
+ * same queries (not part of the step's times): after each step, every anchor's
+ * move of that step is replayed from where it was before the step towards the
+ * same target a* = a0 + slide_frac (p - a0) the skin gave it (p its skin point,
+ * a0 its position in the new pose), once by the walk and once by the exact
+ * closest point on the body (the BVH), each over all anchors in one timed loop
+ * (CPU time), and prints the per-frame medians in ns per anchor, their ratio,
+ * and how many replayed walks ended where the skin's own walk did (all of them
+ * at 1 substep and no tether). */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <time.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +29,7 @@
 
 #include "skin_sim/ss_scene.h"
 #include "skin_sim/ss_sim.h"
+#include "mover.h"
 
 static double cpu_ms(void) {
   struct timespec ts;
@@ -35,6 +47,102 @@ static double median(double *v, int n) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+/* The per-anchor comparison of walk and projection (anchors 1). */
+typedef struct probe {
+  ss_mover *walk, *project;
+  int nanchor, nskinvert;
+  int *face0, *face;       /* (nanchor) before the step / replayed walk result */
+  double *uv0, *target;    /* (nanchor x 2), (nanchor x 3) */
+  double *walk_ns, *project_ns; /* (frames) per anchor */
+  long long same, compared, steps;
+  int walked; /* anchors replayed per frame */
+} probe;
+
+static int probe_create(probe *pr, const ss_sim *sim, int frames, char *err, int err_sz) {
+  memset(pr, 0, sizeof *pr);
+  ss_mover_settings ms = ss_sim_get_settings(sim)->mover;
+  ms.method = SS_METHOD_WALK;
+  if (ss_mover_create(&pr->walk, ss_sim_body_topo(sim), &ms, err, err_sz)) return 1;
+  ms.method = SS_METHOD_PROJECT;
+  if (ss_mover_create(&pr->project, ss_sim_body_topo(sim), &ms, err, err_sz)) return 1;
+  pr->nanchor = ss_sim_nanchors(sim);
+  pr->nskinvert = ss_sim_skin_nvert(sim);
+  size_t n = (size_t)pr->nanchor;
+  pr->face0 = malloc(n * sizeof(int));
+  pr->face = malloc(n * sizeof(int));
+  pr->uv0 = malloc(2 * n * sizeof(double));
+  pr->target = malloc(3 * n * sizeof(double));
+  pr->walk_ns = malloc((size_t)frames * sizeof(double));
+  pr->project_ns = malloc((size_t)frames * sizeof(double));
+  if (!pr->face0 || !pr->face || !pr->uv0 || !pr->target || !pr->walk_ns || !pr->project_ns) {
+    snprintf(err, (size_t)err_sz, "out of memory for the anchor probe");
+    return 1;
+  }
+  return 0;
+}
+
+static void probe_destroy(probe *pr) {
+  ss_mover_destroy(pr->walk);
+  ss_mover_destroy(pr->project);
+  free(pr->face0), free(pr->face), free(pr->uv0), free(pr->target);
+  free(pr->walk_ns), free(pr->project_ns);
+}
+
+/* Before a step: where the anchors are. */
+static void probe_before(probe *pr, const ss_sim *sim) {
+  memcpy(pr->face0, ss_sim_anchor_faces(sim), (size_t)pr->nanchor * sizeof(int));
+  memcpy(pr->uv0, ss_sim_anchor_uv(sim), 2 * (size_t)pr->nanchor * sizeof(double));
+}
+
+/* After step f (one substep, body pose `pose`): replays the anchors' moves. */
+static void probe_after(probe *pr, const ss_sim *sim, const double *pose, double dt, int f) {
+  const ss_sim_settings *set = ss_sim_get_settings(sim);
+  const double frac = set->slide > 0.0 ? -expm1(-set->slide * dt / set->substeps) : 0.0;
+  const double *x = ss_sim_skin_positions(sim);
+  const int *faces = ss_sim_skin_faces(sim), nv = pr->nskinvert;
+  ss_mover_set_pose(pr->walk, pose);
+  ss_mover_set_pose(pr->project, pose);
+  const ss_frames *fr = ss_mover_frames(pr->walk);
+  int n = 0;
+  for (int a = 0; a < pr->nanchor; a++) {
+    if (pr->face0[a] < 0) continue;
+    double p[3], a0[3];
+    if (a < nv) {
+      memcpy(p, x + 3 * a, sizeof p);
+    } else {
+      const int *fv = faces + 3 * (a - nv);
+      for (int i = 0; i < 3; i++) p[i] = (x[3 * fv[0] + i] + x[3 * fv[1] + i] + x[3 * fv[2] + i]) / 3.0;
+    }
+    ss_anchor_position(fr, pr->face0[a], pr->uv0 + 2 * a, a0);
+    for (int i = 0; i < 3; i++) pr->target[3 * a + i] = a0[i] + frac * (p[i] - a0[i]);
+    n++;
+  }
+  ss_walk_result res;
+  double c0 = cpu_ms();
+  for (int a = 0; a < pr->nanchor; a++) {
+    if (a + SS_WALK_PREFETCH < pr->nanchor) ss_frames_prefetch(fr, pr->face0[a + SS_WALK_PREFETCH]);
+    if (pr->face0[a] < 0) continue;
+    ss_mover_move(pr->walk, pr->face0[a], pr->uv0 + 2 * a, pr->target + 3 * a, &res);
+    pr->face[a] = res.face;
+    pr->steps += res.steps;
+  }
+  double c1 = cpu_ms();
+  for (int a = 0; a < pr->nanchor; a++) {
+    if (pr->face0[a] < 0) continue;
+    ss_mover_move(pr->project, pr->face0[a], pr->uv0 + 2 * a, pr->target + 3 * a, &res);
+  }
+  double c2 = cpu_ms();
+  pr->walked = n;
+  pr->walk_ns[f] = n ? 1e6 * (c1 - c0) / n : 0.0;
+  pr->project_ns[f] = n ? 1e6 * (c2 - c1) / n : 0.0;
+  const int *face_sim = ss_sim_anchor_faces(sim);
+  for (int a = 0; a < pr->nanchor; a++) {
+    if (pr->face0[a] < 0) continue;
+    pr->compared++;
+    pr->same += pr->face[a] == face_sim[a];
+  }
+}
+
 int main(int argc, char **argv) {
   const char *scene_name = argc > 1 ? argv[1] : "twist";
   int tris = argc > 2 ? atoi(argv[2]) : 19000;
@@ -48,6 +156,7 @@ int main(int argc, char **argv) {
   if (argc > 8) set.mover.method = ss_method_parse(argv[8]);
   if (argc > 9) set.threads = atoi(argv[9]);
   if (argc > 10) set.orient = atof(argv[10]);
+  const int anchors = argc > 11 ? atoi(argv[11]) : 0;
   char err[256];
   ss_scene *scene = NULL;
   if (ss_scene_create(&scene, scene_name, tris, err, sizeof err) != SS_OK) {
@@ -58,6 +167,11 @@ int main(int argc, char **argv) {
   ss_sim *sim = NULL;
   if (ss_sim_create(&sim, nv, ss_scene_rest(scene), nf, ss_scene_faces(scene), NULL, &set, err,
                     sizeof err) != SS_OK) {
+    fprintf(stderr, "bench_sim: %s\n", err);
+    return 1;
+  }
+  probe pr;
+  if (anchors && probe_create(&pr, sim, frames, err, sizeof err)) {
     fprintf(stderr, "bench_sim: %s\n", err);
     return 1;
   }
@@ -73,12 +187,14 @@ int main(int argc, char **argv) {
   for (int f = 0; f < frames; f++) {
     ss_scene_pose(scene, f + 1, pose);
     ss_sim_stats st;
+    if (anchors) probe_before(&pr, sim);
     double c0 = cpu_ms();
     if (ss_sim_step(sim, pose, dt, &st, err, sizeof err) != SS_OK) {
       fprintf(stderr, "bench_sim: frame %d: %s\n", f, err);
       return 1;
     }
     t_cpu[f] = cpu_ms() - c0;
+    if (anchors) probe_after(&pr, sim, pose, dt, f);
     t_total[f] = st.total_ms, t_walk[f] = st.walk_ms, t_asm[f] = st.assemble_ms;
     t_fac[f] = st.factor_ms, t_sol[f] = st.solve_ms, t_pose[f] = st.pose_ms;
     it_sum += st.iterations;
@@ -100,6 +216,15 @@ int main(int argc, char **argv) {
          scene_name, nf, nv, ss_sim_ndof(sim), solver, ss_method_name(set.mover.method), set.substeps, frames,
          median(t_total, frames), median(t_cpu, frames), median(t_pose, frames), median(t_walk, frames), median(t_asm, frames), median(t_fac, frames),
          median(t_sol, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
+  if (anchors) {
+    double w = median(pr.walk_ns, frames), p = median(pr.project_ns, frames);
+    printf("anchors %d per frame (per anchor, same queries, CPU, medians): walk_ns %.1f project_ns %.1f "
+           "project/walk %.1f (walk %.2f ms per frame, %.3f edges crossed per walk); replayed walks "
+           "ending in the skin's face %lld/%lld\n",
+           pr.walked, w, p, w > 0.0 ? p / w : 0.0, 1e-6 * w * pr.walked,
+           pr.compared ? (double)pr.steps / (double)pr.compared : 0.0, pr.same, pr.compared);
+    probe_destroy(&pr);
+  }
   ss_sim_destroy(sim);
   ss_scene_destroy(scene);
   free(pose), free(t_total), free(t_walk), free(t_asm), free(t_fac), free(t_sol), free(t_pose), free(t_cpu);

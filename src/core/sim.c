@@ -350,7 +350,7 @@ static int share_corner(const ss_topo *t, int f, int g) {
 /* The tether's home stretch: the anchor goes to the point of home face h
  * closest to `target` (robust on slivers and degenerate faces). */
 static void home_stretch(const ss_frames *fr, int h, const double target[3], double uv[2]) {
-  const double *o = fr->origin + 3 * h, *e = fr->edge + 6 * h;
+  const double *o = ss_frames_origin(fr, h), *e = ss_frames_edges(fr, h);
   const double b[3] = {o[0] + e[0], o[1] + e[1], o[2] + e[2]};
   const double c[3] = {o[0] + e[3], o[1] + e[4], o[2] + e[5]};
   ss_closest_point_triangle(target, o, b, c, uv);
@@ -364,6 +364,8 @@ typedef struct anchor_counts {
  * own scratch). */
 static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_counts *c) {
   const int nv = sim->nvert;
+  if (a + SS_WALK_PREFETCH < sim->nanchor)
+    ss_frames_prefetch(ss_mover_frames(sim->mover), sim->anchor_face[a + SS_WALK_PREFETCH]);
   double p[3];
   if (a < nv) {
     if (sim->dof[a] < 0 || sim->k_vert[a] == 0.0) return;

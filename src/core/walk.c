@@ -47,16 +47,12 @@ int ss_frames_create(ss_frames **out, int nface) {
   ss_frames *fr = calloc(1, sizeof *fr);
   if (!fr) return SS_E_NOMEM;
   fr->nface = nface;
-  fr->origin = malloc(sizeof(double) * 3 * (size_t)nface);
-  fr->edge = malloc(sizeof(double) * 6 * (size_t)nface);
-  fr->to_canon = malloc(sizeof(double) * 6 * (size_t)nface);
   fr->normal = malloc(sizeof(double) * 3 * (size_t)nface);
   fr->area = malloc(sizeof(double) * (size_t)nface);
   fr->degenerate = malloc((size_t)nface);
-  fr->walk = aligned_alloc(64, sizeof(double) * 16 * (size_t)nface);
+  fr->walk = aligned_alloc(64, sizeof(double) * SS_FRAME_RECORD * (size_t)nface);
   fr->cross = malloc(sizeof(int) * 3 * (size_t)nface);
-  if (!fr->origin || !fr->edge || !fr->to_canon || !fr->normal || !fr->area ||
-      !fr->degenerate || !fr->walk || !fr->cross) {
+  if (!fr->normal || !fr->area || !fr->degenerate || !fr->walk || !fr->cross) {
     ss_frames_destroy(fr);
     return SS_E_NOMEM;
   }
@@ -66,9 +62,6 @@ int ss_frames_create(ss_frames **out, int nface) {
 
 void ss_frames_destroy(ss_frames *fr) {
   if (!fr) return;
-  free(fr->origin);
-  free(fr->edge);
-  free(fr->to_canon);
   free(fr->normal);
   free(fr->area);
   free(fr->degenerate);
@@ -131,13 +124,17 @@ static void build_crossings(ss_frames *fr, const ss_topo *topo) {
   fr->cross_topo = topo;
 }
 
+/* One pass over the faces, each written once: its walk record (origin,
+ * edges, canonical map, degenerate flag), normal and area. */
 void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
   if (fr->cross_topo != topo) build_crossings(fr, topo);
+  const int *fv = topo->face_vert;
   for (int f = 0; f < topo->nface; f++) {
-    const double *v0 = pos + 3 * topo->face_vert[3 * f];
-    const double *v1 = pos + 3 * topo->face_vert[3 * f + 1];
-    const double *v2 = pos + 3 * topo->face_vert[3 * f + 2];
-    double *o = fr->origin + 3 * f, *e = fr->edge + 6 * f, *n = fr->normal + 3 * f;
+    const double *v0 = pos + 3 * fv[3 * f];
+    const double *v1 = pos + 3 * fv[3 * f + 1];
+    const double *v2 = pos + 3 * fv[3 * f + 2];
+    double *w = fr->walk + SS_FRAME_RECORD * (size_t)f, *n = fr->normal + 3 * f;
+    double *o = w, *e = w + 3;
     for (int i = 0; i < 3; i++) {
       o[i] = v0[i];
       e[i] = v1[i] - v0[i];
@@ -153,24 +150,15 @@ void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
     } else {
       n[0] = n[1] = n[2] = 0.0;
     }
-    fr->degenerate[f] = (unsigned char)canonical_map(e, e + 3, fr->to_canon + 6 * f);
-    double *w = fr->walk + 16 * f;
-    memcpy(w, o, 3 * sizeof(double));
-    memcpy(w + 3, e, 6 * sizeof(double));
-    memcpy(w + 9, fr->to_canon + 6 * f, 6 * sizeof(double));
-    w[15] = fr->degenerate[f] ? 1.0 : 0.0;
+    const int deg = canonical_map(e, e + 3, w + 9);
+    fr->degenerate[f] = (unsigned char)deg;
+    w[15] = deg ? 1.0 : 0.0;
   }
 }
 
 /* World point of canonical uv on face f (the walk's hot path: inlined). */
 static inline void face_point(const ss_frames *fr, int f, const double uv[2], double out[3]) {
-  const double *o = fr->origin + 3 * f, *e = fr->edge + 6 * f;
-  for (int i = 0; i < 3; i++) out[i] = o[i] + uv[0] * e[i] + uv[1] * e[3 + i];
-}
-
-void ss_anchor_position(const ss_frames *fr, int face, const double uv[2], double out[3]) {
-  const double *o = fr->origin + 3 * face, *e = fr->edge + 6 * face;
-  for (int i = 0; i < 3; i++) out[i] = o[i] + uv[0] * e[i] + uv[1] * e[3 + i];
+  ss_anchor_position(fr, f, uv, out);
 }
 
 /* ---- the walk ------------------------------------------------------------ */
@@ -292,7 +280,7 @@ static inline int cross_edge(ss_walker *walker, const int *cross, int *f, int k,
  * face's size), as if the face were not there. Returns that edge or -1. */
 static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const ss_frames *fr,
                              int f, const double p[2], double *s_out) {
-  const double *e = fr->edge + 6 * f;
+  const double *e = ss_frames_edges(fr, f);
   const double size2 = dot3(e, e) + dot3(e + 3, e + 3);
   double x[3];
   face_point(fr, f, p, x);
@@ -331,16 +319,12 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   res->length = 0.0;
   if (!(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) return;
 
-  if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
-    memset(walker->visited, 0, sizeof(unsigned int) * (size_t)walker->nface);
-    walker->stamp = 1;
-  }
   int f = face;
   const int *cross = fr->cross;
-  walker->visited[f] = walker->stamp;
+  int stamped = 0; /* this walk's stamp taken and its start face marked (at its first crossing) */
   for (;;) {
     /* direction towards a* in f's canonical space */
-    const double *w = fr->walk + 16 * f; /* origin, e1, e2, to_canon */
+    const double *w = fr->walk + SS_FRAME_RECORD * (size_t)f; /* origin, e1, e2, to_canon */
     double here[3], d[3];
     for (int i = 0; i < 3; i++) here[i] = w[i] + p[0] * w[3 + i] + p[1] * w[6 + i];
     for (int i = 0; i < 3; i++) d[i] = target[i] - here[i];
@@ -351,17 +335,25 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
     /* the smallest ray parameter at which the ray leaves the triangle */
     double t_exit = 1.0;
     int k_exit = -1;
-    if (dv < 0.0) { /* edge 0: v = 0 */
-      double te = -p[1] / dv;
-      if (te < t_exit) t_exit = te, k_exit = 0;
-    }
-    if (du + dv > 0.0) { /* edge 1: u + v = 1 */
-      double te = (1.0 - p[0] - p[1]) / (du + dv);
-      if (te < t_exit) t_exit = te, k_exit = 1;
-    }
-    if (du < 0.0) { /* edge 2: u = 0 */
-      double te = -p[0] / du;
-      if (te < t_exit) t_exit = te, k_exit = 2;
+    /* Most rays end inside their face. An edge's exit parameter te = a / b
+     * (b > 0) is >= 1 when a >= b exactly (rounding is monotone), so where
+     * all three compare so, no edge is crossed, as the divisions below would
+     * find, without them. */
+    const double sum = du + dv, rest = 1.0 - p[0] - p[1];
+    if (!((dv >= 0.0 || p[1] >= -dv) && (!(sum > 0.0) || rest >= sum) &&
+          (du >= 0.0 || p[0] >= -du))) {
+      if (dv < 0.0) { /* edge 0: v = 0 */
+        double te = -p[1] / dv;
+        if (te < t_exit) t_exit = te, k_exit = 0;
+      }
+      if (sum > 0.0) { /* edge 1: u + v = 1 */
+        double te = rest / sum;
+        if (te < t_exit) t_exit = te, k_exit = 1;
+      }
+      if (du < 0.0) { /* edge 2: u = 0 */
+        double te = -p[0] / du;
+        if (te < t_exit) t_exit = te, k_exit = 2;
+      }
     }
     const double p0u = p[0], p0v = p[1];
     if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
@@ -376,8 +368,16 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
     res->length += canonical_length(w + 3, p[0] - p0u, p[1] - p0v);
+    if (!stamped) {
+      if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
+        memset(walker->visited, 0, sizeof(unsigned int) * (size_t)walker->nface);
+        walker->stamp = 1;
+      }
+      walker->visited[face] = walker->stamp;
+      stamped = 1;
+    }
     int stop = cross_edge(walker, cross, &f, k_exit, s, p, max_steps, res);
-    while (stop == SS_STOP_INSIDE && fr->walk[16 * f + 15] != 0.0) {
+    while (stop == SS_STOP_INSIDE && fr->walk[SS_FRAME_RECORD * (size_t)f + 15] != 0.0) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
       if (k_pass < 0) break;
       stop = cross_edge(walker, cross, &f, k_pass, s, p, max_steps, res);

@@ -5,26 +5,28 @@
 #ifndef SKIN_SIM_WALK_H
 #define SKIN_SIM_WALK_H
 
+#include <stddef.h>
+
 #include "skin_sim/ss_mesh.h"
 
 /* Per-face data of the body in its current pose, computed once per frame
  * (ss_frames_update) and then shared read-only by every anchor update. */
 typedef struct ss_frames {
   int nface;
-  double *origin;    /* (nface x 3) corner v0 */
-  double *edge;      /* (nface x 6) Dm = [v1 - v0, v2 - v0], stored as e1 xyz then e2 xyz */
-  double *to_canon;  /* (nface x 6) R^-1 Q^T from the QR of Dm: 2x3 row-major; maps a world
-                        vector to canonical (u, v) coordinates. Regularised on degenerate faces
-                        so it is always finite. */
+  /* One 128-byte record per face (two adjacent cache lines, 64-byte aligned),
+   * all a walk step reads of a face: origin v0 (3), e1 = v1 - v0 (3),
+   * e2 = v2 - v0 (3), to_canon (6), then 1.0 where degenerate (else 0.0).
+   * to_canon is R^-1 Q^T from the QR of Dm = [e1, e2], 2x3 row-major: it maps a
+   * world vector to canonical (u, v) coordinates; regularised on degenerate
+   * faces so that it is always finite. Read it through ss_frames_origin,
+   * ss_frames_edges, ss_frames_to_canon. */
+  double *walk;      /* (nface x 16) */
   double *normal;    /* (nface x 3) unit normal (zero on a degenerate face) */
   double *area;      /* (nface) area */
   unsigned char *degenerate; /* (nface) 1 where the face is too thin for its QR to be
                                 inverted in this pose (zero area, collinear corners):
                                 to_canon is then the regularised pseudo-inverse and
                                 walks pass straight through the face */
-  /* The walk's own copy, one 128-byte record per face (two cache lines):
-   * origin, e1, e2, to_canon, then 1.0 where degenerate (else 0.0). */
-  double *walk;      /* (nface x 16) */
   /* Crossing of edge k of face f: -1 (no neighbour), else
    * 8 g + 2 kg + flip, g the neighbour, kg the edge's index in g, flip 1
    * where g runs along the edge the other way. Built from the topology at the
@@ -33,13 +35,49 @@ typedef struct ss_frames {
   const ss_topo *cross_topo;
 } ss_frames;
 
+#define SS_FRAME_RECORD 16 /* doubles per face record in ss_frames.walk */
+
+/* Corner v0 of face f (3 doubles). */
+static inline const double *ss_frames_origin(const ss_frames *fr, int f) {
+  return fr->walk + SS_FRAME_RECORD * (size_t)f;
+}
+/* Edges e1 = v1 - v0 then e2 = v2 - v0 of face f (6 doubles). */
+static inline const double *ss_frames_edges(const ss_frames *fr, int f) {
+  return fr->walk + SS_FRAME_RECORD * (size_t)f + 3;
+}
+/* The canonical map of face f (2x3 row-major). */
+static inline const double *ss_frames_to_canon(const ss_frames *fr, int f) {
+  return fr->walk + SS_FRAME_RECORD * (size_t)f + 9;
+}
+
 int ss_frames_create(ss_frames **out, int nface);
 void ss_frames_destroy(ss_frames *frames);
 /* Recomputes all per-face data for positions pos (nvert x 3). Allocates nothing. */
 void ss_frames_update(ss_frames *frames, const ss_topo *topo, const double *pos);
 
-/* World position of anchor (face, uv) in the pose of frames. */
-void ss_anchor_position(const ss_frames *frames, int face, const double uv[2], double out[3]);
+/* Asks the memory for face f's record (both lines) ahead of a walk from it:
+ * callers walking many anchors call it a few anchors ahead, so that the
+ * record arrives while the walks before run. f < 0: nothing. */
+#define SS_WALK_PREFETCH 8 /* anchors ahead */
+static inline void ss_frames_prefetch(const ss_frames *frames, int f) {
+#if defined(__GNUC__)
+  if (f >= 0) {
+    const double *w = frames->walk + SS_FRAME_RECORD * (size_t)f;
+    __builtin_prefetch(w);
+    __builtin_prefetch(w + 8);
+  }
+#else
+  (void)frames, (void)f;
+#endif
+}
+
+/* World position of anchor (face, uv) in the pose of frames (inline: the
+ * frame update's callers run it for every anchor). */
+static inline void ss_anchor_position(const ss_frames *frames, int face, const double uv[2],
+                                      double out[3]) {
+  const double *w = frames->walk + SS_FRAME_RECORD * (size_t)face;
+  for (int i = 0; i < 3; i++) out[i] = w[i] + uv[0] * w[3 + i] + uv[1] * w[6 + i];
+}
 
 enum ss_walk_stop {
   SS_STOP_INSIDE = 0,     /* the ray ended inside a face: the normal case */

@@ -42,7 +42,7 @@ static int uv_inside(const double uv[2]) {
 static int locate(const walk_env *e, double x, double y, double uv[2]) {
   for (int f = 0; f < e->topo->nface; f++) {
     if (e->frames->degenerate[f]) continue;
-    const double *o = e->frames->origin + 3 * f, *t = e->frames->to_canon + 6 * f;
+    const double *o = ss_frames_origin(e->frames, f), *t = ss_frames_to_canon(e->frames, f);
     double d[3] = {x - o[0], y - o[1], -o[2]};
     double u = t[0] * d[0] + t[1] * d[1] + t[2] * d[2], v = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
     if (u >= -1e-12 && v >= -1e-12 && u + v <= 1.0 + 1e-12) {
@@ -195,7 +195,7 @@ static void test_seamed_cube_walk(void) {
   double uv[2];
   int f = -1;
   for (int g = 0; g < 2 && f < 0; g++) {
-    const double *o = e.frames->origin + 3 * g, *t = e.frames->to_canon + 6 * g;
+    const double *o = ss_frames_origin(e.frames, g), *t = ss_frames_to_canon(e.frames, g);
     double d[3] = {0.5 - o[0], 0.25 - o[1], -o[2]};
     uv[0] = t[0] * d[0] + t[1] * d[1] + t[2] * d[2];
     uv[1] = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
@@ -273,7 +273,7 @@ static void test_slivers_and_zero_area(void) {
   ss_walk_result r;
   ss_walk(e1.walker, e1.topo, e1.frames, 0, uv, target, 10, &r);
   CHECK(uv_inside(r.uv));
-  for (int i = 0; i < 6; i++) CHECK(isfinite(e1.frames->to_canon[i]));
+  for (int i = 0; i < 6; i++) CHECK(isfinite(ss_frames_to_canon(e1.frames, 0)[i]));
   env_free(&e1);
   env_free(&e);
   test_mesh_free(&m);
@@ -334,7 +334,107 @@ static void test_projection_property(void) {
   test_mesh_free(&m);
 }
 
+/* The frame update's per-face record is the face: origin v0, edges v1 - v0
+ * and v2 - v0, a canonical map that takes the edges to (1,0) and (0,1), and
+ * the degenerate flag. */
+static void test_frame_records(void) {
+  test_mesh m = test_grid(6, 5, 0.3, 3);
+  walk_env e = env_make(&m);
+  for (int f = 0; f < m.nface; f++) {
+    const double *v0 = m.pos + 3 * m.faces[3 * f], *v1 = m.pos + 3 * m.faces[3 * f + 1],
+                 *v2 = m.pos + 3 * m.faces[3 * f + 2];
+    const double *o = ss_frames_origin(e.frames, f), *ed = ss_frames_edges(e.frames, f);
+    const double *t = ss_frames_to_canon(e.frames, f);
+    for (int i = 0; i < 3; i++) {
+      CHECK(o[i] == v0[i]);
+      CHECK(ed[i] == v1[i] - v0[i]);
+      CHECK(ed[3 + i] == v2[i] - v0[i]);
+    }
+    CHECK(e.frames->walk[SS_FRAME_RECORD * f + 15] == (e.frames->degenerate[f] ? 1.0 : 0.0));
+    CHECK(!e.frames->degenerate[f]);
+    for (int k = 0; k < 2; k++) { /* T e1 = (1, 0), T e2 = (0, 1) */
+      CHECK_NEAR(t[0] * ed[3 * k] + t[1] * ed[3 * k + 1] + t[2] * ed[3 * k + 2], k == 0, 1e-12);
+      CHECK_NEAR(t[3] * ed[3 * k] + t[4] * ed[3 * k + 1] + t[5] * ed[3 * k + 2], k == 1, 1e-12);
+    }
+  }
+  env_free(&e);
+  test_mesh_free(&m);
+}
+
+/* One triangle (every edge a boundary): the walk's outcome equals that of the
+ * three exit divisions of the paper's ray test, computed here step by step,
+ * for rays that end near an edge within a few ulps (the walk skips the
+ * divisions where exact comparisons show that the ray ends inside). */
+static void test_exit_exact(void) {
+  const double pos[9] = {0.1, -0.2, 0.05, 1.3, 0.1, -0.1, 0.2, 0.9, 0.3};
+  const int faces[3] = {0, 1, 2};
+  ss_topo *topo = NULL;
+  char err[256] = "";
+  CHECK_MSG(ss_topo_create(&topo, 3, pos, 1, faces, -1.0, err, sizeof err) == SS_OK, "%s", err);
+  ss_frames *fr = NULL;
+  ss_walker *walker = NULL;
+  CHECK(ss_frames_create(&fr, 1) == SS_OK && ss_walker_create(&walker, 1) == SS_OK);
+  ss_frames_update(fr, topo, pos);
+  const double *w = ss_frames_origin(fr, 0), *t = ss_frames_to_canon(fr, 0);
+  unsigned long long s = 5;
+  int inside = 0, outside = 0;
+  for (int trial = 0; trial < 20000; trial++) {
+    double p[2] = {ss_test_rand(&s), ss_test_rand(&s)};
+    if (p[0] + p[1] > 1.0) p[0] = 1.0 - p[0], p[1] = 1.0 - p[1];
+    if (trial % 4 == 0) p[trial % 8 == 0 ? 0 : 1] = 0.0; /* start on an edge */
+    /* a target above a point of an edge (or corner), nudged by a few ulps */
+    double q[2], sq = ss_test_rand(&s);
+    int k = trial % 3;
+    q[0] = k == 0 ? sq : k == 1 ? 1.0 - sq : 0.0;
+    q[1] = k == 0 ? 0.0 : k == 1 ? sq : 1.0 - sq;
+    if (trial % 7 == 0) q[0] = q[1] = 0.0;
+    double target[3];
+    ss_anchor_position(fr, 0, q, target);
+    for (int i = 0; i < 3; i++) {
+      int ulps = (int)(9 * ss_test_rand(&s)) - 4;
+      for (; ulps > 0; ulps--) target[i] = nextafter(target[i], INFINITY);
+      for (; ulps < 0; ulps++) target[i] = nextafter(target[i], -INFINITY);
+    }
+    /* the ray test as written in the paper's terms: three divisions */
+    double here[3], d[3];
+    for (int i = 0; i < 3; i++) here[i] = w[i] + p[0] * w[3 + i] + p[1] * w[6 + i];
+    for (int i = 0; i < 3; i++) d[i] = target[i] - here[i];
+    const double du = t[0] * d[0] + t[1] * d[1] + t[2] * d[2];
+    const double dv = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
+    double t_exit = 1.0;
+    int k_exit = -1;
+    if (dv < 0.0 && -p[1] / dv < t_exit) t_exit = -p[1] / dv, k_exit = 0;
+    if (du + dv > 0.0 && (1.0 - p[0] - p[1]) / (du + dv) < t_exit)
+      t_exit = (1.0 - p[0] - p[1]) / (du + dv), k_exit = 1;
+    if (du < 0.0 && -p[0] / du < t_exit) t_exit = -p[0] / du, k_exit = 2;
+    ss_walk_result r;
+    ss_walk(walker, topo, fr, 0, p, target, 512, &r);
+    CHECK_EQ_INT(r.steps, 0);
+    if (k_exit < 0) {
+      inside++;
+      double e_uv[2] = {p[0] + du, p[1] + dv};
+      if (e_uv[0] < 0.0) e_uv[0] = 0.0;
+      if (e_uv[1] < 0.0) e_uv[1] = 0.0;
+      if (e_uv[0] + e_uv[1] > 1.0) {
+        double sum = e_uv[0] + e_uv[1];
+        e_uv[0] /= sum, e_uv[1] /= sum;
+      }
+      CHECK_EQ_INT(r.stop, SS_STOP_INSIDE);
+      CHECK(r.uv[0] == e_uv[0] && r.uv[1] == e_uv[1]);
+    } else {
+      outside++;
+      CHECK_EQ_INT(r.stop, SS_STOP_BOUNDARY);
+    }
+  }
+  CHECK(inside > 2000 && outside > 2000); /* both outcomes are exercised */
+  ss_walker_destroy(walker);
+  ss_frames_destroy(fr);
+  ss_topo_destroy(topo);
+}
+
 int main(void) {
+  test_frame_records();
+  test_exit_exact();
   test_flat_jittered();
   test_mixed_orientation();
   test_boundary();
