@@ -10,7 +10,9 @@
  *    settings (each run compared with the truth frame by frame);
  *  - the ratio of the last doubling difference to the smallest of those three
  *    errors (the issue asks for "far less": at most about 1/10).
- * Writes truth_doubling.csv and truth_doubling.md into --out. */
+ * Writes truth_doubling.csv and truth_doubling.md into --out. Setting flags
+ * (--tether 3, --orient 0, ...) change the physical settings; --bodies a,b
+ * keeps those bodies only. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,8 +63,23 @@ static double ref_difference(const ss_reference *a, const ss_reference *b) {
   return v;
 }
 
+/* 1 if name is in the comma-separated list (NULL: every body). */
+static int listed(const char *list, const char *name) {
+  if (!list) return 1;
+  const size_t n = strlen(name);
+  for (const char *p = list; *p;) {
+    const char *end = strchr(p, ',');
+    const size_t k = end ? (size_t)(end - p) : strlen(p);
+    if (k == n && strncmp(p, name, n) == 0) return 1;
+    if (!end) break;
+    p = end + 1;
+  }
+  return 0;
+}
+
 int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_substeps,
-                         int quick, const char *asset) {
+                         int quick, const char *asset, const ss_sim_settings *sim,
+                         const char *bodies, double truth_tol) {
   char path[4200];
   snprintf(path, sizeof path, "%s/truth_doubling.csv", out_dir);
   FILE *csv = fopen(path, "w");
@@ -99,6 +116,7 @@ int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_sub
     const char *name = avatar == 0 ? ss_scene_name(b) : avatar == 1 ? "demo" : asset;
     const char *label = name;
     if (avatar == 2 && strrchr(name, '/')) label = strrchr(name, '/') + 1;
+    if (!listed(bodies, label)) continue;
     /* the methods sweep's sizes (cmd_bench.c) */
     const int tris = avatar == 0 ? (quick ? 300 : 1000) : avatar == 1 ? 3000 : 0;
     const int frames = avatar ? (quick ? 1 : 15) : (quick ? 6 : 40);
@@ -123,6 +141,13 @@ int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_sub
 #endif
     }
     ss_run_settings s = ss_run_default_settings();
+    s.sim = *sim; /* the physical settings; the methods below run the default solver */
+    const ss_sim_settings def = ss_sim_default_settings();
+    s.sim.solver = def.solver;
+    s.sim.iterations = def.iterations;
+    s.sim.tol = def.tol;
+    s.sim.substeps = def.substeps;
+    s.sim.mover = def.mover;
     s.frames = frames;
     ss_reference *ref[MAX_LEVELS] = {NULL};
     double diff[MAX_LEVELS] = {0};
@@ -130,6 +155,7 @@ int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_sub
     for (int k = 0; k < levels && !status; k++) {
       ss_run_settings t = ss_truth_settings(&s);
       t.sim.substeps = SS_REFERENCE_SUBSTEPS << k;
+      if (truth_tol > 0.0) t.sim.tol = truth_tol;
       status = ss_reference_get(&ref[k], &body, &t, cache_dir, NULL, NULL, err, sizeof err);
       if (!status && k > 0) diff[k - 1] = ref_difference(ref[k - 1], ref[k]);
     }
