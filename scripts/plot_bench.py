@@ -394,6 +394,13 @@ def plot_accuracy(rows, out):
     if not bodies:
         return
     cell = {(r["scene"], method_label(r)): r for r in mrows}
+    # the truth's own uncertainty: `skinsim bench --truth-doubling 32` (16 vs 32 substeps)
+    unc = {}
+    upath = os.path.join(out, "truth_doubling.csv")
+    if os.path.exists(upath):
+        for r in load(upath):
+            if num(r, "diff_16_32") is not None:
+                unc[r["body"]] = num(r, "diff_16_32")
     lines = ["# Every method against one truth", "",
              "Per body: the error of each anchor method at the default solver settings "
              "(quasi-Newton, 8 iterations, 1 substep) against the TRUTH (walk, Newton to 1e-6, "
@@ -403,9 +410,11 @@ def plot_accuracy(rows, out):
              "divided by walk's. Snags (anchor jumps across a gap) and inverted faces (most in a "
              "frame) beside them. Scenes: 1000 triangles requested, 40 frames; avatars 15 frames. "
              "Each row's command (the avatar's with --avatar-tris 3000 for the demo) prints the "
-             "same figures.", "",
-             "| body | method | error vs truth | x walk | error vs own ref | snags | inverted | ms/frame | command |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "same figures. truth 16 vs 32: how far the truth itself moves when its substeps are "
+             "doubled (`skinsim bench --truth-doubling 32`, truth_doubling.md): differences "
+             "between methods smaller than it are not resolved by this truth.", "",
+             "| body | method | error vs truth | x walk | truth 16 vs 32 | error vs own ref | snags | inverted | ms/frame | command |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for b in bodies:
         w = num(cell[(b, "walk")], "error_vs_truth") if (b, "walk") in cell else None
         for m in ACC_METHODS:
@@ -416,9 +425,11 @@ def plot_accuracy(rows, out):
             cmd = run_command(r)
             if b == "demo":
                 cmd = cmd.replace("--avatar demo", "--avatar demo --avatar-tris 3000")
-            lines.append("| %s | %s | %s | %s | %s | %s | %s | %.2f | `%s` |" % (
+            u = unc.get(os.path.basename(b))
+            lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %.2f | `%s` |" % (
                 os.path.basename(b), m, "%.4g" % t if t is not None else "-",
                 "%.2f" % (t / w) if t is not None and w else "-",
+                "%.3g" % u if u is not None else "-",
                 "%.4g" % e if e is not None else "-", r["snags"], r.get("inverted_faces_max", "-"),
                 num(r, "ms_per_frame_median") or 0.0, cmd))
     with open(os.path.join(out, "accuracy.md"), "w") as f:
@@ -445,7 +456,14 @@ def plot_accuracy(rows, out):
                         ax.annotate("%s snags" % r["snags"], (x + (k - 1) * width, v), fontsize=6,
                                     rotation=90, xytext=(0, 3), textcoords="offset points",
                                     ha="center", va="bottom")
-    for ax, title in ((axes[0], "error vs the TRUTH, relative to walk's"),
+    for x, b in zip(xs, bodies):  # the truth's own uncertainty around walk's error
+        u = unc.get(os.path.basename(b))
+        w = num(cell[(b, "walk")], "error_vs_truth") if (b, "walk") in cell else None
+        if u is not None and w:
+            axes[0].add_patch(plt.Rectangle((x - 0.45, 1.0 - u / w), 0.9, 2 * u / w, color="0.85",
+                                            zorder=0, label="truth 16 vs 32 substeps" if x == 0 else None))
+    for ax, title in ((axes[0], "error vs the TRUTH, relative to walk's (grey: +- the truth's own "
+                                "16 vs 32 difference)"),
                       (axes[1], "error vs each method's OWN reference, relative to walk's error vs truth")):
         ax.axhline(1.0, color="k", lw=0.8, ls="--")
         ax.set_ylim(0.6, ax.get_ylim()[1] * 1.15)
