@@ -466,7 +466,7 @@ def plot_accuracy(rows, out):
                                 "16 vs 32 difference)"),
                       (axes[1], "error vs each method's OWN reference, relative to walk's error vs truth")):
         ax.axhline(1.0, color="k", lw=0.8, ls="--")
-        ax.set_ylim(0.6, ax.get_ylim()[1] * 1.15)
+        ax.set_ylim(0.6, ax.get_ylim()[1] * 1.3)
         ax.set_xticks(list(xs))
         ax.set_xticklabels([os.path.basename(b) + "\n(walk %.3g)" % (num(cell[(b, "walk")], "error_vs_truth") or 0)
                             if (b, "walk") in cell else os.path.basename(b) for b in bodies], fontsize=7,
