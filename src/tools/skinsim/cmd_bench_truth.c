@@ -80,6 +80,22 @@ static int listed(const char *list, const char *name) {
 int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_substeps,
                          int quick, const char *asset, const ss_sim_settings *sim,
                          const char *bodies, double truth_tol) {
+  /* every name of --bodies must be a body of the sweep */
+  const char *asset_label = asset && strrchr(asset, '/') ? strrchr(asset, '/') + 1 : asset;
+  for (const char *p = bodies; p && *p;) {
+    const char *end = strchr(p, ',');
+    const int k = end ? (int)(end - p) : (int)strlen(p);
+    int known = (k == 4 && strncmp(p, "demo", 4) == 0) ||
+                (asset_label && (int)strlen(asset_label) == k && strncmp(p, asset_label, (size_t)k) == 0);
+    for (int b = 0; b < ss_scene_count() && !known; b++)
+      known = (int)strlen(ss_scene_name(b)) == k && strncmp(p, ss_scene_name(b), (size_t)k) == 0;
+    if (!known) {
+      cli_error("--bodies: '%.*s' is no body of the sweep (the scenes of skinsim scenes, demo%s%s)",
+                k, p, asset_label ? ", " : "", asset_label ? asset_label : "");
+      return EXIT_USAGE;
+    }
+    p = end ? end + 1 : p + k;
+  }
   char path[4200];
   snprintf(path, sizeof path, "%s/truth_doubling.csv", out_dir);
   FILE *csv = fopen(path, "w");
