@@ -3,7 +3,8 @@
 pareto.png (ms per frame against error_vs_truth: every method against one truth),
 pareto_reference.png (the same against each method's own reference),
 stability.png + stability.md, scaling.png, breakdown.png, options.png + options.md,
-rest_return.png (matplotlib, Agg backend, no display).
+rest_return.png, accuracy.png + accuracy.md (every method
+against the truth, with the commands) (matplotlib, Agg backend, no display).
 
 usage: /usr/bin/python3 scripts/plot_bench.py DIR
 """
@@ -364,6 +365,121 @@ def plot_rest_return(rows, out):
     save(fig, out, "rest_return.png")
 
 
+ACC_METHODS = ["walk", "project", "nring2"]
+
+
+def run_command(r):
+    """The `skinsim run` command that reproduces a methods-sweep row (error vs truth)."""
+    m = method_label(r)
+    if r["body_kind"] == "scene":
+        # the sweep asks 1000 triangles (--quick: 300); the scene builds about that many
+        body = "--scene %s --tris %s" % (r["scene"], "1000" if r["frames"] == "40" else "300")
+    elif r["scene"] == "demo":
+        body = "--avatar demo"
+    else:
+        body = "--asset /usr/share/assimp/models/X/%s" % r["scene"]
+    meth = {"walk": "", "project": " --method project", "nring2": " --method nring --rings 2"}.get(m, "")
+    return "skinsim run %s --frames %s%s --truth --json -" % (body, r["frames"], meth)
+
+
+def plot_accuracy(rows, out):
+    """Per body: error_vs_truth of walk, project and n-ring 2 at the default solver
+    settings (the methods sweep), with the error against each method's own reference,
+    snags and inverted faces beside them: accuracy.md and accuracy.png."""
+    mrows = [r for r in rows if r["sweep"] == "methods" and method_label(r) in ACC_METHODS]
+    bodies = []
+    for r in mrows:
+        if r["scene"] not in bodies:
+            bodies.append(r["scene"])
+    if not bodies:
+        return
+    cell = {(r["scene"], method_label(r)): r for r in mrows}
+    # the truth's own uncertainty: `skinsim bench --truth-doubling 32` (16 vs 32 substeps)
+    unc = {}
+    upath = os.path.join(out, "truth_doubling.csv")
+    if os.path.exists(upath):
+        for r in load(upath):
+            if num(r, "diff_16_32") is not None:
+                unc[r["body"]] = num(r, "diff_16_32")
+    lines = ["# Every method against one truth", "",
+             "Per body: the error of each anchor method at the default solver settings "
+             "(quasi-Newton, 8 iterations, 1 substep) against the TRUTH (walk, Newton to 1e-6, "
+             "16 substeps: one run per body, motion and physical settings), and against the "
+             "method's OWN reference (the same method, Newton to 1e-6, 16 substeps), both as RMS "
+             "over frames and skin vertices in mean rest edge lengths; x walk = error vs truth "
+             "divided by walk's. Snags (anchor jumps across a gap) and inverted faces (most in a "
+             "frame) beside them. Scenes: 1000 triangles requested, 40 frames; avatars 15 frames. "
+             "Each row's command (the avatar's with --avatar-tris 3000 for the demo) prints the "
+             "same figures. truth 16 vs 32: how far the truth itself moves when its substeps are "
+             "doubled (`skinsim bench --truth-doubling 32`, truth_doubling.md): differences "
+             "between methods smaller than it are not resolved by this truth.", "",
+             "| body | method | error vs truth | x walk | truth 16 vs 32 | error vs own ref | snags | inverted | ms/frame | command |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for b in bodies:
+        w = num(cell[(b, "walk")], "error_vs_truth") if (b, "walk") in cell else None
+        for m in ACC_METHODS:
+            r = cell.get((b, m))
+            if not r:
+                continue
+            t, e = num(r, "error_vs_truth"), num(r, "error_vs_reference")
+            cmd = run_command(r)
+            if b == "demo":
+                cmd = cmd.replace("--avatar demo", "--avatar demo --avatar-tris 3000")
+            u = unc.get(os.path.basename(b))
+            lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %.2f | `%s` |" % (
+                os.path.basename(b), m, "%.4g" % t if t is not None else "-",
+                "%.2f" % (t / w) if t is not None and w else "-",
+                "%.3g" % u if u is not None else "-",
+                "%.4g" % e if e is not None else "-", r["snags"], r.get("inverted_faces_max", "-"),
+                num(r, "ms_per_frame_median") or 0.0, cmd))
+    with open(os.path.join(out, "accuracy.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+    fig, axes = plt.subplots(1, 2, figsize=(14, 4.6))
+    width = 0.8 / len(ACC_METHODS)
+    xs = range(len(bodies))
+    for k, m in enumerate(ACC_METHODS):
+        for ax, field, hatch in ((axes[0], "error_vs_truth", None), (axes[1], "error_vs_reference", None)):
+            vals = []
+            for b in bodies:
+                r = cell.get((b, m))
+                v = num(r, field) if r else None
+                w = num(cell[(b, "walk")], "error_vs_truth") if (b, "walk") in cell else None
+                vals.append(v / w if v is not None and w else float("nan"))
+            bars = ax.bar([x + (k - 1) * width for x in xs], vals, width, color=COLORS[m], label=m,
+                          hatch=hatch)
+            if field == "error_vs_truth":
+                for x, b in zip(xs, bodies):
+                    r = cell.get((b, m))
+                    v = vals[list(xs).index(x)]
+                    if r and int(float(r["snags"] or 0)) > 0 and v == v:
+                        ax.annotate("%s snags" % r["snags"], (x + (k - 1) * width, v), fontsize=6,
+                                    rotation=90, xytext=(0, 3), textcoords="offset points",
+                                    ha="center", va="bottom")
+    for x, b in zip(xs, bodies):  # the truth's own uncertainty around walk's error
+        u = unc.get(os.path.basename(b))
+        w = num(cell[(b, "walk")], "error_vs_truth") if (b, "walk") in cell else None
+        if u is not None and w:
+            axes[0].add_patch(plt.Rectangle((x - 0.45, 1.0 - u / w), 0.9, 2 * u / w, color="0.85",
+                                            zorder=0, label="truth 16 vs 32 substeps" if x == 0 else None))
+    for ax, title in ((axes[0], "error vs the TRUTH, relative to walk's (grey: +- the truth's own "
+                                "16 vs 32 difference)"),
+                      (axes[1], "error vs each method's OWN reference, relative to walk's error vs truth")):
+        ax.axhline(1.0, color="k", lw=0.8, ls="--")
+        ax.set_ylim(0.6, ax.get_ylim()[1] * 1.3)
+        ax.set_xticks(list(xs))
+        ax.set_xticklabels([os.path.basename(b) + "\n(walk %.3g)" % (num(cell[(b, "walk")], "error_vs_truth") or 0)
+                            if (b, "walk") in cell else os.path.basename(b) for b in bodies], fontsize=7,
+                           rotation=30)
+        ax.set_title(title, fontsize=10)
+        ax.set_ylabel("error / walk's error vs truth")
+        ax.grid(True, axis="y", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Where each method stands (quasi-Newton, 8 iterations, 1 substep); under each body "
+                 "walk's error vs truth in mean edge lengths", fontsize=10)
+    save(fig, out, "accuracy.png")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.stderr.write(__doc__)
@@ -376,6 +492,7 @@ def main():
     plot_pareto(rows, out)
     plot_pareto(rows, out, "error_vs_reference", "pareto_reference.png")
     plot_rest_return(rows, out)
+    plot_accuracy(rows, out)
     plot_stability(rows, out)
     plot_scaling(rows, out)
     plot_breakdown(rows, out)

@@ -4,8 +4,8 @@
  * The reference of a run configuration is the same body, skin model and
  * anchor method stepped with a much smaller time step (SS_REFERENCE_SUBSTEPS
  * implicit Euler steps per frame, or the run's own substeps if more) by
- * Newton converged tightly (SS_REFERENCE_TOL within SS_REFERENCE_ITERATIONS
- * iterations). `slide` acts per substep (ss_sim.h), so the reference slides
+ * Newton converged tightly (SS_REFERENCE_TOL, or the run's own tolerance if
+ * tighter, within SS_REFERENCE_ITERATIONS iterations). `slide` acts per substep (ss_sim.h), so the reference slides
  * with the per-substep fraction that leaves an anchor the same share of its
  * way per frame: 1 - (1 - slide)^(substeps / reference substeps). A run
  * configured like its reference gets exactly its settings, hence error 0.

@@ -38,7 +38,8 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   r.sim.substeps = run->sim.substeps > SS_REFERENCE_SUBSTEPS ? run->sim.substeps
                                                              : SS_REFERENCE_SUBSTEPS;
   r.sim.iterations = SS_REFERENCE_ITERATIONS;
-  r.sim.tol = SS_REFERENCE_TOL;
+  r.sim.tol = run->sim.tol > 0.0 && run->sim.tol < SS_REFERENCE_TOL ? run->sim.tol
+                                                                    : SS_REFERENCE_TOL;
   r.sim.lbfgs_history = def.lbfgs_history; /* unused by Newton: keeps keys equal */
   r.sim.dt = def.dt;                       /* a run steps 1 / fps whatever dt says */
   if (r.sim.mover.method != SS_METHOD_NRING) r.sim.mover.nring_rings = def.mover.nring_rings;

@@ -29,6 +29,13 @@ static void test_settings(void) {
   run.sim.substeps = 32; /* more than the reference's: kept, slide kept */
   ref = ss_reference_settings(&run);
   CHECK(ref.sim.substeps == 32 && ref.sim.slide == run.sim.slide);
+  run.sim.tol = 1e-9; /* tighter than the reference's: kept (and idempotent) */
+  ref = ss_reference_settings(&run);
+  CHECK(ref.sim.tol == 1e-9 && ss_reference_settings(&ref).sim.tol == 1e-9);
+  run.sim.tol = 1e-2; /* looser: the reference's own */
+  CHECK(ss_reference_settings(&run).sim.tol == SS_REFERENCE_TOL);
+  run.sim.tol = 0.0; /* 0 means "never converged": the reference's own */
+  CHECK(ss_reference_settings(&run).sim.tol == SS_REFERENCE_TOL);
 }
 
 static void test_keys(const ss_body *body) {

@@ -376,15 +376,34 @@ static int plot(const char *python, const char *script, const char *out_dir) {
 int cmd_bench(int argc, char **argv) {
   const char *out_dir = NULL, *cache_opt = NULL, *python = "/usr/bin/python3";
   const char *script = SS_SOURCE_DIR "/scripts/plot_bench.py";
-  int quick = 0, no_plot = 0;
+  int quick = 0, no_plot = 0, doubling = 0, nset = 0;
+  const char *bodies = NULL;
+  double truth_tol = 0.0; /* --truth-tol: the truth's Newton tolerance (0: SS_REFERENCE_TOL) */
+  ss_sim_settings sim = ss_sim_default_settings(); /* --truth-doubling: physical settings */
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
+    const int set_opt = cli_setting_option(argc, argv, &i, &sim);
+    if (set_opt < 0) return EXIT_USAGE;
+    if (set_opt > 0) {
+      nset++;
+      continue;
+    }
     if (strcmp(a, "--out") == 0) {
       if (!(out_dir = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--cache") == 0) {
       if (!(cache_opt = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--quick") == 0) {
       quick = 1;
+    } else if (strcmp(a, "--truth-doubling") == 0) {
+      const char *v = cli_value(argc, argv, &i);
+      if (!v || cli_int(a, v, 2 * SS_REFERENCE_SUBSTEPS, 16 * SS_REFERENCE_SUBSTEPS, &doubling))
+        return EXIT_USAGE;
+    } else if (strcmp(a, "--truth-tol") == 0) {
+      const char *v = cli_value(argc, argv, &i);
+      if (!v || cli_double(a, v, 1e-14, 1.0, &truth_tol)) return EXIT_USAGE;
+      nset++;
+    } else if (strcmp(a, "--bodies") == 0) {
+      if (!(bodies = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--no-plot") == 0) {
       no_plot = 1;
     } else if (strcmp(a, "--python") == 0) {
@@ -410,6 +429,15 @@ int cmd_bench(int argc, char **argv) {
   }
   char cache_dir[4096];
   if (measure_cache_dir(cache_opt, cache_dir, sizeof cache_dir)) return EXIT_USAGE;
+  if ((nset || bodies) && !doubling) {
+    cli_error("bench: --bodies and setting flags (--tether, ...) go with --truth-doubling; the "
+              "sweep runs the defaults");
+    return EXIT_USAGE;
+  }
+  if (doubling)
+    return bench_truth_doubling(out_dir, cache_dir, doubling, quick,
+                                access(BCN_ASSET, R_OK) == 0 ? BCN_ASSET : NULL, &sim, bodies,
+                                truth_tol);
   char path[4200];
   snprintf(path, sizeof path, "%s/results.csv", out_dir);
   FILE *csv = fopen(path, "w");
