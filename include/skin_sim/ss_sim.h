@@ -120,6 +120,8 @@ typedef struct ss_sim_mesh {
 } ss_sim_mesh;
 
 typedef struct ss_sim ss_sim;
+/* The fixed part of a sim (topology, rest data, masses, sparsity): see ss_model_create. */
+typedef struct ss_model ss_model;
 
 /* Creates a simulation on a body mesh at rest (body_rest: nvert x 3, faces:
  * nface x 3, both read at create only). skin: NULL makes the skin a copy of

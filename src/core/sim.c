@@ -100,6 +100,7 @@ void ss_sim_destroy(ss_sim *sim) {
                     sim->body_rest,  sim->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path,
                     sim->face_energy, sim->face_grad, sim->orient_sign};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
+  free(sim->m);
   free(sim);
 }
 
@@ -153,6 +154,12 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   }
   ss_sim *sim = calloc(1, sizeof *sim);
   if (!sim) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  sim->m = calloc(1, sizeof *sim->m);
+  if (!sim->m) {
+    free(sim);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  }
+  sim->m->refs = 1;
   sim->set = *set;
   sim->nbvert = body_nvert;
   sim->nbface = body_nface;

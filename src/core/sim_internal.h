@@ -26,7 +26,15 @@ enum ss_vert_kind {
   SS_VERT_FOLLOWER = 2  /* outside the simulated region: follows its anchor */
 };
 
+/* The model of a skin on a body: fixed once built, and shared by every sim
+ * created on it (ss_sim_create_from_model); nothing writes it while stepping. */
+struct ss_model {
+  int refs; /* sims running on it + the creator's reference (ss_model_create) */
+  /* model_rewrite.py moves the model's fields above this line */
+};
+
 struct ss_sim {
+  ss_model *m;                /* the model this sim runs on (counted in m->refs) */
   /* ---------------- model: fixed at create */
   ss_sim_settings set;        /* face_mask points to mask below (or NULL) */
   double mu, lam;             /* membrane Lamé parameters (stable form) */
