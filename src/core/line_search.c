@@ -14,7 +14,7 @@
 
 int ss_line_search(ss_solve *s) {
   ss_sim *sim = s->sim;
-  int n3 = 3 * sim->ndof;
+  int n3 = 3 * sim->m->ndof;
   const double *dir = s->dir;
   const double *xd = s->xd;
   double *xt = s->xt, *gt = s->gt;

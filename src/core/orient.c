@@ -55,14 +55,14 @@
  * from `face` (the anchors now, or as bound at rest). */
 static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face, int f,
                          double n[3]) {
-  const int nv = sim->nvert;
+  const int nv = sim->m->nvert;
   n[0] = n[1] = n[2] = 0.0;
-  if (sim->nanchor > nv && face[nv + f] >= 0) {
+  if (sim->m->nanchor > nv && face[nv + f] >= 0) {
     memcpy(n, fr->normal + 3 * face[nv + f], 3 * sizeof(double));
     return;
   }
   for (int c = 0; c < 3; c++) {
-    int b = face[sim->faces[3 * f + c]];
+    int b = face[sim->m->faces[3 * f + c]];
     if (b < 0) continue;
     for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * b + k];
   }
@@ -82,7 +82,7 @@ static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face
 int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]) {
   double a[3], h[3];
   normal_under(sim, fr, sim->anchor_face, f, a);
-  normal_under(sim, fr, sim->anchor_face0, f, h);
+  normal_under(sim, fr, sim->m->anchor_face0, f, h);
   for (int k = 0; k < 3; k++) n[k] = a[k] + h[k];
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!(len > 1.0)) return 0;
@@ -93,11 +93,11 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
 /* s of face f at positions xfull and its gradient (9, corners in face order). */
 static double signed_ratio(const ss_sim *sim, const double *xfull, int f, const double n[3],
                            double grad[9]) {
-  const int *fv = sim->faces + 3 * f;
+  const int *fv = sim->m->faces + 3 * f;
   const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
   double e1[3], e2[3];
   for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
-  const double c = sim->orient_sign[f] / (2.0 * sim->rest_area[f]);
+  const double c = sim->m->orient_sign[f] / (2.0 * sim->m->rest_area[f]);
   double d1[3] = {e2[1] * n[2] - e2[2] * n[1], e2[2] * n[0] - e2[0] * n[2], e2[0] * n[1] - e2[1] * n[0]};
   double d2[3] = {n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
   for (int i = 0; i < 3; i++) {
@@ -114,10 +114,10 @@ static double signed_ratio(const ss_sim *sim, const double *xfull, int f, const 
  * where it has no anchor face). */
 static double vertex_depth(const ss_sim *sim, const ss_frames *fr, int q, const double *xfull,
                            double n[3]) {
-  const int v = sim->dof_vert[q], fa = sim->anchor_face[v], fh = sim->anchor_face0[v];
-  if (fa < 0 || fh < 0 || sim->k_vert[v] == 0.0) return 0.0; /* held on the body only */
+  const int v = sim->m->dof_vert[q], fa = sim->anchor_face[v], fh = sim->m->anchor_face0[v];
+  if (fa < 0 || fh < 0 || sim->m->k_vert[v] == 0.0) return 0.0; /* held on the body only */
   /* a sliver's normal swings with the smallest move of its corners: not trusted */
-  const double min_area = SS_ORIENT_MIN_AREA * sim->edge_len * sim->edge_len;
+  const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
   if (!(fr->area[fa] >= min_area && fr->area[fh] >= min_area)) return 0.0;
   for (int k = 0; k < 3; k++) n[k] = fr->normal[3 * fa + k] + fr->normal[3 * fh + k];
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -137,29 +137,29 @@ static double vertex_depth(const ss_sim *sim, const ss_frames *fr, int q, const 
  * the time per frame at 1, 1.6x at 0.1, for no better rest return on the
  * demo avatar (measured: rest error max 0.024 / 0.029 edges at 0.3 / 0.1). */
 static double depth_weight(const ss_sim *sim, int q) {
-  return SS_ORIENT_DEPTH * sim->set.orient * sim->vert_area[sim->dof_vert[q]] / (sim->edge_len * sim->edge_len);
+  return SS_ORIENT_DEPTH * sim->set.orient * sim->m->vert_area[sim->m->dof_vert[q]] / (sim->m->edge_len * sim->m->edge_len);
 }
 
 int ss_sim_orient_init(ss_sim *sim) {
-  free(sim->orient_sign);
-  sim->orient_sign = calloc((size_t)(sim->nface ? sim->nface : 1), 1);
-  if (!sim->orient_sign) return SS_E_NOMEM;
+  free(sim->m->orient_sign);
+  sim->m->orient_sign = calloc((size_t)(sim->m->nface ? sim->m->nface : 1), 1);
+  if (!sim->m->orient_sign) return SS_E_NOMEM;
   const ss_frames *fr = ss_mover_frames(sim->mover);
-  const double min_area = SS_ORIENT_MIN_AREA * sim->edge_len * sim->edge_len;
-  for (int f = 0; f < sim->nface; f++) {
+  const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
+  for (int f = 0; f < sim->m->nface; f++) {
     /* judged: faces held on the body by a spring (not a free flap), not
      * slivers: s of a sliver swings with the smallest move of its apex, and
      * so would its stiffness (the slivers scene: aspect ~300) */
-    const int *fv = sim->faces + 3 * f;
-    if (!(sim->rest_area[f] >= min_area)) continue;
-    if (sim->k_face[f] == 0.0 && sim->k_vert[fv[0]] == 0.0 && sim->k_vert[fv[1]] == 0.0 &&
-        sim->k_vert[fv[2]] == 0.0)
+    const int *fv = sim->m->faces + 3 * f;
+    if (!(sim->m->rest_area[f] >= min_area)) continue;
+    if (sim->m->k_face[f] == 0.0 && sim->m->k_vert[fv[0]] == 0.0 && sim->m->k_vert[fv[1]] == 0.0 &&
+        sim->m->k_vert[fv[2]] == 0.0)
       continue;
     double n[3], g[9];
     if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
-    sim->orient_sign[f] = 1;
-    double s = signed_ratio(sim, sim->rest, f, n, g);
-    sim->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
+    sim->m->orient_sign[f] = 1;
+    double s = signed_ratio(sim, sim->m->rest, f, n, g);
+    sim->m->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
   }
   return SS_OK;
 }
@@ -169,25 +169,25 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
   if (!(k > 0.0)) return 0.0;
   const ss_frames *fr = ss_mover_frames(sim->mover);
   double e = 0.0;
-  for (int q = 0; q < sim->nsimface; q++) {
-    const int f = sim->simface[q];
-    if (!sim->orient_sign[f]) continue;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    const int f = sim->m->simface[q];
+    if (!sim->m->orient_sign[f]) continue;
     double n[3], gs[9];
     if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
     const double s = signed_ratio(sim, xfull, f, n, gs);
     if (!(s < SS_ORIENT_S0)) continue;
-    const double w = k * sim->rest_area[f], d = SS_ORIENT_S0 - s;
+    const double w = k * sim->m->rest_area[f], d = SS_ORIENT_S0 - s;
     e += 0.5 * w * d * d;
     if (!g) continue;
-    const int *fv = sim->faces + 3 * f;
+    const int *fv = sim->m->faces + 3 * f;
     for (int c = 0; c < 3; c++) {
-      const int j = sim->dof[fv[c]];
+      const int j = sim->m->dof[fv[c]];
       if (j < 0) continue;
       for (int i = 0; i < 3; i++) g[3 * j + i] -= w * d * gs[3 * c + i];
     }
   }
   /* no free vertex below the body surface at its anchor */
-  for (int q = 0; q < sim->ndof; q++) {
+  for (int q = 0; q < sim->m->ndof; q++) {
     double n[3];
     const double depth = vertex_depth(sim, fr, q, xfull, n);
     if (!(depth > 0.0)) continue;
@@ -203,33 +203,33 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
   const double k = sim->set.orient;
   if (!(k > 0.0)) return;
   const ss_frames *fr = ss_mover_frames(sim->mover);
-  for (int q = 0; q < sim->nsimface; q++) {
-    const int f = sim->simface[q];
-    if (!sim->orient_sign[f]) continue;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    const int f = sim->m->simface[q];
+    if (!sim->m->orient_sign[f]) continue;
     double n[3], gs[9];
     if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
     if (!(signed_ratio(sim, xfull, f, n, gs) < SS_ORIENT_S0)) continue;
-    const double w = k * sim->rest_area[f];
-    const int *fv = sim->faces + 3 * f;
+    const double w = k * sim->m->rest_area[f];
+    const int *fv = sim->m->faces + 3 * f;
     /* upper triangle through the face's block ranks, as the membrane's */
     for (int a = 0; a < 3; a++) {
-      const int i = sim->dof[fv[a]];
+      const int i = sim->m->dof[fv[a]];
       if (i < 0) continue;
       for (int b = 0; b < 3; b++) {
-        const int j = sim->dof[fv[b]];
+        const int j = sim->m->dof[fv[b]];
         if (j < i) continue;
-        const int r = sim->face_rank[9 * f + 3 * a + b];
+        const int r = sim->m->face_rank[9 * f + 3 * a + b];
         for (int c1 = 0; c1 < 3; c1++)
           for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
             vals[ss_sim_slot3(sim, j, r, c1, c2)] += w * gs[3 * a + c1] * gs[3 * b + c2];
       }
     }
   }
-  for (int q = 0; q < sim->ndof; q++) {
+  for (int q = 0; q < sim->m->ndof; q++) {
     double n[3];
     if (!(vertex_depth(sim, fr, q, xfull, n) > 0.0)) continue;
     const double w = depth_weight(sim, q);
-    const int diag_rank = sim->bcolp[q + 1] - sim->bcolp[q] - 1;
+    const int diag_rank = sim->m->bcolp[q + 1] - sim->m->bcolp[q] - 1;
     for (int c1 = 0; c1 < 3; c1++)
       for (int c2 = c1; c2 < 3; c2++) vals[ss_sim_slot3(sim, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
   }

@@ -87,18 +87,18 @@ void ss_sim_destroy(ss_sim *sim) {
   if (sim->walkers)
     for (int t = 0; t < sim->nthread_max; t++) ss_walker_destroy(sim->walkers[t]);
   free(sim->walkers);
-  ss_topo_destroy(sim->btopo);
-  void *arrays[] = {sim->faces,     sim->rest,         sim->mask,         sim->dm_inv,      sim->rest_area,
-                    sim->vert_area, sim->mass,         sim->k_vert,       sim->k_face,      sim->kind,
-                    sim->dof,       sim->dof_vert,     sim->simface,      sim->hinge_vert,  sim->hinge_theta0,
-                    sim->hinge_weight, sim->anchor_face0, sim->anchor_uv0, sim->bcolp,      sim->brow,
-                    sim->colp3,     sim->face_rank,    sim->hinge_rank,   sim->x,           sim->x_prev,
+  ss_topo_destroy(sim->m->btopo);
+  void *arrays[] = {sim->m->faces,     sim->m->rest,         sim->m->mask,         sim->m->dm_inv,      sim->m->rest_area,
+                    sim->m->vert_area, sim->m->mass,         sim->m->k_vert,       sim->m->k_face,      sim->m->kind,
+                    sim->m->dof,       sim->m->dof_vert,     sim->m->simface,      sim->m->hinge_vert,  sim->m->hinge_theta0,
+                    sim->m->hinge_weight, sim->m->anchor_face0, sim->m->anchor_uv0, sim->m->bcolp,      sim->m->brow,
+                    sim->m->colp3,     sim->m->face_rank,    sim->m->hinge_rank,   sim->x,           sim->x_prev,
                     sim->v,         sim->body_prev,    sim->body_sub,     sim->anchor_face, sim->anchor_uv,
                     sim->anchor_pos, sim->mi,          sim->target,       sim->xd,          sim->gd,
                     sim->dir,       sim->xt,           sim->gt,           sim->xfull_t,     sim->h_const,
                     sim->lb_s,      sim->lb_y,         sim->lb_rho,       sim->lb_alpha,
-                    sim->body_rest,  sim->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path,
-                    sim->face_energy, sim->face_grad, sim->orient_sign};
+                    sim->m->body_rest,  sim->m->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path,
+                    sim->face_energy, sim->face_grad, sim->m->orient_sign};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
   free(sim->m);
   free(sim);
@@ -111,27 +111,27 @@ static void *alloc_n(size_t count, size_t size) { return calloc(count ? count : 
  * its body vertex. */
 static void update_anchor_positions(ss_sim *sim, const double *pose) {
   const ss_frames *fr = ss_mover_frames(sim->mover);
-  for (int a = 0; a < sim->nanchor; a++) {
+  for (int a = 0; a < sim->m->nanchor; a++) {
     if (sim->anchor_face[a] >= 0)
       ss_anchor_position(fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, sim->anchor_pos + 3 * a);
-    else if (a < sim->nvert)
+    else if (a < sim->m->nvert)
       memcpy(sim->anchor_pos + 3 * a, pose + 3 * a, 3 * sizeof(double));
   }
 }
 
 void ss_sim_reset(ss_sim *sim) {
   if (!sim) return;
-  size_t nv3 = 3 * (size_t)sim->nvert;
-  memcpy(sim->x, sim->rest, nv3 * sizeof(double));
-  memcpy(sim->x_prev, sim->rest, nv3 * sizeof(double));
-  memcpy(sim->xfull_t, sim->rest, nv3 * sizeof(double));
+  size_t nv3 = 3 * (size_t)sim->m->nvert;
+  memcpy(sim->x, sim->m->rest, nv3 * sizeof(double));
+  memcpy(sim->x_prev, sim->m->rest, nv3 * sizeof(double));
+  memcpy(sim->xfull_t, sim->m->rest, nv3 * sizeof(double));
   memset(sim->v, 0, nv3 * sizeof(double));
-  memcpy(sim->anchor_face, sim->anchor_face0, (size_t)sim->nanchor * sizeof(int));
-  memcpy(sim->anchor_uv, sim->anchor_uv0, 2 * (size_t)sim->nanchor * sizeof(double));
-  memcpy(sim->body_prev, sim->body_rest, 3 * (size_t)sim->nbvert * sizeof(double));
+  memcpy(sim->anchor_face, sim->m->anchor_face0, (size_t)sim->m->nanchor * sizeof(int));
+  memcpy(sim->anchor_uv, sim->m->anchor_uv0, 2 * (size_t)sim->m->nanchor * sizeof(double));
+  memcpy(sim->body_prev, sim->m->body_rest, 3 * (size_t)sim->m->nbvert * sizeof(double));
   if (sim->mover) {
-    ss_mover_set_pose(sim->mover, sim->body_rest);
-    update_anchor_positions(sim, sim->body_rest);
+    ss_mover_set_pose(sim->mover, sim->m->body_rest);
+    update_anchor_positions(sim, sim->m->body_rest);
   }
 }
 
@@ -161,24 +161,24 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   }
   sim->m->refs = 1;
   sim->set = *set;
-  sim->nbvert = body_nvert;
-  sim->nbface = body_nface;
-  sim->nvert = skin ? skin->nvert : body_nvert;
-  sim->nface = skin ? skin->nface : body_nface;
-  int nv = sim->nvert, nf = sim->nface;
-  sim->nanchor = nv + (set->barycenter_anchors ? nf : 0);
+  sim->m->nbvert = body_nvert;
+  sim->m->nbface = body_nface;
+  sim->m->nvert = skin ? skin->nvert : body_nvert;
+  sim->m->nface = skin ? skin->nface : body_nface;
+  int nv = sim->m->nvert, nf = sim->m->nface;
+  sim->m->nanchor = nv + (set->barycenter_anchors ? nf : 0);
   size_t nv3 = 3 * (size_t)nv;
 
-  status = ss_topo_create(&sim->btopo, body_nvert, body_rest, body_nface, body_faces, -1.0, err, err_sz);
+  status = ss_topo_create(&sim->m->btopo, body_nvert, body_rest, body_nface, body_faces, -1.0, err, err_sz);
   if (status != SS_OK) goto fail;
-  status = ss_mover_create(&sim->mover, sim->btopo, &set->mover, err, err_sz);
+  status = ss_mover_create(&sim->mover, sim->m->btopo, &set->mover, err, err_sz);
   if (status != SS_OK) goto fail;
   /* one walker per thread; the team is started here, so that stepping
    * allocates nothing (the OpenMP runtime keeps its threads) */
   sim->nthread = 1;
   sim->thread_probe = -1;
 #ifdef _OPENMP
-  sim->nthread = set->threads > 0 ? set->threads : auto_threads(sim->nface);
+  sim->nthread = set->threads > 0 ? set->threads : auto_threads(sim->m->nface);
   if (set->threads == 0 && sim->nthread > 1) sim->thread_probe = 0;
   openmp_warm_up(sim->nthread);
 #endif
@@ -186,54 +186,54 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   sim->walkers = calloc((size_t)sim->nthread, sizeof *sim->walkers);
   if (!sim->walkers) status = SS_E_NOMEM;
   for (int t = 0; t < sim->nthread && !status; t++)
-    status = ss_walker_create(&sim->walkers[t], sim->btopo->nface);
+    status = ss_walker_create(&sim->walkers[t], sim->m->btopo->nface);
   if (status != SS_OK) {
     status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
     goto fail;
   }
 
-  sim->faces = alloc_n(3 * (size_t)nf, sizeof(int));
-  sim->rest = alloc_n(nv3, sizeof(double));
-  sim->mask = alloc_n((size_t)nf, 1);
-  sim->dm_inv = alloc_n(4 * (size_t)nf, sizeof(double));
-  sim->rest_area = alloc_n((size_t)nf, sizeof(double));
-  sim->vert_area = alloc_n((size_t)nv, sizeof(double));
-  sim->mass = alloc_n((size_t)nv, sizeof(double));
-  sim->k_vert = alloc_n((size_t)nv, sizeof(double));
-  sim->k_face = alloc_n((size_t)nf, sizeof(double));
-  sim->kind = alloc_n((size_t)nv, 1);
-  sim->dof = alloc_n((size_t)nv, sizeof(int));
-  sim->simface = alloc_n((size_t)nf, sizeof(int));
-  sim->anchor_face0 = alloc_n((size_t)sim->nanchor, sizeof(int));
-  sim->anchor_uv0 = alloc_n(2 * (size_t)sim->nanchor, sizeof(double));
-  sim->anchor_face = alloc_n((size_t)sim->nanchor, sizeof(int));
-  sim->anchor_uv = alloc_n(2 * (size_t)sim->nanchor, sizeof(double));
-  sim->anchor_pos = alloc_n(3 * (size_t)sim->nanchor, sizeof(double));
+  sim->m->faces = alloc_n(3 * (size_t)nf, sizeof(int));
+  sim->m->rest = alloc_n(nv3, sizeof(double));
+  sim->m->mask = alloc_n((size_t)nf, 1);
+  sim->m->dm_inv = alloc_n(4 * (size_t)nf, sizeof(double));
+  sim->m->rest_area = alloc_n((size_t)nf, sizeof(double));
+  sim->m->vert_area = alloc_n((size_t)nv, sizeof(double));
+  sim->m->mass = alloc_n((size_t)nv, sizeof(double));
+  sim->m->k_vert = alloc_n((size_t)nv, sizeof(double));
+  sim->m->k_face = alloc_n((size_t)nf, sizeof(double));
+  sim->m->kind = alloc_n((size_t)nv, 1);
+  sim->m->dof = alloc_n((size_t)nv, sizeof(int));
+  sim->m->simface = alloc_n((size_t)nf, sizeof(int));
+  sim->m->anchor_face0 = alloc_n((size_t)sim->m->nanchor, sizeof(int));
+  sim->m->anchor_uv0 = alloc_n(2 * (size_t)sim->m->nanchor, sizeof(double));
+  sim->anchor_face = alloc_n((size_t)sim->m->nanchor, sizeof(int));
+  sim->anchor_uv = alloc_n(2 * (size_t)sim->m->nanchor, sizeof(double));
+  sim->anchor_pos = alloc_n(3 * (size_t)sim->m->nanchor, sizeof(double));
   sim->face_energy = alloc_n((size_t)nf, sizeof(double));
   sim->face_grad = alloc_n(9 * (size_t)nf, sizeof(double));
-  sim->anchor_pull = alloc_n((size_t)sim->nanchor, sizeof(double));
-  sim->anchor_path = alloc_n((size_t)sim->nanchor, sizeof(double));
+  sim->anchor_pull = alloc_n((size_t)sim->m->nanchor, sizeof(double));
+  sim->anchor_path = alloc_n((size_t)sim->m->nanchor, sizeof(double));
   sim->x = alloc_n(nv3, sizeof(double));
   sim->x_prev = alloc_n(nv3, sizeof(double));
   sim->v = alloc_n(nv3, sizeof(double));
   sim->xfull_t = alloc_n(nv3, sizeof(double));
   sim->body_prev = alloc_n(3 * (size_t)body_nvert, sizeof(double));
-  sim->body_rest = alloc_n(3 * (size_t)body_nvert, sizeof(double));
+  sim->m->body_rest = alloc_n(3 * (size_t)body_nvert, sizeof(double));
   sim->body_sub = alloc_n(3 * (size_t)body_nvert, sizeof(double));
-  if (!sim->faces || !sim->rest || !sim->mask || !sim->dm_inv || !sim->rest_area || !sim->vert_area ||
-      !sim->mass || !sim->k_vert || !sim->k_face || !sim->kind || !sim->dof || !sim->simface ||
-      !sim->anchor_face0 || !sim->anchor_uv0 || !sim->anchor_face || !sim->anchor_uv || !sim->anchor_pos ||
+  if (!sim->m->faces || !sim->m->rest || !sim->m->mask || !sim->m->dm_inv || !sim->m->rest_area || !sim->m->vert_area ||
+      !sim->m->mass || !sim->m->k_vert || !sim->m->k_face || !sim->m->kind || !sim->m->dof || !sim->m->simface ||
+      !sim->m->anchor_face0 || !sim->m->anchor_uv0 || !sim->anchor_face || !sim->anchor_uv || !sim->anchor_pos ||
       !sim->anchor_pull || !sim->anchor_path || !sim->face_energy || !sim->face_grad ||
       !sim->x || !sim->x_prev || !sim->v || !sim->xfull_t || !sim->body_prev || !sim->body_sub ||
-      !sim->body_rest) {
+      !sim->m->body_rest) {
     status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
     goto fail;
   }
-  memcpy(sim->faces, skin ? skin->faces : body_faces, 3 * (size_t)nf * sizeof(int));
-  memcpy(sim->rest, skin ? skin->pos : body_rest, nv3 * sizeof(double));
-  memcpy(sim->body_rest, body_rest, 3 * (size_t)body_nvert * sizeof(double));
-  for (int f = 0; f < nf; f++) sim->mask[f] = set->face_mask ? set->face_mask[f] != 0 : 1;
-  sim->set.face_mask = sim->mask;
+  memcpy(sim->m->faces, skin ? skin->faces : body_faces, 3 * (size_t)nf * sizeof(int));
+  memcpy(sim->m->rest, skin ? skin->pos : body_rest, nv3 * sizeof(double));
+  memcpy(sim->m->body_rest, body_rest, 3 * (size_t)body_nvert * sizeof(double));
+  for (int f = 0; f < nf; f++) sim->m->mask[f] = set->face_mask ? set->face_mask[f] != 0 : 1;
+  sim->set.face_mask = sim->m->mask;
 
   status = ss_sim_bind(sim, skin, body_rest, err, err_sz);
   if (status != SS_OK) goto fail;
@@ -243,9 +243,9 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   if (status != SS_OK) goto fail;
   status = ss_sim_energy_layout(sim, err, err_sz);
   if (status != SS_OK) goto fail;
-  size_t nd3 = 3 * (size_t)sim->ndof;
-  sim->mi = alloc_n((size_t)sim->ndof, sizeof(double));
-  sim->diag_const = alloc_n((size_t)sim->ndof, sizeof(double));
+  size_t nd3 = 3 * (size_t)sim->m->ndof;
+  sim->mi = alloc_n((size_t)sim->m->ndof, sizeof(double));
+  sim->m->diag_const = alloc_n((size_t)sim->m->ndof, sizeof(double));
   sim->target = alloc_n(nd3, sizeof(double));
   sim->xd = alloc_n(nd3, sizeof(double));
   sim->gd = alloc_n(nd3, sizeof(double));
@@ -253,7 +253,7 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   sim->xt = alloc_n(nd3, sizeof(double));
   sim->guess = alloc_n(nd3, sizeof(double));
   sim->gt = alloc_n(nd3, sizeof(double));
-  if (!sim->mi || !sim->diag_const || !sim->target || !sim->xd || !sim->gd || !sim->dir || !sim->xt || !sim->gt || !sim->guess) {
+  if (!sim->mi || !sim->m->diag_const || !sim->target || !sim->xd || !sim->gd || !sim->dir || !sim->xt || !sim->gt || !sim->guess) {
     status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
     goto fail;
   }
@@ -266,7 +266,7 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   cholmod_start(&sim->cc);
   sim->cc_started = 1;
   sim->cc.print = 0; /* the core never prints: errors come back as status */
-  if (sim->ndof > 0) {
+  if (sim->m->ndof > 0) {
     status = ss_solver_create(sim, err, err_sz);
     if (status != SS_OK) goto fail;
   }
@@ -279,7 +279,7 @@ fail:
 
 int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *err, int err_sz) {
   if (!sim || !pos) return ss_fail(err, err_sz, SS_E_ARG, "sim or positions are NULL");
-  size_t nv3 = 3 * (size_t)sim->nvert;
+  size_t nv3 = 3 * (size_t)sim->m->nvert;
   for (size_t i = 0; i < nv3; i++)
     if (!isfinite(pos[i]) || (vel && !isfinite(vel[i])))
       return ss_fail(err, err_sz, SS_E_NONFINITE, "skin vertex %d has a non-finite %s", (int)(i / 3),
@@ -319,8 +319,8 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
   if (refactor) {
     ss_sim_build_material(sim);
     if (old_bending > 0.0 && sim->set.bending != old_bending)
-      for (int e = 0; e < sim->nhinge; e++)
-        sim->hinge_weight[e] = sim->hinge_weight[e] / old_bending * sim->set.bending;
+      for (int e = 0; e < sim->m->nhinge; e++)
+        sim->m->hinge_weight[e] = sim->m->hinge_weight[e] / old_bending * sim->set.bending;
     ss_sim_diag_const(sim);
     sim->a_h = 0.0;       /* quasi-Newton: factor A again on the next substep */
     sim->h_const_h = 0.0; /* Newton: rebuild the constant Hessian */
@@ -370,17 +370,17 @@ typedef struct anchor_counts {
 /* Moves anchor a (if it holds a free point) with walker (NULL: the mover's
  * own scratch). */
 static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_counts *c) {
-  const int nv = sim->nvert;
-  if (a + SS_WALK_PREFETCH < sim->nanchor)
+  const int nv = sim->m->nvert;
+  if (a + SS_WALK_PREFETCH < sim->m->nanchor)
     ss_frames_prefetch(ss_mover_frames(sim->mover), sim->anchor_face[a + SS_WALK_PREFETCH]);
   double p[3];
   if (a < nv) {
-    if (sim->dof[a] < 0 || sim->k_vert[a] == 0.0) return;
+    if (sim->m->dof[a] < 0 || sim->m->k_vert[a] == 0.0) return;
     memcpy(p, sim->x + 3 * a, sizeof p);
   } else {
     int f = a - nv;
-    if (sim->k_face[f] == 0.0) return;
-    const int *fv = sim->faces + 3 * f;
+    if (sim->m->k_face[f] == 0.0) return;
+    const int *fv = sim->m->faces + 3 * f;
     for (int i = 0; i < 3; i++)
       p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) / 3.0;
   }
@@ -405,20 +405,20 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     sim->anchor_path[a] += res.length;
     c->steps += res.steps;
   }
-  if (sim->tether_frac > 0.0 && sim->anchor_face0[a] >= 0) {
+  if (sim->tether_frac > 0.0 && sim->m->anchor_face0[a] >= 0) {
     /* the tether: walk back along the surface towards where the anchor was
      * bound (always the walk, whatever the method: it cannot jump a gap) */
     const ss_frames *fr = ss_mover_frames(sim->mover);
     double here[3], home[3];
     ss_anchor_position(fr, res.face, res.uv, here);
-    ss_anchor_position(fr, sim->anchor_face0[a], sim->anchor_uv0 + 2 * a, home);
+    ss_anchor_position(fr, sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a, home);
     double pull2 = 0.0;
     for (int i = 0; i < 3; i++) {
       target[i] = here[i] + sim->tether_frac * (home[i] - here[i]);
       pull2 += (target[i] - here[i]) * (target[i] - here[i]);
     }
-    const int h = sim->anchor_face0[a];
-    if (pull2 > 0.0 && share_corner(sim->btopo, res.face, h)) {
+    const int h = sim->m->anchor_face0[a];
+    if (pull2 > 0.0 && share_corner(sim->m->btopo, res.face, h)) {
       /* Next to home (its face shares a corner with the home face): the
        * rest of the way in the home face's own frame. A bind point is often
        * a body vertex (a skin copied from the body), where the faces around
@@ -433,7 +433,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
       const int face = res.face;
       const double uv[2] = {res.uv[0], res.uv[1]};
       ss_walk_result back;
-      ss_walk(walker ? walker : sim->walkers[0], sim->btopo, fr, face, uv, target,
+      ss_walk(walker ? walker : sim->walkers[0], sim->m->btopo, fr, face, uv, target,
               sim->set.mover.walk_max_steps, &back);
       res.face = back.face;
       res.uv[0] = back.uv[0];
@@ -459,7 +459,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
  * thread count. */
 static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   if (sim->slide_frac <= 0.0 && sim->tether_frac <= 0.0) return;
-  const int nanchor = sim->nanchor;
+  const int nanchor = sim->m->nanchor;
   anchor_counts c = {0, 0, 0, 0, 0};
 #ifdef _OPENMP
   if (sim->nthread > 1 && ss_mover_method(sim->mover) != SS_METHOD_NRING) {
@@ -488,20 +488,20 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
 
 static void area_ratios(const ss_sim *sim, ss_sim_stats *st) {
   double lo = INFINITY, hi = 0.0;
-  for (int q = 0; q < sim->nsimface; q++) {
-    int f = sim->simface[q];
-    const int *fv = sim->faces + 3 * f;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    int f = sim->m->simface[q];
+    const int *fv = sim->m->faces + 3 * f;
     const double *p0 = sim->x + 3 * fv[0], *p1 = sim->x + 3 * fv[1], *p2 = sim->x + 3 * fv[2];
     double e1[3], e2[3];
     for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
     double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2],
            c2 = e1[0] * e2[1] - e1[1] * e2[0];
-    double r = 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->rest_area[f];
+    double r = 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->m->rest_area[f];
     lo = fmin(lo, r);
     hi = fmax(hi, r);
   }
-  st->min_area_ratio = sim->nsimface ? lo : 1.0;
-  st->max_area_ratio = sim->nsimface ? hi : 1.0;
+  st->min_area_ratio = sim->m->nsimface ? lo : 1.0;
+  st->max_area_ratio = sim->m->nsimface ? hi : 1.0;
 }
 
 static int all_finite(const double *a, size_t n) {
@@ -543,7 +543,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   if (!sim || !body_pos) return ss_fail(err, err_sz, SS_E_ARG, "sim or body positions are NULL");
   if (dt <= 0.0) dt = sim->set.dt;
   if (!isfinite(dt)) return ss_fail(err, err_sz, SS_E_ARG, "dt is not finite");
-  for (int v = 0; v < sim->nbvert; v++)
+  for (int v = 0; v < sim->m->nbvert; v++)
     for (int i = 0; i < 3; i++)
       if (!isfinite(body_pos[3 * v + i]))
         return ss_fail(err, err_sz, SS_E_NONFINITE, "body vertex %d has a non-finite coordinate", v);
@@ -552,7 +552,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
      * of vertex moves / h): refuse a move whose velocity would overflow,
      * before anything of the state changes. */
     const double h_sub = dt / sim->set.substeps, lim = 0.25 * DBL_MAX * h_sub;
-    for (size_t i = 0; i < 3 * (size_t)sim->nbvert; i++)
+    for (size_t i = 0; i < 3 * (size_t)sim->m->nbvert; i++)
       if (!isfinite(body_pos[i] - sim->body_prev[i]) || !(fabs(body_pos[i] - sim->body_prev[i]) <= lim))
         return ss_fail(err, err_sz, SS_E_NONFINITE,
                        "body vertex %d moves %g in %g s: its velocity overflows; step refused",
@@ -560,11 +560,11 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   }
   double t_start = ss_now_ms();
   sim->st = st;
-  memset(sim->anchor_pull, 0, (size_t)sim->nanchor * sizeof(double));
-  memset(sim->anchor_path, 0, (size_t)sim->nanchor * sizeof(double));
+  memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
+  memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
   int substeps = sim->set.substeps;
   double h = dt / substeps;
-  size_t nv3 = 3 * (size_t)sim->nvert, nb3 = 3 * (size_t)sim->nbvert;
+  size_t nv3 = 3 * (size_t)sim->m->nvert, nb3 = 3 * (size_t)sim->m->nbvert;
   int status = SS_OK;
   st->converged = 1;
   for (int s = 1; s <= substeps; s++) {
@@ -577,8 +577,8 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     /* Where the free vertices' anchors were in the previous pose: the start
      * of the solve moves each vertex along with its anchor. */
     const ss_frames *fr_prev = ss_mover_frames(sim->mover);
-    for (int k = 0; k < sim->ndof; k++) {
-      int v = sim->dof_vert[k];
+    for (int k = 0; k < sim->m->ndof; k++) {
+      int v = sim->m->dof_vert[k];
       if (sim->anchor_face[v] >= 0)
         ss_anchor_position(fr_prev, sim->anchor_face[v], sim->anchor_uv + 2 * v, sim->guess + 3 * k);
       else
@@ -588,25 +588,25 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     update_anchor_positions(sim, sim->body_sub);
     st->pose_ms += ss_now_ms() - t0;
     memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));
-    for (int v = 0; v < sim->nvert; v++)
-      if (sim->dof[v] < 0) memcpy(sim->x + 3 * v, sim->anchor_pos + 3 * v, 3 * sizeof(double));
+    for (int v = 0; v < sim->m->nvert; v++)
+      if (sim->m->dof[v] < 0) memcpy(sim->x + 3 * v, sim->anchor_pos + 3 * v, 3 * sizeof(double));
     memcpy(sim->xfull_t, sim->x, nv3 * sizeof(double));
     /* 2. solve, starting from the skin carried along by its anchors (fewer
      * iterations than the inertial prediction x + h v when the body leads:
      * about 40% fewer on twist and boundary, 60% on armpit; ~5% more on fold) */
     int converged = 1, stalled = 0, nonfinite = 0;
-    if (sim->ndof > 0) {
+    if (sim->m->ndof > 0) {
       ss_sim_energy_begin(sim, h);
-      for (int k = 0; k < sim->ndof; k++) {
-        int v = sim->dof_vert[k];
+      for (int k = 0; k < sim->m->ndof; k++) {
+        int v = sim->m->dof_vert[k];
         for (int i = 0; i < 3; i++)
           sim->xd[3 * k + i] = sim->x_prev[3 * v + i] + (sim->anchor_pos[3 * v + i] - sim->guess[3 * k + i]);
       }
       status = ss_solver_solve(sim, sim->xd, &converged, &stalled, &nonfinite);
-      if (status != SS_OK || nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->ndof)) {
+      if (status != SS_OK || nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->m->ndof)) {
         /* Keep the last good state of the free vertices, at rest. */
-        for (int k = 0; k < sim->ndof; k++) {
-          int v = sim->dof_vert[k];
+        for (int k = 0; k < sim->m->ndof; k++) {
+          int v = sim->m->dof_vert[k];
           memcpy(sim->xd + 3 * k, sim->x_prev + 3 * v, 3 * sizeof(double));
           memset(sim->v + 3 * v, 0, 3 * sizeof(double));
         }
@@ -646,22 +646,22 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
 
 /* ---- accessors ---- */
 const ss_sim_settings *ss_sim_get_settings(const ss_sim *sim) { return &sim->set; }
-int ss_sim_skin_nvert(const ss_sim *sim) { return sim->nvert; }
-int ss_sim_skin_nface(const ss_sim *sim) { return sim->nface; }
-const int *ss_sim_skin_faces(const ss_sim *sim) { return sim->faces; }
-const double *ss_sim_skin_rest(const ss_sim *sim) { return sim->rest; }
+int ss_sim_skin_nvert(const ss_sim *sim) { return sim->m->nvert; }
+int ss_sim_skin_nface(const ss_sim *sim) { return sim->m->nface; }
+const int *ss_sim_skin_faces(const ss_sim *sim) { return sim->m->faces; }
+const double *ss_sim_skin_rest(const ss_sim *sim) { return sim->m->rest; }
 const double *ss_sim_skin_positions(const ss_sim *sim) { return sim->x; }
 const double *ss_sim_skin_velocities(const ss_sim *sim) { return sim->v; }
-int ss_sim_ndof(const ss_sim *sim) { return sim->ndof; }
-int ss_sim_body_nvert(const ss_sim *sim) { return sim->nbvert; }
-int ss_sim_body_nface(const ss_sim *sim) { return sim->nbface; }
-int ss_sim_nanchors(const ss_sim *sim) { return sim->nanchor; }
+int ss_sim_ndof(const ss_sim *sim) { return sim->m->ndof; }
+int ss_sim_body_nvert(const ss_sim *sim) { return sim->m->nbvert; }
+int ss_sim_body_nface(const ss_sim *sim) { return sim->m->nbface; }
+int ss_sim_nanchors(const ss_sim *sim) { return sim->m->nanchor; }
 const int *ss_sim_anchor_faces(const ss_sim *sim) { return sim->anchor_face; }
 const double *ss_sim_anchor_uv(const ss_sim *sim) { return sim->anchor_uv; }
 const double *ss_sim_anchor_pull(const ss_sim *sim) { return sim->anchor_pull; }
 const double *ss_sim_anchor_path(const ss_sim *sim) { return sim->anchor_path; }
-const ss_topo *ss_sim_body_topo(const ss_sim *sim) { return sim->btopo; }
+const ss_topo *ss_sim_body_topo(const ss_sim *sim) { return sim->m->btopo; }
 
 void ss_sim_anchor_positions(const ss_sim *sim, double *out) {
-  memcpy(out, sim->anchor_pos, 3 * (size_t)sim->nanchor * sizeof(double));
+  memcpy(out, sim->anchor_pos, 3 * (size_t)sim->m->nanchor * sizeof(double));
 }

@@ -29,42 +29,42 @@
 
 int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
                 int err_sz) {
-  int nv = sim->nvert, nf = sim->nface;
-  for (int a = 0; a < sim->nanchor; a++) {
-    sim->anchor_face0[a] = -1;
-    sim->anchor_uv0[2 * a] = sim->anchor_uv0[2 * a + 1] = 0.0;
+  int nv = sim->m->nvert, nf = sim->m->nface;
+  for (int a = 0; a < sim->m->nanchor; a++) {
+    sim->m->anchor_face0[a] = -1;
+    sim->m->anchor_uv0[2 * a] = sim->m->anchor_uv0[2 * a + 1] = 0.0;
   }
   if (!skin) {
     static const double corner_uv[3][2] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
     for (int f = 0; f < nf; f++)
       for (int c = 0; c < 3; c++) {
-        int v = sim->faces[3 * f + c];
-        if (sim->anchor_face0[v] >= 0) continue;
-        sim->anchor_face0[v] = f;
-        sim->anchor_uv0[2 * v] = corner_uv[c][0];
-        sim->anchor_uv0[2 * v + 1] = corner_uv[c][1];
+        int v = sim->m->faces[3 * f + c];
+        if (sim->m->anchor_face0[v] >= 0) continue;
+        sim->m->anchor_face0[v] = f;
+        sim->m->anchor_uv0[2 * v] = corner_uv[c][0];
+        sim->m->anchor_uv0[2 * v + 1] = corner_uv[c][1];
       }
     if (sim->set.barycenter_anchors)
       for (int f = 0; f < nf; f++) {
-        sim->anchor_face0[nv + f] = f;
-        sim->anchor_uv0[2 * (nv + f)] = sim->anchor_uv0[2 * (nv + f) + 1] = 1.0 / 3.0;
+        sim->m->anchor_face0[nv + f] = f;
+        sim->m->anchor_uv0[2 * (nv + f)] = sim->m->anchor_uv0[2 * (nv + f) + 1] = 1.0 / 3.0;
       }
     return SS_OK;
   }
   ss_bvh *bvh = NULL;
-  int status = ss_bvh_create(&bvh, sim->btopo);
+  int status = ss_bvh_create(&bvh, sim->m->btopo);
   if (status != SS_OK) return ss_fail(err, err_sz, status, "cannot build the body's BVH to bind the skin");
   ss_bvh_refit(bvh, body_rest);
-  for (int a = 0; a < sim->nanchor; a++) {
+  for (int a = 0; a < sim->m->nanchor; a++) {
     double p[3];
     if (a < nv) {
-      memcpy(p, sim->rest + 3 * a, sizeof p);
+      memcpy(p, sim->m->rest + 3 * a, sizeof p);
     } else {
-      const int *fv = sim->faces + 3 * (a - nv);
+      const int *fv = sim->m->faces + 3 * (a - nv);
       for (int i = 0; i < 3; i++)
-        p[i] = (sim->rest[3 * fv[0] + i] + sim->rest[3 * fv[1] + i] + sim->rest[3 * fv[2] + i]) / 3.0;
+        p[i] = (sim->m->rest[3 * fv[0] + i] + sim->m->rest[3 * fv[1] + i] + sim->m->rest[3 * fv[2] + i]) / 3.0;
     }
-    ss_bvh_closest(bvh, body_rest, p, &sim->anchor_face0[a], sim->anchor_uv0 + 2 * a);
+    ss_bvh_closest(bvh, body_rest, p, &sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a);
   }
   ss_bvh_destroy(bvh);
   return SS_OK;
@@ -83,14 +83,14 @@ static int cmp_half_edge(const void *pa, const void *pb) {
 }
 
 static int build_hinges(ss_sim *sim, char *err, int err_sz) {
-  int nf = sim->nface;
+  int nf = sim->m->nface;
   half_edge *he = malloc(3 * (size_t)(nf ? nf : 1) * sizeof *he);
   if (!he) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
   int nhe = 0;
   for (int f = 0; f < nf; f++) {
-    if (sim->rest_area[f] <= 0.0) continue;
+    if (sim->m->rest_area[f] <= 0.0) continue;
     for (int c = 0; c < 3; c++) {
-      int a = sim->faces[3 * f + c], b = sim->faces[3 * f + (c + 1) % 3];
+      int a = sim->m->faces[3 * f + c], b = sim->m->faces[3 * f + (c + 1) % 3];
       if (a == b) continue;
       he[nhe].lo = a < b ? a : b;
       he[nhe].hi = a < b ? b : a;
@@ -109,23 +109,23 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
       while (r < nhe && he[r].lo == he[q].lo && he[r].hi == he[q].hi) r++;
       if (r - q == 2) {
         const half_edge *h0 = &he[q], *h1 = &he[q + 1];
-        const int *f0 = sim->faces + 3 * h0->face, *f1 = sim->faces + 3 * h1->face;
+        const int *f0 = sim->m->faces + 3 * h0->face, *f1 = sim->m->faces + 3 * h1->face;
         int e0 = f0[h0->corner], e1 = f0[(h0->corner + 1) % 3], o0 = f0[(h0->corner + 2) % 3];
         int opposite = f1[h1->corner] == e1 && f1[(h1->corner + 1) % 3] == e0;
         int o1 = f1[(h1->corner + 2) % 3];
-        int any_free = sim->dof[e0] >= 0 || sim->dof[e1] >= 0 || sim->dof[o0] >= 0 || sim->dof[o1] >= 0;
-        int simulated = sim->mask[h0->face] || sim->mask[h1->face];
+        int any_free = sim->m->dof[e0] >= 0 || sim->m->dof[e1] >= 0 || sim->m->dof[o0] >= 0 || sim->m->dof[o1] >= 0;
+        int simulated = sim->m->mask[h0->face] || sim->m->mask[h1->face];
         if (opposite && any_free && simulated && o0 != o1) {
           if (pass == 1) {
-            int *hv = sim->hinge_vert + 4 * e;
+            int *hv = sim->m->hinge_vert + 4 * e;
             hv[0] = e0, hv[1] = e1, hv[2] = o0, hv[3] = o1;
             double x12[12];
-            for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, sim->rest + 3 * hv[c], 3 * sizeof(double));
+            for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, sim->m->rest + 3 * hv[c], 3 * sizeof(double));
             double el2 = 0.0;
             for (int i = 0; i < 3; i++) el2 += (x12[3 + i] - x12[i]) * (x12[3 + i] - x12[i]);
-            sim->hinge_theta0[e] = ss_hinge_angle(x12);
-            sim->hinge_weight[e] =
-                sim->set.bending * el2 / (sim->rest_area[h0->face] + sim->rest_area[h1->face]);
+            sim->m->hinge_theta0[e] = ss_hinge_angle(x12);
+            sim->m->hinge_weight[e] =
+                sim->set.bending * el2 / (sim->m->rest_area[h0->face] + sim->m->rest_area[h1->face]);
           }
           e++;
         }
@@ -134,11 +134,11 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
     }
     if (pass == 0) {
       count = e;
-      sim->nhinge = count;
-      sim->hinge_vert = malloc(4 * (size_t)(count ? count : 1) * sizeof(int));
-      sim->hinge_theta0 = malloc((size_t)(count ? count : 1) * sizeof(double));
-      sim->hinge_weight = malloc((size_t)(count ? count : 1) * sizeof(double));
-      if (!sim->hinge_vert || !sim->hinge_theta0 || !sim->hinge_weight) {
+      sim->m->nhinge = count;
+      sim->m->hinge_vert = malloc(4 * (size_t)(count ? count : 1) * sizeof(int));
+      sim->m->hinge_theta0 = malloc((size_t)(count ? count : 1) * sizeof(double));
+      sim->m->hinge_weight = malloc((size_t)(count ? count : 1) * sizeof(double));
+      if (!sim->m->hinge_vert || !sim->m->hinge_theta0 || !sim->m->hinge_weight) {
         free(he);
         return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
       }
@@ -149,77 +149,77 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
 }
 
 void ss_sim_build_material(ss_sim *sim) {
-  const int nv = sim->nvert, nf = sim->nface;
+  const int nv = sim->m->nvert, nf = sim->m->nface;
   const ss_sim_settings *set = &sim->set;
-  ss_membrane_lame(set->young, set->poisson, &sim->mu, &sim->lam);
+  ss_membrane_lame(set->young, set->poisson, &sim->m->mu, &sim->m->lam);
   double area_sum = 0.0;
-  for (int f = 0; f < nf; f++) area_sum += sim->rest_area[f];
+  for (int f = 0; f < nf; f++) area_sum += sim->m->rest_area[f];
   /* A vertex whose faces all have zero area still needs a little mass. */
   double mass_floor = 1e-6 * set->density * area_sum / nf;
-  for (int v = 0; v < nv; v++) sim->mass[v] = fmax(set->density * sim->vert_area[v], mass_floor);
+  for (int v = 0; v < nv; v++) sim->m->mass[v] = fmax(set->density * sim->m->vert_area[v], mass_floor);
   /* Springs: vertices (free only) and barycenters of faces with a free corner. */
   double share = set->barycenter_anchors ? 0.5 : 1.0;
   for (int f = 0; f < nf; f++) {
-    const int *fv = sim->faces + 3 * f;
-    int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
-    int has_area = sim->rest_area[f] > 0.0;
+    const int *fv = sim->m->faces + 3 * f;
+    int any_free = sim->m->dof[fv[0]] >= 0 || sim->m->dof[fv[1]] >= 0 || sim->m->dof[fv[2]] >= 0;
+    int has_area = sim->m->rest_area[f] > 0.0;
     /* A zero-area face represents no skin: no spring. */
-    sim->k_face[f] = set->barycenter_anchors && any_free && has_area
-                         ? share * set->anchor_stiffness * sim->rest_area[f] : 0.0;
+    sim->m->k_face[f] = set->barycenter_anchors && any_free && has_area
+                         ? share * set->anchor_stiffness * sim->m->rest_area[f] : 0.0;
   }
   for (int v = 0; v < nv; v++)
-    sim->k_vert[v] = sim->dof[v] >= 0 ? share * set->anchor_stiffness * sim->vert_area[v] : 0.0;
+    sim->m->k_vert[v] = sim->m->dof[v] >= 0 ? share * set->anchor_stiffness * sim->m->vert_area[v] : 0.0;
 }
 
 int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
-  int nv = sim->nvert, nf = sim->nface;
+  int nv = sim->m->nvert, nf = sim->m->nface;
   const ss_sim_settings *set = &sim->set;
   /* Rest data and lumped areas. */
   double edge_sum = 0.0, area_sum = 0.0;
   int edge_count = 0;
-  memset(sim->vert_area, 0, (size_t)nv * sizeof(double));
+  memset(sim->m->vert_area, 0, (size_t)nv * sizeof(double));
   for (int f = 0; f < nf; f++) {
-    const int *fv = sim->faces + 3 * f;
-    const double *p0 = sim->rest + 3 * fv[0], *p1 = sim->rest + 3 * fv[1], *p2 = sim->rest + 3 * fv[2];
-    ss_membrane_rest(p0, p1, p2, sim->dm_inv + 4 * f, &sim->rest_area[f]);
-    area_sum += sim->rest_area[f];
-    for (int c = 0; c < 3; c++) sim->vert_area[fv[c]] += sim->rest_area[f] / 3.0;
+    const int *fv = sim->m->faces + 3 * f;
+    const double *p0 = sim->m->rest + 3 * fv[0], *p1 = sim->m->rest + 3 * fv[1], *p2 = sim->m->rest + 3 * fv[2];
+    ss_membrane_rest(p0, p1, p2, sim->m->dm_inv + 4 * f, &sim->m->rest_area[f]);
+    area_sum += sim->m->rest_area[f];
+    for (int c = 0; c < 3; c++) sim->m->vert_area[fv[c]] += sim->m->rest_area[f] / 3.0;
     for (int c = 0; c < 3; c++) {
-      const double *a = sim->rest + 3 * fv[c], *b = sim->rest + 3 * fv[(c + 1) % 3];
+      const double *a = sim->m->rest + 3 * fv[c], *b = sim->m->rest + 3 * fv[(c + 1) % 3];
       double d2 = 0.0;
       for (int i = 0; i < 3; i++) d2 += (a[i] - b[i]) * (a[i] - b[i]);
       edge_sum += sqrt(d2);
       edge_count++;
     }
   }
-  sim->edge_len = edge_count && edge_sum > 0.0 ? edge_sum / edge_count : 1.0;
+  sim->m->edge_len = edge_count && edge_sum > 0.0 ? edge_sum / edge_count : 1.0;
   if (!(area_sum > 0.0)) return ss_fail(err, err_sz, SS_E_MESH, "the skin has no area at rest");
 
   /* Vertex kinds: free if it touches only simulated faces. */
-  unsigned char *touch_in = sim->kind; /* bit 1: simulated face, bit 2: other face */
+  unsigned char *touch_in = sim->m->kind; /* bit 1: simulated face, bit 2: other face */
   memset(touch_in, 0, (size_t)nv);
   for (int f = 0; f < nf; f++)
-    for (int c = 0; c < 3; c++) touch_in[sim->faces[3 * f + c]] |= sim->mask[f] ? 1 : 2;
-  sim->ndof = 0;
+    for (int c = 0; c < 3; c++) touch_in[sim->m->faces[3 * f + c]] |= sim->m->mask[f] ? 1 : 2;
+  sim->m->ndof = 0;
   for (int v = 0; v < nv; v++) {
     unsigned char t = touch_in[v];
-    sim->kind[v] = t == 1 ? SS_VERT_FREE : (t & 1) ? SS_VERT_PINNED : SS_VERT_FOLLOWER;
-    sim->dof[v] = sim->kind[v] == SS_VERT_FREE ? sim->ndof++ : -1;
+    sim->m->kind[v] = t == 1 ? SS_VERT_FREE : (t & 1) ? SS_VERT_PINNED : SS_VERT_FOLLOWER;
+    sim->m->dof[v] = sim->m->kind[v] == SS_VERT_FREE ? sim->m->ndof++ : -1;
   }
-  sim->dof_vert = malloc((size_t)(sim->ndof ? sim->ndof : 1) * sizeof(int));
-  if (!sim->dof_vert) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the unknowns");
+  sim->m->dof_vert = malloc((size_t)(sim->m->ndof ? sim->m->ndof : 1) * sizeof(int));
+  if (!sim->m->dof_vert) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the unknowns");
   for (int v = 0; v < nv; v++)
-    if (sim->dof[v] >= 0) sim->dof_vert[sim->dof[v]] = v;
+    if (sim->m->dof[v] >= 0) sim->m->dof_vert[sim->m->dof[v]] = v;
 
   /* Simulated faces. */
-  sim->nsimface = 0;
+  sim->m->nsimface = 0;
   for (int f = 0; f < nf; f++) {
-    const int *fv = sim->faces + 3 * f;
-    int any_free = sim->dof[fv[0]] >= 0 || sim->dof[fv[1]] >= 0 || sim->dof[fv[2]] >= 0;
-    if (any_free && sim->rest_area[f] > 0.0) sim->simface[sim->nsimface++] = f;
+    const int *fv = sim->m->faces + 3 * f;
+    int any_free = sim->m->dof[fv[0]] >= 0 || sim->m->dof[fv[1]] >= 0 || sim->m->dof[fv[2]] >= 0;
+    if (any_free && sim->m->rest_area[f] > 0.0) sim->m->simface[sim->m->nsimface++] = f;
   }
   ss_sim_build_material(sim);
   if (set->bending > 0.0) return build_hinges(sim, err, err_sz);
-  sim->nhinge = 0;
+  sim->m->nhinge = 0;
   return SS_OK;
 }

@@ -30,9 +30,9 @@ void ss_sim_energy_begin(ss_sim *sim, double h) {
   double w = 1.0 / (h * h) + c / h;
   const double *g = sim->set.gravity;
   sim->h = h;
-  for (int k = 0; k < sim->ndof; k++) {
-    int v = sim->dof_vert[k];
-    sim->mi[k] = sim->mass[v] * w;
+  for (int k = 0; k < sim->m->ndof; k++) {
+    int v = sim->m->dof_vert[k];
+    sim->mi[k] = sim->m->mass[v] * w;
     for (int i = 0; i < 3; i++) {
       double xn = sim->x_prev[3 * v + i];
       double pred = xn + h * sim->v[3 * v + i];
@@ -42,12 +42,12 @@ void ss_sim_energy_begin(ss_sim *sim, double h) {
 }
 
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull) {
-  for (int k = 0; k < sim->ndof; k++) memcpy(xfull + 3 * sim->dof_vert[k], xd + 3 * k, 3 * sizeof(double));
+  for (int k = 0; k < sim->m->ndof; k++) memcpy(xfull + 3 * sim->m->dof_vert[k], xd + 3 * k, 3 * sizeof(double));
 }
 
 /* g[dof of v] += gv (3 values), if v is free. */
 static inline void add_grad(const ss_sim *sim, double *g, int v, const double *gv) {
-  int k = sim->dof[v];
+  int k = sim->m->dof[v];
   if (k < 0) return;
   g[3 * k] += gv[0];
   g[3 * k + 1] += gv[1];
@@ -55,79 +55,79 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
 }
 
 int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
-  const int nsim = sim->nsimface, nf = sim->nface, n = sim->ndof;
+  const int nsim = sim->m->nsimface, nf = sim->m->nface, n = sim->m->ndof;
   const int bary = sim->set.barycenter_anchors;
-  sim->bary_base = 9 * nsim;
+  sim->m->bary_base = 9 * nsim;
   free(sim->face_grad);
   sim->face_grad = calloc(9 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1, sizeof(double));
-  sim->mface = aligned_alloc(64, ((size_t)nsim + 1) * sizeof(ss_membrane_face));
-  sim->grad_ptr = calloc((size_t)n + 2, sizeof(int));
-  sim->grad_slot = malloc((3 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
-  if (!sim->face_grad || !sim->mface || !sim->grad_ptr || !sim->grad_slot)
+  sim->m->mface = aligned_alloc(64, ((size_t)nsim + 1) * sizeof(ss_membrane_face));
+  sim->m->grad_ptr = calloc((size_t)n + 2, sizeof(int));
+  sim->m->grad_slot = malloc((3 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
+  if (!sim->face_grad || !sim->m->mface || !sim->m->grad_ptr || !sim->m->grad_slot)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the energy layout");
   for (int q = 0; q < nsim; q++) {
-    int f = sim->simface[q];
-    ss_membrane_face *r = sim->mface + q;
-    for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->faces[3 * f + c];
+    int f = sim->m->simface[q];
+    ss_membrane_face *r = sim->m->mface + q;
+    for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->m->faces[3 * f + c];
     r->pad = 0;
-    memcpy(r->dm_inv, sim->dm_inv + 4 * f, 4 * sizeof(double));
-    r->area = sim->rest_area[f];
+    memcpy(r->dm_inv, sim->m->dm_inv + 4 * f, 4 * sizeof(double));
+    r->area = sim->m->rest_area[f];
     r->pad2 = 0.0;
   }
   /* Slots per dof in the order of the sum: springs (face order), membrane
    * (simulated face order), each corner in turn. */
-  int *cnt = sim->grad_ptr + 1;
+  int *cnt = sim->m->grad_ptr + 1;
   for (int pass = 0; pass < 2; pass++) {
     if (pass == 1) {
-      for (int k = 0; k < n; k++) sim->grad_ptr[k + 1] += sim->grad_ptr[k];
-      cnt = sim->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
+      for (int k = 0; k < n; k++) sim->m->grad_ptr[k + 1] += sim->m->grad_ptr[k];
+      cnt = sim->m->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
     }
     for (int f = 0; bary && f < nf; f++) {
-      if (sim->k_face[f] == 0.0) continue;
+      if (sim->m->k_face[f] == 0.0) continue;
       for (int c = 0; c < 3; c++) {
-        int k = sim->dof[sim->faces[3 * f + c]];
+        int k = sim->m->dof[sim->m->faces[3 * f + c]];
         if (k < 0) continue;
         if (pass == 0)
           cnt[k]++;
         else
-          sim->grad_slot[cnt[k]++] = sim->bary_base + 3 * f;
+          sim->m->grad_slot[cnt[k]++] = sim->m->bary_base + 3 * f;
       }
     }
     for (int q = 0; q < nsim; q++)
       for (int c = 0; c < 3; c++) {
-        int k = sim->dof[sim->faces[3 * sim->simface[q] + c]];
+        int k = sim->m->dof[sim->m->faces[3 * sim->m->simface[q] + c]];
         if (k < 0) continue;
         if (pass == 0)
           cnt[k]++;
         else
-          sim->grad_slot[cnt[k]++] = 9 * q + 3 * c;
+          sim->m->grad_slot[cnt[k]++] = 9 * q + 3 * c;
       }
   }
   /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
-  memmove(sim->grad_ptr + 1, sim->grad_ptr, (size_t)n * sizeof(int));
-  sim->grad_ptr[0] = 0;
+  memmove(sim->m->grad_ptr + 1, sim->m->grad_ptr, (size_t)n * sizeof(int));
+  sim->m->grad_ptr[0] = 0;
   return SS_OK;
 }
 
 void ss_sim_energy_free(ss_sim *sim) {
-  free(sim->mface);
-  free(sim->grad_ptr);
-  free(sim->grad_slot);
-  sim->mface = NULL, sim->grad_ptr = NULL, sim->grad_slot = NULL;
+  free(sim->m->mface);
+  free(sim->m->grad_ptr);
+  free(sim->m->grad_slot);
+  sim->m->mface = NULL, sim->m->grad_ptr = NULL, sim->m->grad_slot = NULL;
 }
 
 /* Gradient of dof k: its own terms (inertia, vertex spring), then the
  * per-face parts it shares, summed in the order of grad_slot. */
 static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
-  int v = sim->dof_vert[k];
+  int v = sim->m->dof_vert[k];
   const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
-  double mi = sim->mi[k], kv = sim->k_vert[v];
+  double mi = sim->mi[k], kv = sim->m->k_vert[v];
   double g0 = mi * (x[0] - t[0]) + kv * (x[0] - a[0]);
   double g1 = mi * (x[1] - t[1]) + kv * (x[1] - a[1]);
   double g2 = mi * (x[2] - t[2]) + kv * (x[2] - a[2]);
   const double *fg = sim->face_grad;
-  for (int e = sim->grad_ptr[k]; e < sim->grad_ptr[k + 1]; e++) {
-    const double *p = fg + sim->grad_slot[e];
+  for (int e = sim->m->grad_ptr[k]; e < sim->m->grad_ptr[k + 1]; e++) {
+    const double *p = fg + sim->m->grad_slot[e];
     g0 += p[0];
     g1 += p[1];
     g2 += p[2];
@@ -143,13 +143,13 @@ static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, do
 double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   enum { L = SS_MEMBRANE_LANES };
   double e = 0.0;
-  int n = sim->ndof;
+  int n = sim->m->ndof;
   double *fg = sim->face_grad;
   /* Inertia (with damping and gravity) and vertex springs: energy. */
   for (int k = 0; k < n; k++) {
-    int v = sim->dof_vert[k];
+    int v = sim->m->dof_vert[k];
     const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
-    double mi = sim->mi[k], kv = sim->k_vert[v];
+    double mi = sim->mi[k], kv = sim->m->k_vert[v];
     for (int i = 0; i < 3; i++) {
       double dt = x[i] - t[i], da = x[i] - a[i];
       e += 0.5 * (mi * dt * dt + kv * da * da);
@@ -158,34 +158,34 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   /* Barycenter springs: energy, and each face's gradient (the same for its
    * three corners) into face_grad. */
   if (sim->set.barycenter_anchors) {
-    for (int f = 0; f < sim->nface; f++) {
-      double kf = sim->k_face[f];
+    for (int f = 0; f < sim->m->nface; f++) {
+      double kf = sim->m->k_face[f];
       if (kf == 0.0) continue;
-      const int *fv = sim->faces + 3 * f;
-      const double *a = sim->anchor_pos + 3 * ((size_t)sim->nvert + f);
+      const int *fv = sim->m->faces + 3 * f;
+      const double *a = sim->anchor_pos + 3 * ((size_t)sim->m->nvert + f);
       double d[3];
       for (int i = 0; i < 3; i++)
         d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
       e += 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      double *gb = fg + sim->bary_base + 3 * f;
+      double *gb = fg + sim->m->bary_base + 3 * f;
       for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
     }
   }
   /* Membrane: blocks of faces on all threads, energies summed in face order
    * on one. */
-  const int nsim = sim->nsimface;
+  const int nsim = sim->m->nsimface;
   const int nblock = (nsim + L - 1) / L;
   double *fe = sim->face_energy;
 #ifdef _OPENMP
   if (sim->nthread > 1 && nsim > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
-      ss_membrane_eval_batch(sim->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull, sim->mu,
-                             sim->lam, fe, fg);
+      ss_membrane_eval_batch(sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull, sim->m->mu,
+                             sim->m->lam, fe, fg);
   } else
 #endif
   {
-    ss_membrane_eval_batch(sim->mface, 0, nsim, xfull, sim->mu, sim->lam, fe, fg);
+    ss_membrane_eval_batch(sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam, fe, fg);
   }
   for (int q = 0; q < nsim; q++) e += fe[q];
   if (g) {
@@ -200,11 +200,11 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     }
   }
   /* Bending. */
-  for (int q = 0; q < sim->nhinge; q++) {
-    const int *hv = sim->hinge_vert + 4 * q;
+  for (int q = 0; q < sim->m->nhinge; q++) {
+    const int *hv = sim->m->hinge_vert + 4 * q;
     double x12[12], g12[12];
     for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, xfull + 3 * hv[c], 3 * sizeof(double));
-    e += ss_hinge_eval(x12, sim->hinge_theta0[q], sim->hinge_weight[q], g ? g12 : NULL, NULL);
+    e += ss_hinge_eval(x12, sim->m->hinge_theta0[q], sim->m->hinge_weight[q], g ? g12 : NULL, NULL);
     if (g)
       for (int c = 0; c < 4; c++) add_grad(sim, g, hv[c], g12 + 3 * c);
   }
@@ -222,9 +222,9 @@ double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
 
 double ss_sim_residual(const ss_sim *sim, const double *g) {
   double worst = 0.0;
-  for (int k = 0; k < sim->ndof; k++) {
+  for (int k = 0; k < sim->m->ndof; k++) {
     double gn = sqrt(g[3 * k] * g[3 * k] + g[3 * k + 1] * g[3 * k + 1] + g[3 * k + 2] * g[3 * k + 2]);
-    double r = gn / ((sim->mi[k] + sim->diag_const[k]) * sim->edge_len);
+    double r = gn / ((sim->mi[k] + sim->m->diag_const[k]) * sim->m->edge_len);
     if (!(r <= worst)) worst = r; /* NaN propagates */
   }
   return worst;
@@ -232,12 +232,12 @@ double ss_sim_residual(const ss_sim *sim, const double *g) {
 
 double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
   double sum = 0.0;
-  for (int k = 0; k < sim->ndof; k++) {
+  for (int k = 0; k < sim->m->ndof; k++) {
     double gn2 = g[3 * k] * g[3 * k] + g[3 * k + 1] * g[3 * k + 1] + g[3 * k + 2] * g[3 * k + 2];
-    double scale = (sim->mi[k] + sim->diag_const[k]) * sim->edge_len;
+    double scale = (sim->mi[k] + sim->m->diag_const[k]) * sim->m->edge_len;
     sum += gn2 / (scale * scale);
   }
-  return sim->ndof ? sqrt(sum / sim->ndof) : 0.0;
+  return sim->m->ndof ? sqrt(sum / sim->m->ndof) : 0.0;
 }
 
 /* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
@@ -246,10 +246,10 @@ static void scatter_element(const ss_sim *sim, const int *verts, int n, const in
                             const double *he, double *vals) {
   int m = 3 * n;
   for (int a = 0; a < n; a++) {
-    int i = sim->dof[verts[a]];
+    int i = sim->m->dof[verts[a]];
     if (i < 0) continue;
     for (int b = 0; b < n; b++) {
-      int j = sim->dof[verts[b]];
+      int j = sim->m->dof[verts[b]];
       if (j < i) continue; /* j < 0 too; the transpose is added from (b, a) */
       int r = rank[n * a + b];
       for (int c1 = 0; c1 < 3; c1++)
@@ -264,28 +264,28 @@ static double area_ratio(const ss_sim *sim, const double *x9, int f) {
   double e1[3], e2[3];
   for (int i = 0; i < 3; i++) e1[i] = x9[3 + i] - x9[i], e2[i] = x9[6 + i] - x9[i];
   double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2], c2 = e1[0] * e2[1] - e1[1] * e2[0];
-  return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->rest_area[f];
+  return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->m->rest_area[f];
 }
 
 void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact) {
-  for (int q = 0; q < sim->nsimface; q++) {
-    int f = sim->simface[q];
-    const int *fv = sim->faces + 3 * f;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    int f = sim->m->simface[q];
+    const int *fv = sim->m->faces + 3 * f;
     double x9[9], h81[81];
     for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
     /* The exact Hessian grows like 1/J: nearly collapsed faces stay projected. */
     if (exact && area_ratio(sim, x9, f) > 1e-3)
-      ss_membrane_eval_raw(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
+      ss_membrane_eval_raw(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam, NULL, h81);
     else
-      ss_membrane_eval(x9, sim->dm_inv + 4 * f, sim->rest_area[f], sim->mu, sim->lam, NULL, h81);
-    scatter_element(sim, fv, 3, sim->face_rank + 9 * f, h81, vals);
+      ss_membrane_eval(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam, NULL, h81);
+    scatter_element(sim, fv, 3, sim->m->face_rank + 9 * f, h81, vals);
   }
-  for (int q = 0; q < sim->nhinge; q++) {
-    const int *hv = sim->hinge_vert + 4 * q;
+  for (int q = 0; q < sim->m->nhinge; q++) {
+    const int *hv = sim->m->hinge_vert + 4 * q;
     double x12[12], h144[144];
     for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, xfull + 3 * hv[c], 3 * sizeof(double));
-    ss_hinge_eval(x12, sim->hinge_theta0[q], sim->hinge_weight[q], NULL, h144);
-    scatter_element(sim, hv, 4, sim->hinge_rank + 16 * q, h144, vals);
+    ss_hinge_eval(x12, sim->m->hinge_theta0[q], sim->m->hinge_weight[q], NULL, h144);
+    scatter_element(sim, hv, 4, sim->m->hinge_rank + 16 * q, h144, vals);
   }
   ss_sim_orient_hessian(sim, xfull, vals); /* orient.c */
 }
@@ -294,35 +294,35 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
  * else in the 3n x 3n values. */
 static void add_iso(const ss_sim *sim, double *vals, int scalar, int j, int rank, double w) {
   if (scalar) {
-    vals[sim->bcolp[j] + rank] += w;
+    vals[sim->m->bcolp[j] + rank] += w;
   } else {
     for (int c = 0; c < 3; c++) vals[ss_sim_slot3(sim, j, rank, c, c)] += w;
   }
 }
 
 static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
-  size_t nnz = scalar ? (size_t)sim->nblock : (size_t)sim->nnz3;
+  size_t nnz = scalar ? (size_t)sim->m->nblock : (size_t)sim->m->nnz3;
   memset(vals, 0, nnz * sizeof *vals);
-  for (int k = 0; k < sim->ndof; k++) {
-    int v = sim->dof_vert[k];
-    int diag_rank = sim->bcolp[k + 1] - sim->bcolp[k] - 1;
-    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->k_vert[v]);
+  for (int k = 0; k < sim->m->ndof; k++) {
+    int v = sim->m->dof_vert[k];
+    int diag_rank = sim->m->bcolp[k + 1] - sim->m->bcolp[k] - 1;
+    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->m->k_vert[v]);
   }
   if (sim->set.barycenter_anchors) {
-    for (int f = 0; f < sim->nface; f++) {
-      double kf = sim->k_face[f];
+    for (int f = 0; f < sim->m->nface; f++) {
+      double kf = sim->m->k_face[f];
       if (kf == 0.0) continue;
-      const int *fv = sim->faces + 3 * f;
+      const int *fv = sim->m->faces + 3 * f;
       for (int a = 0; a < 3; a++) {
-        int i = sim->dof[fv[a]];
+        int i = sim->m->dof[fv[a]];
         if (i < 0) continue;
         for (int b = 0; b < 3; b++) {
-          int j = sim->dof[fv[b]];
+          int j = sim->m->dof[fv[b]];
           if (j < i) continue;
           /* Upper triangle: (a, b) and (b, a) meet in one block; count once
            * unless a == b. Off-diagonal blocks get the (a, b) value only, as
            * the symmetric (b, a) is implied. */
-          add_iso(sim, vals, scalar, j, sim->face_rank[9 * f + 3 * a + b], kf / 9.0);
+          add_iso(sim, vals, scalar, j, sim->m->face_rank[9 * f + 3 * a + b], kf / 9.0);
         }
       }
     }
@@ -341,16 +341,16 @@ void ss_sim_scalar_matrix(const ss_sim *sim, double *vals) {
 void ss_sim_diag_const(ss_sim *sim) {
   /* Build the scalar matrix without inertia into a scratch of nblock values:
    * borrow h-independent terms only (mi = 0 during the call). */
-  double *vals = calloc((size_t)(sim->nblock ? sim->nblock : 1), sizeof *vals);
+  double *vals = calloc((size_t)(sim->m->nblock ? sim->m->nblock : 1), sizeof *vals);
   double *mi_save = sim->mi;
-  double *zeros = calloc((size_t)(sim->ndof ? sim->ndof : 1), sizeof *zeros);
+  double *zeros = calloc((size_t)(sim->m->ndof ? sim->m->ndof : 1), sizeof *zeros);
   if (!vals || !zeros) {
-    for (int k = 0; k < sim->ndof; k++) sim->diag_const[k] = 0.0;
+    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_const[k] = 0.0;
   } else {
     sim->mi = zeros;
     ss_sim_scalar_matrix(sim, vals);
     sim->mi = mi_save;
-    for (int k = 0; k < sim->ndof; k++) sim->diag_const[k] = vals[sim->bcolp[k + 1] - 1];
+    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_const[k] = vals[sim->m->bcolp[k + 1] - 1];
   }
   free(vals);
   free(zeros);
@@ -360,11 +360,11 @@ static void rest_laplacian(const ss_sim *sim, double *vals) {
   /* Rest membrane stiffness: (mu + lam) times the cotangent Laplacian, the
    * exact Hessian of (mu + lam)/2 A |F|^2. It lies between the rest
    * membrane's in-plane eigenvalues 2 mu (shear) and 2 lam (area). */
-  double w = sim->mu + sim->lam;
-  for (int q = 0; q < sim->nsimface; q++) {
-    int f = sim->simface[q];
-    const int *fv = sim->faces + 3 * f;
-    const double *di = sim->dm_inv + 4 * f;
+  double w = sim->m->mu + sim->m->lam;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    int f = sim->m->simface[q];
+    const int *fv = sim->m->faces + 3 * f;
+    const double *di = sim->m->dm_inv + 4 * f;
     double d[3][2];
     for (int j = 0; j < 2; j++) {
       d[1][j] = di[j];
@@ -372,13 +372,13 @@ static void rest_laplacian(const ss_sim *sim, double *vals) {
       d[0][j] = -d[1][j] - d[2][j];
     }
     for (int a = 0; a < 3; a++) {
-      int i = sim->dof[fv[a]];
+      int i = sim->m->dof[fv[a]];
       if (i < 0) continue;
       for (int b = 0; b < 3; b++) {
-        int j = sim->dof[fv[b]];
+        int j = sim->m->dof[fv[b]];
         if (j < i) continue;
-        double kab = w * sim->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
-        vals[sim->bcolp[j] + sim->face_rank[9 * f + 3 * a + b]] += kab;
+        double kab = w * sim->m->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
+        vals[sim->m->bcolp[j] + sim->m->face_rank[9 * f + 3 * a + b]] += kab;
       }
     }
   }

@@ -30,19 +30,11 @@ enum ss_vert_kind {
  * created on it (ss_sim_create_from_model); nothing writes it while stepping. */
 struct ss_model {
   int refs; /* sims running on it + the creator's reference (ss_model_create) */
-  /* model_rewrite.py moves the model's fields above this line */
-};
-
-struct ss_sim {
-  ss_model *m;                /* the model this sim runs on (counted in m->refs) */
-  /* ---------------- model: fixed at create */
-  ss_sim_settings set;        /* face_mask points to mask below (or NULL) */
   double mu, lam;             /* membrane Lamé parameters (stable form) */
   /* body */
   int nbvert, nbface;
   double *body_rest;          /* (nbvert x 3) */
   ss_topo *btopo;
-  ss_mover *mover;
   /* skin */
   int nvert, nface;
   int *faces;                 /* (nface x 3) */
@@ -78,6 +70,20 @@ struct ss_sim {
   int *face_rank;             /* (nface x 9) rank of block (min, max) of corners (a, b) in
                                  column max, -1 if either corner is not free */
   int *hinge_rank;            /* (nhinge x 16) same for hinge corners */
+  signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
+  struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
+  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
+  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
+  int bary_base;              /* first slot of the springs' part of face_grad */
+  double *diag_const;         /* (ndof) diagonal of the scalar matrix without inertia */
+  /* model_rewrite.py moves the model's fields above this line */
+};
+
+struct ss_sim {
+  ss_model *m;                /* the model this sim runs on (counted in m->refs) */
+  /* ---------------- model: fixed at create */
+  ss_sim_settings set;        /* face_mask points to mask below (or NULL) */
+  ss_mover *mover;
 
   /* ---------------- data of a run */
   double *x;                  /* (nvert x 3) skin positions */
@@ -93,21 +99,15 @@ struct ss_sim {
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
   ss_walker **walkers;        /* (nthread_max) walk scratch, one per thread */
-  signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
   double *face_energy;        /* (nsimface) membrane energies of one evaluation */
   double *face_grad;          /* their gradients (9 per simulated face), then the
                                  barycenter springs' (3 per face) */
-  struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
-  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
-  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
-  int bary_base;              /* first slot of the springs' part of face_grad */
   double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
   double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
   double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
   double tether_frac;         /* share of the way back home it walks this substep */
   double *mi;                 /* (ndof) inertia weight: mass (1/h^2 + damping/h) */
-  double *diag_const;         /* (ndof) diagonal of the scalar matrix without inertia */
   double *target;             /* (ndof x 3) inertia target (prediction, damping, gravity) */
   /* solver scratch: dof vectors (ndof x 3) and full position arrays */
   double *xd, *gd, *dir, *xt, *gt;
@@ -198,7 +198,7 @@ void ss_sim_scalar_matrix(const ss_sim *sim, double *vals);
 /* Slot of entry (row 3i+a, col 3j+b) of the 3n matrix from block rank r in
  * block column j (i <= j; a <= b when i == j). */
 static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b) {
-  return sim->colp3[3 * j + b] + 3 * rank + a;
+  return sim->m->colp3[3 * j + b] + 3 * rank + a;
 }
 
 /* ---- solvers (solver.h: the one loop, line search and the solvers' hooks).

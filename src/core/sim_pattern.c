@@ -26,11 +26,11 @@ static int cmp_ll(const void *a, const void *b) {
 
 /* Rank of block row i in block column j, or -1 if not there. */
 static int block_rank(const ss_sim *sim, int i, int j) {
-  int lo = sim->bcolp[j], hi = sim->bcolp[j + 1] - 1;
+  int lo = sim->m->bcolp[j], hi = sim->m->bcolp[j + 1] - 1;
   while (lo <= hi) {
     int mid = lo + (hi - lo) / 2;
-    if (sim->brow[mid] == i) return mid - sim->bcolp[j];
-    if (sim->brow[mid] < i)
+    if (sim->m->brow[mid] == i) return mid - sim->m->bcolp[j];
+    if (sim->m->brow[mid] < i)
       lo = mid + 1;
     else
       hi = mid - 1;
@@ -42,7 +42,7 @@ static int block_rank(const ss_sim *sim, int i, int j) {
 static void element_ranks(const ss_sim *sim, const int *verts, int n, int *rank) {
   for (int a = 0; a < n; a++) {
     for (int b = 0; b < n; b++) {
-      int i = sim->dof[verts[a]], j = sim->dof[verts[b]];
+      int i = sim->m->dof[verts[a]], j = sim->m->dof[verts[b]];
       if (i < 0 || j < 0) {
         rank[n * a + b] = -1;
         continue;
@@ -54,24 +54,24 @@ static void element_ranks(const ss_sim *sim, const int *verts, int n, int *rank)
 }
 
 int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
-  int n = sim->ndof;
+  int n = sim->m->ndof;
   /* Candidate pairs: diagonal, simulated faces' corner pairs, hinges. */
-  size_t cap = (size_t)n + 3 * (size_t)sim->nface + 6 * (size_t)sim->nhinge;
+  size_t cap = (size_t)n + 3 * (size_t)sim->m->nface + 6 * (size_t)sim->m->nhinge;
   long long *key = malloc((cap ? cap : 1) * sizeof *key);
-  sim->bcolp = calloc((size_t)n + 1, sizeof *sim->bcolp);
-  sim->colp3 = calloc(3 * (size_t)n + 1, sizeof *sim->colp3);
-  sim->face_rank = malloc((size_t)(sim->nface ? sim->nface : 1) * 9 * sizeof(int));
-  sim->hinge_rank = malloc((size_t)(sim->nhinge ? sim->nhinge : 1) * 16 * sizeof(int));
-  if (!key || !sim->bcolp || !sim->colp3 || !sim->face_rank || !sim->hinge_rank) {
+  sim->m->bcolp = calloc((size_t)n + 1, sizeof *sim->m->bcolp);
+  sim->m->colp3 = calloc(3 * (size_t)n + 1, sizeof *sim->m->colp3);
+  sim->m->face_rank = malloc((size_t)(sim->m->nface ? sim->m->nface : 1) * 9 * sizeof(int));
+  sim->m->hinge_rank = malloc((size_t)(sim->m->nhinge ? sim->m->nhinge : 1) * 16 * sizeof(int));
+  if (!key || !sim->m->bcolp || !sim->m->colp3 || !sim->m->face_rank || !sim->m->hinge_rank) {
     free(key);
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
   }
   size_t nk = 0;
   for (int k = 0; k < n; k++) key[nk++] = (long long)k * n + k;
-  for (int f = 0; f < sim->nface; f++) {
-    const int *fv = sim->faces + 3 * f;
+  for (int f = 0; f < sim->m->nface; f++) {
+    const int *fv = sim->m->faces + 3 * f;
     for (int a = 0; a < 3; a++) {
-      int i = sim->dof[fv[a]], j = sim->dof[fv[(a + 1) % 3]];
+      int i = sim->m->dof[fv[a]], j = sim->m->dof[fv[(a + 1) % 3]];
       if (i < 0 || j < 0 || i == j) continue;
       if (i > j) {
         int t = i;
@@ -81,11 +81,11 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
       key[nk++] = (long long)j * n + i;
     }
   }
-  for (int e = 0; e < sim->nhinge; e++) {
-    const int *hv = sim->hinge_vert + 4 * e;
+  for (int e = 0; e < sim->m->nhinge; e++) {
+    const int *hv = sim->m->hinge_vert + 4 * e;
     for (int a = 0; a < 4; a++)
       for (int b = a + 1; b < 4; b++) {
-        int i = sim->dof[hv[a]], j = sim->dof[hv[b]];
+        int i = sim->m->dof[hv[a]], j = sim->m->dof[hv[b]];
         if (i < 0 || j < 0 || i == j) continue;
         if (i > j) {
           int t = i;
@@ -99,36 +99,36 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
   size_t nu = 0;
   for (size_t q = 0; q < nk; q++)
     if (nu == 0 || key[q] != key[nu - 1]) key[nu++] = key[q];
-  sim->nblock = (int)nu;
-  sim->brow = malloc((nu ? nu : 1) * sizeof *sim->brow);
-  if (!sim->brow) {
+  sim->m->nblock = (int)nu;
+  sim->m->brow = malloc((nu ? nu : 1) * sizeof *sim->m->brow);
+  if (!sim->m->brow) {
     free(key);
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
   }
   /* Keys sorted by (column, row): the CSC order directly. */
   for (size_t q = 0; q < nu; q++) {
     int j = (int)(key[q] / n), i = (int)(key[q] % n);
-    sim->brow[q] = i;
-    sim->bcolp[j + 1]++;
+    sim->m->brow[q] = i;
+    sim->m->bcolp[j + 1]++;
   }
   free(key);
-  for (int j = 0; j < n; j++) sim->bcolp[j + 1] += sim->bcolp[j];
+  for (int j = 0; j < n; j++) sim->m->bcolp[j + 1] += sim->m->bcolp[j];
   /* 3n columns: block column j with nb blocks (the diagonal last) gives
    * columns of 3 (nb - 1) + 1, + 2, + 3 entries. */
   long long nnz3 = 0;
   for (int j = 0; j < n; j++) {
-    int nb = sim->bcolp[j + 1] - sim->bcolp[j];
+    int nb = sim->m->bcolp[j + 1] - sim->m->bcolp[j];
     for (int b = 0; b < 3; b++) {
-      sim->colp3[3 * j + b] = (int)nnz3;
+      sim->m->colp3[3 * j + b] = (int)nnz3;
       nnz3 += 3LL * (nb - 1) + b + 1;
     }
   }
   if (nnz3 > 2000000000LL)
     return ss_fail(err, err_sz, SS_E_ARG, "skin too large: %lld matrix entries", nnz3);
-  sim->colp3[3 * n] = (int)nnz3;
-  sim->nnz3 = (int)nnz3;
-  for (int f = 0; f < sim->nface; f++) element_ranks(sim, sim->faces + 3 * f, 3, sim->face_rank + 9 * f);
-  for (int e = 0; e < sim->nhinge; e++)
-    element_ranks(sim, sim->hinge_vert + 4 * e, 4, sim->hinge_rank + 16 * e);
+  sim->m->colp3[3 * n] = (int)nnz3;
+  sim->m->nnz3 = (int)nnz3;
+  for (int f = 0; f < sim->m->nface; f++) element_ranks(sim, sim->m->faces + 3 * f, 3, sim->m->face_rank + 9 * f);
+  for (int e = 0; e < sim->m->nhinge; e++)
+    element_ranks(sim, sim->m->hinge_vert + 4 * e, 4, sim->m->hinge_rank + 16 * e);
   return SS_OK;
 }

@@ -104,7 +104,7 @@ int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *
     res = ss_sim_residual(sim, s.g);
   }
   /* the iterate back into the caller's array (accepted steps swap buffers) */
-  if (s.xd != xd) memcpy(xd, s.xd, 3 * (size_t)sim->ndof * sizeof *xd);
+  if (s.xd != xd) memcpy(xd, s.xd, 3 * (size_t)sim->m->ndof * sizeof *xd);
   if (status != SS_OK) return status;
   /* the root mean square of the residual where the solve ended (g is at xd) */
   st->residual_rms = ss_sim_residual_rms(sim, s.g);

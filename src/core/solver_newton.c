@@ -25,20 +25,20 @@
 #include "ss_err.h"
 
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
-  int n3 = 3 * sim->ndof;
+  int n3 = 3 * sim->m->ndof;
   cholmod_common *cc = &sim->cc;
-  sim->H = cholmod_allocate_sparse((size_t)n3, (size_t)n3, (size_t)sim->nnz3, 1, 1, 1, CHOLMOD_REAL, cc);
-  sim->h_const = malloc((size_t)(sim->nnz3 ? sim->nnz3 : 1) * sizeof *sim->h_const);
+  sim->H = cholmod_allocate_sparse((size_t)n3, (size_t)n3, (size_t)sim->m->nnz3, 1, 1, 1, CHOLMOD_REAL, cc);
+  sim->h_const = malloc((size_t)(sim->m->nnz3 ? sim->m->nnz3 : 1) * sizeof *sim->h_const);
   sim->nb = cholmod_zeros((size_t)n3, 1, CHOLMOD_REAL, cc);
   if (!sim->H || !sim->h_const || !sim->nb)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the Newton matrix");
   int *p = sim->H->p, *ri = sim->H->i;
-  for (int c = 0; c <= n3; c++) p[c] = sim->colp3[c];
-  for (int j = 0; j < sim->ndof; j++) {
+  for (int c = 0; c <= n3; c++) p[c] = sim->m->colp3[c];
+  for (int j = 0; j < sim->m->ndof; j++) {
     for (int b = 0; b < 3; b++) {
-      int s = sim->colp3[3 * j + b];
-      for (int q = sim->bcolp[j]; q < sim->bcolp[j + 1]; q++) {
-        int i = sim->brow[q];
+      int s = sim->m->colp3[3 * j + b];
+      for (int q = sim->m->bcolp[j]; q < sim->m->bcolp[j + 1]; q++) {
+        int i = sim->m->brow[q];
         int last = i == j ? b : 2;
         for (int a = 0; a <= last; a++) ri[s++] = 3 * i + a;
       }
@@ -53,7 +53,7 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
   ss_sim_energy_begin(sim, sim->set.dt / sim->set.substeps);
   ss_sim_constant_hessian(sim, sim->h_const);
   sim->h_const_h = sim->h;
-  memcpy(sim->H->x, sim->h_const, (size_t)sim->nnz3 * sizeof(double));
+  memcpy(sim->H->x, sim->h_const, (size_t)sim->m->nnz3 * sizeof(double));
   if (!cholmod_factorize(sim->H, sim->LH, cc) || cc->status != CHOLMOD_OK ||
       !cholmod_solve2(CHOLMOD_A, sim->LH, sim->nb, NULL, &sim->nx, NULL, &sim->ny, &sim->ne, cc))
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD factorisation of the Newton matrix failed (status %d)",
@@ -65,13 +65,13 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
  * per-element projected elastic Hessian. Returns 1 on success, 0 if H is not
  * positive definite, or SS_E_SOLVER (< 0) if CHOLMOD failed. */
 static int newton_direction(ss_sim *sim, const double *xd, const double *g, double *dir, int exact) {
-  int n3 = 3 * sim->ndof;
+  int n3 = 3 * sim->m->ndof;
   cholmod_common *cc = &sim->cc;
   ss_sim_stats *st = sim->st;
   double t0 = ss_now_ms();
   ss_sim_scatter(sim, xd, sim->xfull_t); /* a failed line search left a trial point there */
   double *vals = sim->H->x;
-  memcpy(vals, sim->h_const, (size_t)sim->nnz3 * sizeof *vals);
+  memcpy(vals, sim->h_const, (size_t)sim->m->nnz3 * sizeof *vals);
   ss_sim_add_elastic_hessian(sim, sim->xfull_t, vals, exact);
   double t1 = ss_now_ms();
   st->assemble_ms += t1 - t0;
@@ -133,8 +133,8 @@ static int newton_dir(ss_solve *s, int attempt) {
     /* No decrease along the projected step either (clamped eigenvalues can
      * leave it nearly orthogonal to -g deep in compression): a Jacobi-scaled
      * gradient step, a descent direction by construction. */
-    for (int k = 0; k < sim->ndof; k++) {
-      double inv = 1.0 / (sim->mi[k] + sim->diag_const[k]);
+    for (int k = 0; k < sim->m->ndof; k++) {
+      double inv = 1.0 / (sim->mi[k] + sim->m->diag_const[k]);
       for (int c = 0; c < 3; c++) s->dir[3 * k + c] = -inv * s->g[3 * k + c];
     }
     return SS_DIR_OK;

@@ -55,7 +55,7 @@ static int factor_scalar(ss_sim *sim) {
 
 /* z = A^-1 q for dof vectors (n x 3 interleaved). */
 static int apply_inverse(ss_sim *sim, const double *q, double *z) {
-  int n = sim->ndof;
+  int n = sim->m->ndof;
   double *b = sim->qb->x;
   for (int k = 0; k < n; k++)
     for (int c = 0; c < 3; c++) b[k + (size_t)c * n] = q[3 * k + c];
@@ -73,7 +73,7 @@ static int apply_inverse(ss_sim *sim, const double *q, double *z) {
 }
 
 int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
-  int n = sim->ndof;
+  int n = sim->m->ndof;
   cholmod_common *cc = &sim->cc;
   sim->lb_m = sim->set.lbfgs_history;
   size_t hist = (size_t)sim->lb_m * 3 * (size_t)(n ? n : 1);
@@ -81,12 +81,12 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
   sim->lb_y = malloc(hist * sizeof(double));
   sim->lb_rho = malloc((size_t)sim->lb_m * sizeof(double));
   sim->lb_alpha = malloc((size_t)sim->lb_m * sizeof(double));
-  sim->A = cholmod_allocate_sparse((size_t)n, (size_t)n, (size_t)sim->nblock, 1, 1, 1, CHOLMOD_REAL, cc);
+  sim->A = cholmod_allocate_sparse((size_t)n, (size_t)n, (size_t)sim->m->nblock, 1, 1, 1, CHOLMOD_REAL, cc);
   sim->qb = cholmod_zeros((size_t)n, 3, CHOLMOD_REAL, cc);
   if (!sim->lb_s || !sim->lb_y || !sim->lb_rho || !sim->lb_alpha || !sim->A || !sim->qb)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the quasi-Newton solver");
-  memcpy(sim->A->p, sim->bcolp, ((size_t)n + 1) * sizeof(int));
-  memcpy(sim->A->i, sim->brow, (size_t)sim->nblock * sizeof(int));
+  memcpy(sim->A->p, sim->m->bcolp, ((size_t)n + 1) * sizeof(int));
+  memcpy(sim->A->i, sim->m->brow, (size_t)sim->m->nblock * sizeof(int));
   /* A simplicial LL' factor: with three right-hand sides the solve is
    * memory bound, CHOLMOD's simplicial solve does the three columns in one
    * pass over L, and no BLAS (nor its threads) is involved, which keeps the
@@ -123,7 +123,7 @@ static int qn_begin(ss_solve *s) {
 
 /* dir = -A^-1 g, always a descent direction (A is positive definite). */
 static int preconditioned_gradient(ss_solve *s) {
-  int n3 = 3 * s->sim->ndof;
+  int n3 = 3 * s->sim->m->ndof;
   if (apply_inverse(s->sim, s->g, s->dir) != SS_OK) return SS_E_SOLVER;
   for (int i = 0; i < n3; i++) s->dir[i] = -s->dir[i];
   return SS_DIR_OK;
@@ -134,7 +134,7 @@ static int preconditioned_gradient(ss_solve *s) {
  * is accepted (qn_accepted). */
 static int lbfgs_direction(ss_solve *s) {
   ss_sim *sim = s->sim;
-  int n3 = 3 * sim->ndof, m = sim->lb_m;
+  int n3 = 3 * sim->m->ndof, m = sim->lb_m;
   ss_sim_stats *st = sim->st;
   const double *g = s->g;
   double *dir = s->dir;
@@ -234,7 +234,7 @@ static int qn_dir(ss_solve *s, int attempt) {
 /* The new pair and its three dots in one pass. */
 static void qn_accepted(ss_solve *s) {
   ss_sim *sim = s->sim;
-  int n3 = 3 * sim->ndof, m = sim->lb_m;
+  int n3 = 3 * sim->m->ndof, m = sim->lb_m;
   const double *xd = s->xd, *g = s->g;
   double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
   double sy = 0.0, ss = 0.0, yy = 0.0;

@@ -14,8 +14,8 @@
 #include "ss_test.h"
 
 static void upper_matvec(const ss_sim *sim, const double *vals, const double *v, double *out) {
-  int n3 = 3 * sim->ndof;
-  const int *p = sim->colp3, *ri = sim->H->i;
+  int n3 = 3 * sim->m->ndof;
+  const int *p = sim->m->colp3, *ri = sim->H->i;
   memset(out, 0, (size_t)n3 * sizeof *out);
   for (int c = 0; c < n3; c++)
     for (int q = p[c]; q < p[c + 1]; q++) {
@@ -42,8 +42,8 @@ static void test_assembly(void) {
   CHECK_EQ_INT(ss_sim_create(&sim, g.nvert, g.pos, g.nface, g.faces, NULL, &set, err, sizeof err), SS_OK);
   free(mask);
   if (!sim) return;
-  CHECK(sim->nhinge > 0);
-  CHECK(sim->ndof > 0 && sim->ndof < g.nvert);
+  CHECK(sim->m->nhinge > 0);
+  CHECK(sim->m->ndof > 0 && sim->m->ndof < g.nvert);
   /* Move once so that anchors and velocities are not trivial. */
   double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
   fx_pose(&g, 0.05, pose);
@@ -52,7 +52,7 @@ static void test_assembly(void) {
   memcpy(sim->x_prev, sim->x, 3 * (size_t)g.nvert * sizeof(double));
   memcpy(sim->xfull_t, sim->x, 3 * (size_t)g.nvert * sizeof(double));
   ss_sim_energy_begin(sim, 0.02);
-  int n3 = 3 * sim->ndof;
+  int n3 = 3 * sim->m->ndof;
   double *x0 = malloc((size_t)n3 * sizeof(double)), *gr = malloc((size_t)n3 * sizeof(double));
   double *gp = malloc((size_t)n3 * sizeof(double)), *gm = malloc((size_t)n3 * sizeof(double));
   double *xs = malloc((size_t)n3 * sizeof(double)), *dirv = calloc((size_t)n3, sizeof(double));
@@ -62,9 +62,9 @@ static void test_assembly(void) {
 
   /* 1. gradient against differences of the energy, at a random pose. */
   memcpy(full, sim->x, 3 * (size_t)g.nvert * sizeof(double));
-  for (int k = 0; k < sim->ndof; k++)
+  for (int k = 0; k < sim->m->ndof; k++)
     for (int i = 0; i < 3; i++)
-      x0[3 * k + i] = sim->x[3 * sim->dof_vert[k] + i] + 0.05 * (2.0 * ss_test_rand(&rng) - 1.0);
+      x0[3 * k + i] = sim->x[3 * sim->m->dof_vert[k] + i] + 0.05 * (2.0 * ss_test_rand(&rng) - 1.0);
   ss_sim_scatter(sim, x0, full);
   ss_sim_energy(sim, full, gr);
   double worst = 0.0, scale = 0.0;
@@ -89,9 +89,9 @@ static void test_assembly(void) {
     for (int i = 0; i < 3; i++) c[i] += g.pos[3 * v + i] / g.nvert;
   for (int v = 0; v < g.nvert; v++)
     for (int i = 0; i < 3; i++) full[3 * v + i] = c[i] + 1.05 * (g.pos[3 * v + i] - c[i]);
-  for (int k = 0; k < sim->ndof; k++) memcpy(x0 + 3 * k, full + 3 * sim->dof_vert[k], 3 * sizeof(double));
+  for (int k = 0; k < sim->m->ndof; k++) memcpy(x0 + 3 * k, full + 3 * sim->m->dof_vert[k], 3 * sizeof(double));
   ss_sim_scatter(sim, x0, full);
-  double *vals = malloc((size_t)sim->nnz3 * sizeof(double));
+  double *vals = malloc((size_t)sim->m->nnz3 * sizeof(double));
   ss_sim_constant_hessian(sim, vals);
   ss_sim_add_elastic_hessian(sim, full, vals, 0);
   for (int trial = 0; trial < 3; trial++) {
@@ -135,14 +135,14 @@ static void test_assembly(void) {
         f2[3 * v + 1] = c[1] + 0.9 * (p0[1] - c[1]);
         f2[3 * v + 2] = c[2] + 0.9 * (p0[2] - c[2]);
       }
-      int m3 = 3 * s2->ndof;
+      int m3 = 3 * s2->m->ndof;
       double *y0 = malloc((size_t)m3 * sizeof(double)), *ys = malloc((size_t)m3 * sizeof(double));
       double *v2 = calloc((size_t)m3, sizeof(double)), *hv2 = malloc((size_t)m3 * sizeof(double));
       double *g1 = malloc((size_t)m3 * sizeof(double)), *g2 = malloc((size_t)m3 * sizeof(double));
-      for (int k = 0; k < s2->ndof; k++) memcpy(y0 + 3 * k, f2 + 3 * s2->dof_vert[k], 3 * sizeof(double));
-      double *v3 = malloc((size_t)s2->nnz3 * sizeof(double)), *vp = malloc((size_t)s2->nnz3 * sizeof(double));
+      for (int k = 0; k < s2->m->ndof; k++) memcpy(y0 + 3 * k, f2 + 3 * s2->m->dof_vert[k], 3 * sizeof(double));
+      double *v3 = malloc((size_t)s2->m->nnz3 * sizeof(double)), *vp = malloc((size_t)s2->m->nnz3 * sizeof(double));
       ss_sim_constant_hessian(s2, v3);
-      memcpy(vp, v3, (size_t)s2->nnz3 * sizeof(double));
+      memcpy(vp, v3, (size_t)s2->m->nnz3 * sizeof(double));
       ss_sim_add_elastic_hessian(s2, f2, v3, 1);
       ss_sim_add_elastic_hessian(s2, f2, vp, 0);
       for (int q = 0; q < m3; q++) v2[q] = 2.0 * ss_test_rand(&rng) - 1.0;
@@ -159,7 +159,7 @@ static void test_assembly(void) {
         w2 = fmax(w2, fabs((g1[q] - g2[q]) / (2 * eps) - hv2[q]));
         sc2 = fmax(sc2, fabs(hv2[q]));
       }
-      for (int q = 0; q < s2->nnz3; q++) differs = fmax(differs, fabs(v3[q] - vp[q]));
+      for (int q = 0; q < s2->m->nnz3; q++) differs = fmax(differs, fabs(v3[q] - vp[q]));
       CHECK_MSG(w2 <= 1e-5 * sc2, "exact H v vs FD of the gradient: %g (scale %g)", w2, sc2);
       CHECK_MSG(differs > 1e-3, "compressed: exact and projected Hessians should differ (%g)", differs);
       free(y0), free(ys), free(v2), free(hv2), free(g1), free(g2), free(v3), free(vp), free(f2);
@@ -168,9 +168,9 @@ static void test_assembly(void) {
   }
   /* 3. the scalar matrix is symmetric positive definite and its diagonal
    * holds inertia + springs + Laplacian (>= inertia). */
-  double *sv = malloc((size_t)sim->nblock * sizeof(double));
+  double *sv = malloc((size_t)sim->m->nblock * sizeof(double));
   ss_sim_scalar_matrix(sim, sv);
-  for (int k = 0; k < sim->ndof; k++) CHECK(sv[sim->bcolp[k + 1] - 1] >= sim->mi[k]);
+  for (int k = 0; k < sim->m->ndof; k++) CHECK(sv[sim->m->bcolp[k + 1] - 1] >= sim->mi[k]);
   free(sv);
   free(vals);
   free(x0), free(gr), free(gp), free(gm), free(xs), free(dirv), free(hv), free(full), free(pose);
