@@ -141,9 +141,7 @@ static double depth_weight(const ss_sim *sim, int q) {
 }
 
 int ss_sim_orient_init(ss_sim *sim) {
-  free(sim->m->orient_sign);
-  sim->m->orient_sign = calloc((size_t)(sim->m->nface ? sim->m->nface : 1), 1);
-  if (!sim->m->orient_sign) return SS_E_NOMEM;
+  /* orient_sign: the model's arena, zeroed */
   const ss_frames *fr = ss_mover_frames(sim->mover);
   const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
   for (int f = 0; f < sim->m->nface; f++) {

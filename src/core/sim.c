@@ -27,6 +27,7 @@
 #include <omp.h>
 #endif
 
+#include "energy.h"
 #include "sim_internal.h"
 #ifdef _OPENMP
 static void openmp_warm_up(int nthread);
@@ -65,47 +66,6 @@ static int check_settings(const ss_sim_settings *s, char *err, int err_sz) {
   return ss_settings_check(s, err, err_sz);
 }
 
-void ss_sim_destroy(ss_sim *sim) {
-  if (!sim) return;
-  if (sim->cc_started) {
-    cholmod_free_sparse(&sim->H, &sim->cc);
-    cholmod_free_factor(&sim->LH, &sim->cc);
-    cholmod_free_dense(&sim->nb, &sim->cc);
-    cholmod_free_dense(&sim->nx, &sim->cc);
-    cholmod_free_dense(&sim->ny, &sim->cc);
-    cholmod_free_dense(&sim->ne, &sim->cc);
-    cholmod_free_sparse(&sim->A, &sim->cc);
-    cholmod_free_factor(&sim->LA, &sim->cc);
-    cholmod_free_dense(&sim->qb, &sim->cc);
-    cholmod_free_dense(&sim->qx, &sim->cc);
-    cholmod_free_dense(&sim->qy, &sim->cc);
-    cholmod_free_dense(&sim->qe, &sim->cc);
-    cholmod_finish(&sim->cc);
-  }
-  ss_sim_energy_free(sim);
-  ss_mover_destroy(sim->mover);
-  if (sim->walkers)
-    for (int t = 0; t < sim->nthread_max; t++) ss_walker_destroy(sim->walkers[t]);
-  free(sim->walkers);
-  ss_topo_destroy(sim->m->btopo);
-  void *arrays[] = {sim->m->faces,     sim->m->rest,         sim->m->mask,         sim->m->dm_inv,      sim->m->rest_area,
-                    sim->m->vert_area, sim->m->mass,         sim->m->k_vert,       sim->m->k_face,      sim->m->kind,
-                    sim->m->dof,       sim->m->dof_vert,     sim->m->simface,      sim->m->hinge_vert,  sim->m->hinge_theta0,
-                    sim->m->hinge_weight, sim->m->anchor_face0, sim->m->anchor_uv0, sim->m->bcolp,      sim->m->brow,
-                    sim->m->colp3,     sim->m->face_rank,    sim->m->hinge_rank,   sim->x,           sim->x_prev,
-                    sim->v,         sim->body_prev,    sim->body_sub,     sim->anchor_face, sim->anchor_uv,
-                    sim->anchor_pos, sim->mi,          sim->target,       sim->xd,          sim->gd,
-                    sim->dir,       sim->xt,           sim->gt,           sim->xfull_t,     sim->h_const,
-                    sim->lb_s,      sim->lb_y,         sim->lb_rho,       sim->lb_alpha,
-                    sim->m->body_rest,  sim->m->diag_const, sim->guess,     sim->anchor_pull, sim->anchor_path,
-                    sim->face_energy, sim->face_grad, sim->m->orient_sign};
-  for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
-  free(sim->m);
-  free(sim);
-}
-
-static void *alloc_n(size_t count, size_t size) { return calloc(count ? count : 1, size); }
-
 /* Anchor positions in the body pose `pose`, which the mover holds. An anchor
  * without a face (a vertex in no face of a skin copied from the body) follows
  * its body vertex. */
@@ -135,11 +95,202 @@ void ss_sim_reset(ss_sim *sim) {
   }
 }
 
-int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int body_nface,
-                  const int *body_faces, const ss_sim_mesh *skin,
-                  const ss_sim_settings *settings, char *err, int err_sz) {
-  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
-  *out = NULL;
+/* ---- arenas: the field lists of sim_internal.h laid out in one block ---- */
+
+typedef struct arena_cursor {
+  char *base; /* NULL: sizing pass */
+  size_t off;
+} arena_cursor;
+
+/* The next count elements of size bytes, at a 64-byte boundary. */
+static void *arena_take(arena_cursor *c, size_t count, size_t size) {
+  c->off = (c->off + 63) & ~(size_t)63;
+  void *p = c->base ? c->base + c->off : NULL;
+  c->off += count * size;
+  return p;
+}
+
+#define SS_ARENA_PLACE(name, type, count, shape) owner->name = arena_take(&c, (count), sizeof(type));
+
+/* Allocates the zeroed arena *arena for the fields placed by `place` (the
+ * list run twice: sizes, then places). */
+#define SS_ARENA_ALLOC(arena, place)                                  \
+  do {                                                                \
+    arena_cursor c = {NULL, 0};                                       \
+    place;                                                            \
+    const size_t size = c.off ? (c.off + 63) & ~(size_t)63 : 64;      \
+    c.base = aligned_alloc(64, size);                                 \
+    if (!c.base) return SS_E_NOMEM;                                   \
+    memset(c.base, 0, size);                                          \
+    c.off = 0;                                                        \
+    place;                                                            \
+    (arena) = c.base;                                                 \
+  } while (0)
+
+static int model_arena(ss_model *m) {
+  ss_model *owner = m;
+  SS_ARENA_ALLOC(m->arena, SS_MODEL_ARRAYS(SS_ARENA_PLACE));
+  return SS_OK;
+}
+
+static int data_arena(ss_sim *sim) {
+  const ss_model *m = sim->m;
+  ss_sim *owner = sim;
+  SS_ARENA_ALLOC(sim->arena, SS_DATA_ARRAYS(SS_ARENA_PLACE));
+  return SS_OK;
+}
+
+/* ---- model ---- */
+
+int ss_sim_in_model(size_t offset) {
+  static const size_t model_settings[] = {
+      offsetof(ss_sim_settings, young),   offsetof(ss_sim_settings, poisson),
+      offsetof(ss_sim_settings, density), offsetof(ss_sim_settings, anchor_stiffness),
+      offsetof(ss_sim_settings, bending), offsetof(ss_sim_settings, barycenter_anchors),
+      offsetof(ss_sim_settings, orient)};
+  for (size_t i = 0; i < sizeof model_settings / sizeof model_settings[0]; i++)
+    if (model_settings[i] == offset) return 1;
+  return 0;
+}
+
+static void model_release(ss_model *m) {
+  if (!m || --m->refs > 0) return;
+  ss_topo_destroy(m->btopo);
+  free(m->arena);
+  free(m);
+}
+
+/* The model's counts, arena, inputs and body topology (the rest is built by
+ * model_build on a sim). */
+static int model_new(ss_model **out, int body_nvert, const double *body_rest, int body_nface,
+                     const int *body_faces, const ss_sim_mesh *skin, const ss_sim_settings *set,
+                     char *err, int err_sz) {
+  ss_model *m = calloc(1, sizeof *m);
+  if (!m) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  m->refs = 1;
+  m->set = *set;
+  m->nbvert = body_nvert;
+  m->nbface = body_nface;
+  m->nvert = skin ? skin->nvert : body_nvert;
+  m->nface = skin ? skin->nface : body_nface;
+  const int nv = m->nvert, nf = m->nface;
+  m->nanchor = nv + (set->barycenter_anchors ? nf : 0);
+  /* a hinge is an edge with exactly two of the 3 nface half-edges */
+  m->nhinge_max = set->bending > 0.0 ? (int)(3LL * nf / 2) : 0;
+  int status = ss_topo_create(&m->btopo, body_nvert, body_rest, body_nface, body_faces, -1.0, err, err_sz);
+  if (status == SS_OK && model_arena(m) != SS_OK)
+    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  if (status != SS_OK) {
+    model_release(m);
+    return status;
+  }
+  memcpy(m->faces, skin ? skin->faces : body_faces, 3 * (size_t)nf * sizeof(int));
+  memcpy(m->rest, skin ? skin->pos : body_rest, 3 * (size_t)nv * sizeof(double));
+  memcpy(m->body_rest, body_rest, 3 * (size_t)body_nvert * sizeof(double));
+  for (int f = 0; f < nf; f++) m->mask[f] = set->face_mask ? set->face_mask[f] != 0 : 1;
+  m->set.face_mask = m->mask;
+  *out = m;
+  return SS_OK;
+}
+
+/* The rest of the model, on the sim being created with it: anchors bound,
+ * vertex kinds, masses, hinges, pattern, energy layout. */
+static int model_build(ss_sim *sim, const ss_sim_mesh *skin, char *err, int err_sz) {
+  int status = ss_sim_bind(sim, skin, sim->m->body_rest, err, err_sz);
+  if (status == SS_OK) status = ss_sim_build_model(sim, err, err_sz);
+  if (status == SS_OK) status = ss_sim_build_pattern(sim, err, err_sz);
+  if (status == SS_OK) status = ss_sim_energy_layout(sim, err, err_sz);
+  if (status == SS_OK) ss_sim_diag_const(sim);
+  return status;
+}
+
+/* ---- data ---- */
+
+/* The data of sim on its model: mover, threads and walkers, the arena, the
+ * state at rest. */
+static int sim_data(ss_sim *sim, char *err, int err_sz) {
+  int status = ss_mover_create(&sim->mover, sim->m->btopo, &sim->set.mover, err, err_sz);
+  if (status != SS_OK) return status;
+  /* one walker per thread; the team is started here, so that stepping
+   * allocates nothing (the OpenMP runtime keeps its threads) */
+  sim->nthread = 1;
+  sim->thread_probe = -1;
+#ifdef _OPENMP
+  sim->nthread = sim->set.threads > 0 ? sim->set.threads : auto_threads(sim->m->nface);
+  if (sim->set.threads == 0 && sim->nthread > 1) sim->thread_probe = 0;
+  openmp_warm_up(sim->nthread);
+#endif
+  sim->nthread_max = sim->nthread;
+  status = data_arena(sim);
+  for (int t = 0; t < sim->nthread && !status; t++)
+    status = ss_walker_create(&sim->walkers[t], sim->m->btopo->nface);
+  if (status != SS_OK) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  ss_sim_reset(sim);
+  return SS_OK;
+}
+
+static int sim_solver(ss_sim *sim, char *err, int err_sz) {
+  cholmod_start(&sim->cc);
+  sim->cc_started = 1;
+  sim->cc.print = 0; /* the core never prints: errors come back as status */
+  if (sim->m->ndof == 0) return SS_OK;
+  return ss_solver_create(sim, err, err_sz);
+}
+
+void ss_sim_destroy(ss_sim *sim) {
+  if (!sim) return;
+  if (sim->cc_started) {
+    cholmod_free_sparse(&sim->H, &sim->cc);
+    cholmod_free_factor(&sim->LH, &sim->cc);
+    cholmod_free_dense(&sim->nb, &sim->cc);
+    cholmod_free_dense(&sim->nx, &sim->cc);
+    cholmod_free_dense(&sim->ny, &sim->cc);
+    cholmod_free_dense(&sim->ne, &sim->cc);
+    cholmod_free_sparse(&sim->A, &sim->cc);
+    cholmod_free_factor(&sim->LA, &sim->cc);
+    cholmod_free_dense(&sim->qb, &sim->cc);
+    cholmod_free_dense(&sim->qx, &sim->cc);
+    cholmod_free_dense(&sim->qy, &sim->cc);
+    cholmod_free_dense(&sim->qe, &sim->cc);
+    cholmod_finish(&sim->cc);
+  }
+  ss_mover_destroy(sim->mover);
+  if (sim->walkers)
+    for (int t = 0; t < sim->nthread_max; t++) ss_walker_destroy(sim->walkers[t]);
+  free(sim->arena);
+  model_release(sim->m);
+  free(sim);
+}
+
+/* A sim on model m, whose reference it takes over (released on failure):
+ * the model built first if `build`, the solver made if `solver`. */
+static int sim_make(ss_sim **out, ss_model *m, const ss_sim_settings *set,
+                    const ss_sim_mesh *skin, int build, int solver, char *err, int err_sz) {
+  ss_sim *sim = calloc(1, sizeof *sim);
+  if (!sim) {
+    model_release(m);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  }
+  sim->m = m;
+  sim->set = *set;
+  sim->set.face_mask = m->mask;
+  int status = build ? model_build(sim, skin, err, err_sz) : SS_OK;
+  if (status == SS_OK) status = sim_data(sim, err, err_sz);
+  if (status == SS_OK && build) status = ss_sim_orient_init(sim);
+  if (status == SS_OK && solver) status = sim_solver(sim, err, err_sz);
+  if (status != SS_OK) {
+    ss_sim_destroy(sim);
+    return status;
+  }
+  *out = sim;
+  return SS_OK;
+}
+
+/* Checks the arguments of ss_sim_create / ss_model_create and creates a sim
+ * with its own model (its solver only if `solver`). */
+static int create(ss_sim **out, int body_nvert, const double *body_rest, int body_nface,
+                  const int *body_faces, const ss_sim_mesh *skin, const ss_sim_settings *settings,
+                  int solver, char *err, int err_sz) {
   if (!body_rest || !body_faces) return ss_fail(err, err_sz, SS_E_ARG, "body positions or faces are NULL");
   ss_sim_settings def = ss_sim_default_settings();
   const ss_sim_settings *set = settings ? settings : &def;
@@ -152,129 +303,18 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
     status = ss_mesh_check(skin->nvert, skin->pos, skin->nface, skin->faces, err, err_sz);
     if (status != SS_OK) return status;
   }
-  ss_sim *sim = calloc(1, sizeof *sim);
-  if (!sim) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-  sim->m = calloc(1, sizeof *sim->m);
-  if (!sim->m) {
-    free(sim);
-    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-  }
-  sim->m->refs = 1;
-  sim->set = *set;
-  sim->m->nbvert = body_nvert;
-  sim->m->nbface = body_nface;
-  sim->m->nvert = skin ? skin->nvert : body_nvert;
-  sim->m->nface = skin ? skin->nface : body_nface;
-  int nv = sim->m->nvert, nf = sim->m->nface;
-  sim->m->nanchor = nv + (set->barycenter_anchors ? nf : 0);
-  size_t nv3 = 3 * (size_t)nv;
+  ss_model *m = NULL;
+  status = model_new(&m, body_nvert, body_rest, body_nface, body_faces, skin, set, err, err_sz);
+  if (status != SS_OK) return status;
+  return sim_make(out, m, set, skin, 1, solver, err, err_sz);
+}
 
-  status = ss_topo_create(&sim->m->btopo, body_nvert, body_rest, body_nface, body_faces, -1.0, err, err_sz);
-  if (status != SS_OK) goto fail;
-  status = ss_mover_create(&sim->mover, sim->m->btopo, &set->mover, err, err_sz);
-  if (status != SS_OK) goto fail;
-  /* one walker per thread; the team is started here, so that stepping
-   * allocates nothing (the OpenMP runtime keeps its threads) */
-  sim->nthread = 1;
-  sim->thread_probe = -1;
-#ifdef _OPENMP
-  sim->nthread = set->threads > 0 ? set->threads : auto_threads(sim->m->nface);
-  if (set->threads == 0 && sim->nthread > 1) sim->thread_probe = 0;
-  openmp_warm_up(sim->nthread);
-#endif
-  sim->nthread_max = sim->nthread;
-  sim->walkers = calloc((size_t)sim->nthread, sizeof *sim->walkers);
-  if (!sim->walkers) status = SS_E_NOMEM;
-  for (int t = 0; t < sim->nthread && !status; t++)
-    status = ss_walker_create(&sim->walkers[t], sim->m->btopo->nface);
-  if (status != SS_OK) {
-    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-    goto fail;
-  }
-
-  sim->m->faces = alloc_n(3 * (size_t)nf, sizeof(int));
-  sim->m->rest = alloc_n(nv3, sizeof(double));
-  sim->m->mask = alloc_n((size_t)nf, 1);
-  sim->m->dm_inv = alloc_n(4 * (size_t)nf, sizeof(double));
-  sim->m->rest_area = alloc_n((size_t)nf, sizeof(double));
-  sim->m->vert_area = alloc_n((size_t)nv, sizeof(double));
-  sim->m->mass = alloc_n((size_t)nv, sizeof(double));
-  sim->m->k_vert = alloc_n((size_t)nv, sizeof(double));
-  sim->m->k_face = alloc_n((size_t)nf, sizeof(double));
-  sim->m->kind = alloc_n((size_t)nv, 1);
-  sim->m->dof = alloc_n((size_t)nv, sizeof(int));
-  sim->m->simface = alloc_n((size_t)nf, sizeof(int));
-  sim->m->anchor_face0 = alloc_n((size_t)sim->m->nanchor, sizeof(int));
-  sim->m->anchor_uv0 = alloc_n(2 * (size_t)sim->m->nanchor, sizeof(double));
-  sim->anchor_face = alloc_n((size_t)sim->m->nanchor, sizeof(int));
-  sim->anchor_uv = alloc_n(2 * (size_t)sim->m->nanchor, sizeof(double));
-  sim->anchor_pos = alloc_n(3 * (size_t)sim->m->nanchor, sizeof(double));
-  sim->face_energy = alloc_n((size_t)nf, sizeof(double));
-  sim->face_grad = alloc_n(9 * (size_t)nf, sizeof(double));
-  sim->anchor_pull = alloc_n((size_t)sim->m->nanchor, sizeof(double));
-  sim->anchor_path = alloc_n((size_t)sim->m->nanchor, sizeof(double));
-  sim->x = alloc_n(nv3, sizeof(double));
-  sim->x_prev = alloc_n(nv3, sizeof(double));
-  sim->v = alloc_n(nv3, sizeof(double));
-  sim->xfull_t = alloc_n(nv3, sizeof(double));
-  sim->body_prev = alloc_n(3 * (size_t)body_nvert, sizeof(double));
-  sim->m->body_rest = alloc_n(3 * (size_t)body_nvert, sizeof(double));
-  sim->body_sub = alloc_n(3 * (size_t)body_nvert, sizeof(double));
-  if (!sim->m->faces || !sim->m->rest || !sim->m->mask || !sim->m->dm_inv || !sim->m->rest_area || !sim->m->vert_area ||
-      !sim->m->mass || !sim->m->k_vert || !sim->m->k_face || !sim->m->kind || !sim->m->dof || !sim->m->simface ||
-      !sim->m->anchor_face0 || !sim->m->anchor_uv0 || !sim->anchor_face || !sim->anchor_uv || !sim->anchor_pos ||
-      !sim->anchor_pull || !sim->anchor_path || !sim->face_energy || !sim->face_grad ||
-      !sim->x || !sim->x_prev || !sim->v || !sim->xfull_t || !sim->body_prev || !sim->body_sub ||
-      !sim->m->body_rest) {
-    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-    goto fail;
-  }
-  memcpy(sim->m->faces, skin ? skin->faces : body_faces, 3 * (size_t)nf * sizeof(int));
-  memcpy(sim->m->rest, skin ? skin->pos : body_rest, nv3 * sizeof(double));
-  memcpy(sim->m->body_rest, body_rest, 3 * (size_t)body_nvert * sizeof(double));
-  for (int f = 0; f < nf; f++) sim->m->mask[f] = set->face_mask ? set->face_mask[f] != 0 : 1;
-  sim->set.face_mask = sim->m->mask;
-
-  status = ss_sim_bind(sim, skin, body_rest, err, err_sz);
-  if (status != SS_OK) goto fail;
-  status = ss_sim_build_model(sim, err, err_sz);
-  if (status != SS_OK) goto fail;
-  status = ss_sim_build_pattern(sim, err, err_sz);
-  if (status != SS_OK) goto fail;
-  status = ss_sim_energy_layout(sim, err, err_sz);
-  if (status != SS_OK) goto fail;
-  size_t nd3 = 3 * (size_t)sim->m->ndof;
-  sim->mi = alloc_n((size_t)sim->m->ndof, sizeof(double));
-  sim->m->diag_const = alloc_n((size_t)sim->m->ndof, sizeof(double));
-  sim->target = alloc_n(nd3, sizeof(double));
-  sim->xd = alloc_n(nd3, sizeof(double));
-  sim->gd = alloc_n(nd3, sizeof(double));
-  sim->dir = alloc_n(nd3, sizeof(double));
-  sim->xt = alloc_n(nd3, sizeof(double));
-  sim->guess = alloc_n(nd3, sizeof(double));
-  sim->gt = alloc_n(nd3, sizeof(double));
-  if (!sim->mi || !sim->m->diag_const || !sim->target || !sim->xd || !sim->gd || !sim->dir || !sim->xt || !sim->gt || !sim->guess) {
-    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-    goto fail;
-  }
-  ss_sim_diag_const(sim);
-  ss_sim_reset(sim);
-  if (ss_sim_orient_init(sim) != SS_OK) {
-    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-    goto fail;
-  }
-  cholmod_start(&sim->cc);
-  sim->cc_started = 1;
-  sim->cc.print = 0; /* the core never prints: errors come back as status */
-  if (sim->m->ndof > 0) {
-    status = ss_solver_create(sim, err, err_sz);
-    if (status != SS_OK) goto fail;
-  }
-  *out = sim;
-  return SS_OK;
-fail:
-  ss_sim_destroy(sim);
-  return status;
+int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int body_nface,
+                  const int *body_faces, const ss_sim_mesh *skin,
+                  const ss_sim_settings *settings, char *err, int err_sz) {
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
+  *out = NULL;
+  return create(out, body_nvert, body_rest, body_nface, body_faces, skin, settings, 1, err, err_sz);
 }
 
 int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *err, int err_sz) {
@@ -299,7 +339,7 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
   int status = ss_settings_check(settings, err, err_sz);
   if (status != SS_OK) return status;
   int n = 0, refactor = 0;
-  const ss_setting *table = ss_settings_table(&n);
+  const ss_setting *table = ss_settings_table(&n), *material = NULL;
   for (int i = 0; i < n; i++) {
     const ss_setting *d = &table[i];
     if (ss_setting_equal(d, &sim->set, settings)) continue;
@@ -311,17 +351,21 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
                      on_off ? "turned on or off" : "changed");
     }
     refactor |= d->apply == SS_APPLY_REFACTOR;
+    if (!material && ss_sim_in_model(d->offset)) material = d;
   }
   const double old_bending = sim->set.bending;
   const unsigned char *mask = sim->set.face_mask;
   sim->set = *settings;
   sim->set.face_mask = mask; /* the region stays */
-  if (refactor) {
+  if (material) {
+    sim->m->set = sim->set;
     ss_sim_build_material(sim);
     if (old_bending > 0.0 && sim->set.bending != old_bending)
       for (int e = 0; e < sim->m->nhinge; e++)
         sim->m->hinge_weight[e] = sim->m->hinge_weight[e] / old_bending * sim->set.bending;
     ss_sim_diag_const(sim);
+  }
+  if (refactor) {
     sim->a_h = 0.0;       /* quasi-Newton: factor A again on the next substep */
     sim->h_const_h = 0.0; /* Newton: rebuild the constant Hessian */
   }

@@ -18,6 +18,7 @@
  * vertex among the four (so the border of a masked region is clamped to the
  * body, not hinged); weight = k |e|^2 / (A_0 + A_1) at rest and theta0 the
  * rest dihedral angle, so a curved rest shape has no bending stress. */
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,14 +135,8 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
     }
     if (pass == 0) {
       count = e;
-      sim->m->nhinge = count;
-      sim->m->hinge_vert = malloc(4 * (size_t)(count ? count : 1) * sizeof(int));
-      sim->m->hinge_theta0 = malloc((size_t)(count ? count : 1) * sizeof(double));
-      sim->m->hinge_weight = malloc((size_t)(count ? count : 1) * sizeof(double));
-      if (!sim->m->hinge_vert || !sim->m->hinge_theta0 || !sim->m->hinge_weight) {
-        free(he);
-        return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
-      }
+      sim->m->nhinge = count; /* <= nhinge_max, the hinge arrays' size (sim_internal.h) */
+      assert(count <= sim->m->nhinge_max);
     }
   }
   free(he);
@@ -206,8 +201,6 @@ int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
     sim->m->kind[v] = t == 1 ? SS_VERT_FREE : (t & 1) ? SS_VERT_PINNED : SS_VERT_FOLLOWER;
     sim->m->dof[v] = sim->m->kind[v] == SS_VERT_FREE ? sim->m->ndof++ : -1;
   }
-  sim->m->dof_vert = malloc((size_t)(sim->m->ndof ? sim->m->ndof : 1) * sizeof(int));
-  if (!sim->m->dof_vert) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the unknowns");
   for (int v = 0; v < nv; v++)
     if (sim->m->dof[v] >= 0) sim->m->dof_vert[sim->m->dof[v]] = v;
 

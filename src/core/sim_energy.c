@@ -58,13 +58,7 @@ int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
   const int nsim = sim->m->nsimface, nf = sim->m->nface, n = sim->m->ndof;
   const int bary = sim->set.barycenter_anchors;
   sim->m->bary_base = 9 * nsim;
-  free(sim->face_grad);
-  sim->face_grad = calloc(9 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1, sizeof(double));
-  sim->m->mface = aligned_alloc(64, ((size_t)nsim + 1) * sizeof(ss_membrane_face));
-  sim->m->grad_ptr = calloc((size_t)n + 2, sizeof(int));
-  sim->m->grad_slot = malloc((3 * (size_t)nsim + (bary ? 3 * (size_t)nf : 0) + 1) * sizeof(int));
-  if (!sim->face_grad || !sim->m->mface || !sim->m->grad_ptr || !sim->m->grad_slot)
-    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the energy layout");
+  /* mface, grad_ptr (zeroed), grad_slot: the model's arena; face_grad: the data's */
   for (int q = 0; q < nsim; q++) {
     int f = sim->m->simface[q];
     ss_membrane_face *r = sim->m->mface + q;
@@ -107,13 +101,6 @@ int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
   memmove(sim->m->grad_ptr + 1, sim->m->grad_ptr, (size_t)n * sizeof(int));
   sim->m->grad_ptr[0] = 0;
   return SS_OK;
-}
-
-void ss_sim_energy_free(ss_sim *sim) {
-  free(sim->m->mface);
-  free(sim->m->grad_ptr);
-  free(sim->m->grad_slot);
-  sim->m->mface = NULL, sim->m->grad_ptr = NULL, sim->m->grad_slot = NULL;
 }
 
 /* Gradient of dof k: its own terms (inertia, vertex spring), then the

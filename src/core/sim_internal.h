@@ -8,8 +8,8 @@
  *   solver_newton.c  projected Newton directions with CHOLMOD (3n x 3n)
  *   solver_qn.c      L-BFGS on the constant L (x) I3 matrix (scalar n x n CHOLMOD)
  *
- * The model (fixed at create) comes first, then the data of a run. Arrays are
- * flat with their shape in a comment. Unknowns ("dofs") are the free skin
+ * The model (fixed once built, shareable) and the data of a run: see "model
+ * and data" below. Arrays are flat with their shape in the field lists. Unknowns ("dofs") are the free skin
  * vertices in increasing vertex order; dof vector entry 3k + c is coordinate c
  * of free vertex dof_vert[k]. */
 #ifndef SKIN_SIM_SIM_INTERNAL_H
@@ -26,100 +26,145 @@ enum ss_vert_kind {
   SS_VERT_FOLLOWER = 2  /* outside the simulated region: follows its anchor */
 };
 
-/* The model of a skin on a body: fixed once built, and shared by every sim
- * created on it (ss_sim_create_from_model); nothing writes it while stepping. */
+/* ---- model and data (MuJoCo's mjModel / mjData split) ----------------------
+ *
+ * The MODEL of a skin on a body is everything fixed once it is built:
+ * topology, rest data, masses and springs, hinges, the sparsity pattern and
+ * the packed energy layout. Several sims may run on one model (a reference
+ * or truth run, a second skin of the same body: ss_sim_create_from_model);
+ * nothing writes it while stepping, and ss_sim_set_settings changes its
+ * material only when the model is not shared (else it asks for a new sim).
+ * The DATA of a run (struct ss_sim) is the state, the anchors, the solver
+ * workspaces and the step's counters.
+ *
+ * Each holds its arrays in ONE arena (one allocation, 64-byte aligned
+ * slices) laid out from ONE list of fields below: name, element type, count
+ * (elements allocated, evaluated with `m` the model and `sim` the sim), and
+ * shape. The list declares the fields, sizes the arena and places them;
+ * nothing else allocates, checks or frees them. The model's counts that are
+ * only known while it is built (dofs, hinges, blocks of the pattern) are
+ * allocated at bounds known before: nvert for dofs, nhinge_max for hinges.
+ * Not in the arenas: the body topology (ss_topo), the mover, the walkers and
+ * the CHOLMOD objects, each with its own create and destroy. */
+
+/* name, type, count, shape */
+#define SS_MODEL_ARRAYS(X)                                                                       \
+  X(body_rest, double, 3 * (size_t)m->nbvert, "(nbvert x 3)")                                    \
+  X(faces, int, 3 * (size_t)m->nface, "(nface x 3)")                                             \
+  X(rest, double, 3 * (size_t)m->nvert, "(nvert x 3)")                                           \
+  X(mask, unsigned char, (size_t)m->nface, "(nface) 1 = simulated face")                         \
+  X(dm_inv, double, 4 * (size_t)m->nface, "(nface x 4) membrane rest data")                      \
+  X(rest_area, double, (size_t)m->nface, "(nface) 0 for degenerate rest triangles")              \
+  X(vert_area, double, (size_t)m->nvert, "(nvert) lumped rest area: sum of adjacent areas / 3")  \
+  X(mass, double, (size_t)m->nvert, "(nvert) density * vert_area (>= a tiny floor)")             \
+  X(k_vert, double, (size_t)m->nvert, "(nvert) vertex spring stiffness (0 if not free)")         \
+  X(k_face, double, (size_t)m->nface, "(nface) barycenter spring stiffness (0 if none)")         \
+  X(kind, unsigned char, (size_t)m->nvert, "(nvert) ss_vert_kind")                               \
+  X(dof, int, (size_t)m->nvert, "(nvert) dof index or -1")                                       \
+  X(dof_vert, int, (size_t)m->nvert, "(ndof) vertex of each dof")                                \
+  X(simface, int, (size_t)m->nface, "(nsimface) faces with a membrane term")                     \
+  X(hinge_vert, int, 4 * (size_t)m->nhinge_max, "(nhinge x 4) e0, e1, o0, o1")                   \
+  X(hinge_theta0, double, (size_t)m->nhinge_max, "(nhinge) rest dihedral angle")                 \
+  X(hinge_weight, double, (size_t)m->nhinge_max, "(nhinge) k |e|^2 / A_e")                       \
+  X(anchor_face0, int, (size_t)m->nanchor, "(nanchor) bound at create")                          \
+  X(anchor_uv0, double, 2 * (size_t)m->nanchor, "(nanchor x 2)")                                 \
+  X(bcolp, int, (size_t)m->nvert + 1, "(ndof + 1) block column starts")                          \
+  X(brow, int, (size_t)m->nvert + 3 * (size_t)m->nface + 6 * (size_t)m->nhinge_max,              \
+    "(nblock) block rows in each block column, sorted")                                          \
+  X(colp3, int, 3 * (size_t)m->nvert + 1, "(3 ndof + 1) column starts of the 3n x 3n matrix")    \
+  X(face_rank, int, 9 * (size_t)m->nface,                                                        \
+    "(nface x 9) rank of block (min, max) of corners (a, b) in column max, -1 if not free")      \
+  X(hinge_rank, int, 16 * (size_t)m->nhinge_max, "(nhinge x 16) same for hinge corners")         \
+  X(orient_sign, signed char, (size_t)m->nface,                                                  \
+    "(nface) orient.c: rest orientation against the body, +-1, 0")                               \
+  X(mface, struct ss_membrane_face, (size_t)m->nface + 1,                                          \
+    "(nsimface) packed membrane input, in simface order")                                        \
+  X(grad_ptr, int, (size_t)m->nvert + 2, "(ndof + 1) CSR: the face_grad slots each dof sums")    \
+  X(grad_slot, int, 6 * (size_t)m->nface + 1,                                                    \
+    "in the order of the sum (springs by face, then membrane by face)")                          \
+  X(diag_const, double, (size_t)m->nvert, "(ndof) diagonal of the scalar matrix without inertia")
+
+/* The data of a run: counts of the built model `m` and of the sim's own
+ * settings (solver, history) and threads. */
+#define SS_DATA_ARRAYS(X)                                                                        \
+  X(x, double, 3 * (size_t)m->nvert, "(nvert x 3) skin positions")                               \
+  X(x_prev, double, 3 * (size_t)m->nvert, "(nvert x 3) at the start of the substep")             \
+  X(v, double, 3 * (size_t)m->nvert, "(nvert x 3) velocities")                                   \
+  X(xfull_t, double, 3 * (size_t)m->nvert, "(nvert x 3) trial positions (fixed in place)")       \
+  X(body_prev, double, 3 * (size_t)m->nbvert, "(nbvert x 3) body pose at the end of the last step") \
+  X(body_sub, double, 3 * (size_t)m->nbvert, "(nbvert x 3) body pose of the current substep")    \
+  X(anchor_face, int, (size_t)m->nanchor, "(nanchor)")                                           \
+  X(anchor_uv, double, 2 * (size_t)m->nanchor, "(nanchor x 2)")                                  \
+  X(anchor_pos, double, 3 * (size_t)m->nanchor, "(nanchor x 3) in the current substep pose")     \
+  X(anchor_pull, double, (size_t)m->nanchor,                                                     \
+    "(nanchor) sum over the last step's substeps of |a* - a0|")                                  \
+  X(anchor_path, double, (size_t)m->nanchor, "(nanchor) sum of the lengths walked (walk only)")  \
+  X(walkers, ss_walker *, (size_t)sim->nthread_max, "(nthread_max) walk scratch, one per thread") \
+  X(face_energy, double, (size_t)m->nface, "(nsimface) membrane energies of one evaluation")     \
+  X(face_grad, double, (size_t)m->bary_base + (m->nanchor > m->nvert ? 3 * (size_t)m->nface : 0) + 1, \
+    "their gradients (9 per simulated face), then the barycenter springs' (3 per face)")        \
+  X(mi, double, (size_t)m->ndof, "(ndof) inertia weight: mass (1/h^2 + damping/h)")              \
+  X(target, double, 3 * (size_t)m->ndof, "(ndof x 3) inertia target (prediction, damping, gravity)") \
+  X(xd, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: the unknowns")                          \
+  X(gd, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: gradient at xd")                        \
+  X(dir, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: search direction")                     \
+  X(xt, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: trial point")                           \
+  X(gt, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: gradient at the trial point")           \
+  X(guess, double, 3 * (size_t)m->ndof, "(ndof x 3) anchors of free vertices in the previous pose") \
+  X(h_const, double, sim->set.solver == SS_SOLVER_NEWTON ? (size_t)m->nnz3 : 0,                  \
+    "(nnz of H) Newton: inertia + springs")                                                      \
+  X(lb_s, double, SS_SIM_QN_HISTORY(sim) * 3 * (size_t)m->ndof, "(m x ndof x 3) L-BFGS s ring") \
+  X(lb_y, double, SS_SIM_QN_HISTORY(sim) * 3 * (size_t)m->ndof, "(m x ndof x 3) L-BFGS y ring") \
+  X(lb_rho, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
+  X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")
+#define SS_SIM_QN_HISTORY(sim) \
+  ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
+
+#define SS_ARENA_FIELD(name, type, count, shape) type *name;
+
 struct ss_model {
-  int refs; /* sims running on it + the creator's reference (ss_model_create) */
+  int refs;                   /* sims running on it + the creator's reference (ss_model_create) */
+  ss_sim_settings set;        /* built with; its model settings (ss_sim_in_model) are every
+                                 sim's on it. face_mask points to mask (or NULL) */
+  void *arena;                /* every array below */
   double mu, lam;             /* membrane Lamé parameters (stable form) */
   /* body */
   int nbvert, nbface;
-  double *body_rest;          /* (nbvert x 3) */
   ss_topo *btopo;
   /* skin */
   int nvert, nface;
-  int *faces;                 /* (nface x 3) */
-  double *rest;               /* (nvert x 3) */
-  unsigned char *mask;        /* (nface) 1 = simulated face */
-  double *dm_inv;             /* (nface x 4) membrane rest data */
-  double *rest_area;          /* (nface) 0 for degenerate rest triangles */
-  double *vert_area;          /* (nvert) lumped rest area: sum of adjacent areas / 3 */
-  double *mass;               /* (nvert) density * vert_area (>= a tiny floor) */
-  double *k_vert;             /* (nvert) vertex spring stiffness (0 if not free) */
-  double *k_face;             /* (nface) barycenter spring stiffness (0 if none) */
-  unsigned char *kind;        /* (nvert) ss_vert_kind */
-  int *dof;                   /* (nvert) dof index or -1 */
-  int ndof;
-  int *dof_vert;              /* (ndof) vertex of each dof */
+  int ndof;                   /* free vertices: the unknowns */
   int nsimface;               /* faces with a membrane term (masked, >= 1 free vertex) */
-  int *simface;               /* (nsimface) those faces */
   int nhinge;
-  int *hinge_vert;            /* (nhinge x 4) e0, e1, o0, o1 */
-  double *hinge_theta0;       /* (nhinge) */
-  double *hinge_weight;       /* (nhinge) k |e|^2 / A_e */
+  int nhinge_max;             /* bound at allocation: 3 nface / 2 with bending, else 0 */
   double edge_len;            /* mean rest edge length of the skin */
   int nanchor;                /* nvert + (barycenters ? nface : 0) */
-  int *anchor_face0;          /* (nanchor) bound at create */
-  double *anchor_uv0;         /* (nanchor x 2) */
   /* sparsity: block pattern over dofs, upper triangle, CSC; the scalar
    * n x n matrix uses it directly, the 3n x 3n one expands each block. */
-  int *bcolp;                 /* (ndof + 1) */
-  int *brow;                  /* (nblock) block rows in each block column, sorted */
   int nblock;
-  int *colp3;                 /* (3 ndof + 1) column starts of the 3n x 3n matrix */
-  int nnz3;                   /* its stored entries */
-  int *face_rank;             /* (nface x 9) rank of block (min, max) of corners (a, b) in
-                                 column max, -1 if either corner is not free */
-  int *hinge_rank;            /* (nhinge x 16) same for hinge corners */
-  signed char *orient_sign;   /* (nface) orient.c: rest orientation against the body, +-1, 0 */
-  struct ss_membrane_face *mface; /* (nsimface) packed membrane input, in simface order */
-  int *grad_ptr;              /* (ndof + 1) CSR: the face_grad slots each dof sums, in */
-  int *grad_slot;             /* the order of the sum (springs by face, then membrane by face) */
+  int nnz3;                   /* stored entries of the 3n x 3n matrix */
   int bary_base;              /* first slot of the springs' part of face_grad */
-  double *diag_const;         /* (ndof) diagonal of the scalar matrix without inertia */
-  /* model_rewrite.py moves the model's fields above this line */
+  SS_MODEL_ARRAYS(SS_ARENA_FIELD)
 };
 
 struct ss_sim {
   ss_model *m;                /* the model this sim runs on (counted in m->refs) */
-  /* ---------------- model: fixed at create */
-  ss_sim_settings set;        /* face_mask points to mask below (or NULL) */
-  ss_mover *mover;
-
-  /* ---------------- data of a run */
-  double *x;                  /* (nvert x 3) skin positions */
-  double *x_prev;             /* (nvert x 3) at the start of the substep */
-  double *v;                  /* (nvert x 3) velocities */
-  double *body_prev;          /* (nbvert x 3) body pose at the end of the last step */
-  double *body_sub;           /* (nbvert x 3) body pose of the current substep */
-  int *anchor_face;           /* (nanchor) */
-  double *anchor_uv;          /* (nanchor x 2) */
-  double *anchor_pos;         /* (nanchor x 3) in the current substep pose */
+  ss_sim_settings set;        /* this sim's; face_mask points to m->mask (or NULL) */
+  void *arena;                /* every array of SS_DATA_ARRAYS */
+  ss_mover *mover;            /* body frames and BVH in the current pose */
   int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
   int nthread_max;            /* threads made at create (walkers, team) */
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
-  ss_walker **walkers;        /* (nthread_max) walk scratch, one per thread */
-  double *face_energy;        /* (nsimface) membrane energies of one evaluation */
-  double *face_grad;          /* their gradients (9 per simulated face), then the
-                                 barycenter springs' (3 per face) */
-  double *anchor_pull;        /* (nanchor) sum over the last step's substeps of |a* - a0| */
-  double *anchor_path;        /* (nanchor) sum of the lengths walked (walk only, else 0) */
   double h;                   /* substep of the current system */
   double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
   double tether_frac;         /* share of the way back home it walks this substep */
-  double *mi;                 /* (ndof) inertia weight: mass (1/h^2 + damping/h) */
-  double *target;             /* (ndof x 3) inertia target (prediction, damping, gravity) */
-  /* solver scratch: dof vectors (ndof x 3) and full position arrays */
-  double *xd, *gd, *dir, *xt, *gt;
-  double *guess;              /* (ndof x 3) anchors of free vertices in the previous pose */
-  double *xfull_t;            /* (nvert x 3) trial positions (fixed vertices in place) */
   /* CHOLMOD */
   cholmod_common cc;
   int cc_started;
   /* Newton: 3n x 3n */
   cholmod_sparse *H;
   cholmod_factor *LH;
-  double *h_const;            /* (nnz of H) inertia + springs */
   double h_const_h;           /* h for which h_const was built (0: none) */
   cholmod_dense *nb, *nx, *ny, *ne; /* rhs, solution, workspaces (3n x 1) */
   /* quasi-Newton: n x n, applied to 3 right-hand sides */
@@ -127,13 +172,15 @@ struct ss_sim {
   cholmod_factor *LA;
   double a_h;                 /* h of the current factorisation of A (0: none) */
   cholmod_dense *qb, *qx, *qy, *qe; /* (n x 3) */
-  int lb_m;                   /* history size */
-  double *lb_s, *lb_y;        /* (m x ndof x 3) ring buffers */
-  double *lb_rho, *lb_alpha;  /* (m) */
+  int lb_m;                   /* L-BFGS history size */
   int lb_count, lb_head;
   /* per-step counters */
   ss_sim_stats *st;
+  SS_DATA_ARRAYS(SS_ARENA_FIELD)
 };
+
+/* 1 if setting d is part of the model (all sims on one model share it). */
+int ss_sim_in_model(size_t offset);
 
 /* ---- sim_bind.c ---- */
 /* Anchors of the skin on the body at rest (copy of the body or closest point). */
@@ -166,11 +213,9 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
 /* Sets up the inertia weights and targets of a substep of length h from
  * x_prev, v and the settings. */
 void ss_sim_energy_begin(ss_sim *sim, double h);
-/* The packed layout the energy evaluation runs on (mface, face_grad,
- * grad_ptr, grad_slot), once after the model and the pattern; freed with
- * ss_sim_energy_free. */
+/* The packed layout the energy evaluation runs on (mface, grad_ptr,
+ * grad_slot, bary_base), once after the model and the pattern. */
 int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz);
-void ss_sim_energy_free(ss_sim *sim);
 /* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).

@@ -58,14 +58,7 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
   /* Candidate pairs: diagonal, simulated faces' corner pairs, hinges. */
   size_t cap = (size_t)n + 3 * (size_t)sim->m->nface + 6 * (size_t)sim->m->nhinge;
   long long *key = malloc((cap ? cap : 1) * sizeof *key);
-  sim->m->bcolp = calloc((size_t)n + 1, sizeof *sim->m->bcolp);
-  sim->m->colp3 = calloc(3 * (size_t)n + 1, sizeof *sim->m->colp3);
-  sim->m->face_rank = malloc((size_t)(sim->m->nface ? sim->m->nface : 1) * 9 * sizeof(int));
-  sim->m->hinge_rank = malloc((size_t)(sim->m->nhinge ? sim->m->nhinge : 1) * 16 * sizeof(int));
-  if (!key || !sim->m->bcolp || !sim->m->colp3 || !sim->m->face_rank || !sim->m->hinge_rank) {
-    free(key);
-    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
-  }
+  if (!key) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
   size_t nk = 0;
   for (int k = 0; k < n; k++) key[nk++] = (long long)k * n + k;
   for (int f = 0; f < sim->m->nface; f++) {
@@ -100,11 +93,7 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
   for (size_t q = 0; q < nk; q++)
     if (nu == 0 || key[q] != key[nu - 1]) key[nu++] = key[q];
   sim->m->nblock = (int)nu;
-  sim->m->brow = malloc((nu ? nu : 1) * sizeof *sim->m->brow);
-  if (!sim->m->brow) {
-    free(key);
-    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
-  }
+  /* bcolp, colp3 (zeroed), brow (nu <= cap), face_rank, hinge_rank: the model's arena */
   /* Keys sorted by (column, row): the CSC order directly. */
   for (size_t q = 0; q < nu; q++) {
     int j = (int)(key[q] / n), i = (int)(key[q] % n);

@@ -28,9 +28,8 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
   int n3 = 3 * sim->m->ndof;
   cholmod_common *cc = &sim->cc;
   sim->H = cholmod_allocate_sparse((size_t)n3, (size_t)n3, (size_t)sim->m->nnz3, 1, 1, 1, CHOLMOD_REAL, cc);
-  sim->h_const = malloc((size_t)(sim->m->nnz3 ? sim->m->nnz3 : 1) * sizeof *sim->h_const);
   sim->nb = cholmod_zeros((size_t)n3, 1, CHOLMOD_REAL, cc);
-  if (!sim->H || !sim->h_const || !sim->nb)
+  if (!sim->H || !sim->nb)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the Newton matrix");
   int *p = sim->H->p, *ri = sim->H->i;
   for (int c = 0; c <= n3; c++) p[c] = sim->m->colp3[c];

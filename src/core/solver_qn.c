@@ -76,14 +76,10 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
   int n = sim->m->ndof;
   cholmod_common *cc = &sim->cc;
   sim->lb_m = sim->set.lbfgs_history;
-  size_t hist = (size_t)sim->lb_m * 3 * (size_t)(n ? n : 1);
-  sim->lb_s = malloc(hist * sizeof(double));
-  sim->lb_y = malloc(hist * sizeof(double));
-  sim->lb_rho = malloc((size_t)sim->lb_m * sizeof(double));
-  sim->lb_alpha = malloc((size_t)sim->lb_m * sizeof(double));
+  /* lb_s, lb_y, lb_rho, lb_alpha: the data's arena (SS_SIM_QN_HISTORY) */
   sim->A = cholmod_allocate_sparse((size_t)n, (size_t)n, (size_t)sim->m->nblock, 1, 1, 1, CHOLMOD_REAL, cc);
   sim->qb = cholmod_zeros((size_t)n, 3, CHOLMOD_REAL, cc);
-  if (!sim->lb_s || !sim->lb_y || !sim->lb_rho || !sim->lb_alpha || !sim->A || !sim->qb)
+  if (!sim->A || !sim->qb)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the quasi-Newton solver");
   memcpy(sim->A->p, sim->m->bcolp, ((size_t)n + 1) * sizeof(int));
   memcpy(sim->A->i, sim->m->brow, (size_t)sim->m->nblock * sizeof(int));
