@@ -134,6 +134,36 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
                   const ss_sim_settings *settings, char *err, int err_sz);
 void ss_sim_destroy(ss_sim *sim);
 
+/* ---- one model, several sims --------------------------------------------------
+ * A sim is a MODEL (topology, rest data, masses and springs, hinges, the
+ * sparsity pattern: everything fixed once built, never written while
+ * stepping) and the DATA of its run (state, anchors, solver workspaces).
+ * Several sims may run on one model: a reference or truth run of a skin, a
+ * second skin of the same body. They share its material, the model settings
+ * young, poisson, density, stiffness, barycenters, bending, orient and
+ * face_mask; each has its own run settings (solver, substeps, iterations,
+ * tol, method, slide, tether, damping, gravity, dt, threads, ...), and the
+ * same bits as a sim made by ss_sim_create with the same settings.
+ * Reference counted: a model lives while its creator's reference
+ * (ss_model_destroy) or any sim on it (ss_sim_destroy) does, so the two may
+ * be dropped in any order. */
+
+/* Builds a model as ss_sim_create would (same arguments, same errors), with no
+ * sim on it; release it with ss_model_destroy. */
+int ss_model_create(ss_model **out, int body_nvert, const double *body_rest, int body_nface,
+                    const int *body_faces, const ss_sim_mesh *skin,
+                    const ss_sim_settings *settings, char *err, int err_sz);
+/* Drops the creator's reference (NULL: nothing). */
+void ss_model_destroy(ss_model *model);
+/* A sim on model (it takes a reference), at rest. settings: NULL for those the
+ * model was built with; else its model settings (above) must be the model's,
+ * else SS_E_ARG naming the first that differs. Other errors as ss_sim_create. */
+int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_settings *settings,
+                             char *err, int err_sz);
+/* The model sim runs on (valid while sim is; pass it to ss_sim_create_from_model
+ * to run another sim on it). */
+ss_model *ss_sim_model(const ss_sim *sim);
+
 /* Back to the rest state (skin at rest, zero velocity, anchors as bound at
  * create), e.g. when time goes backwards. */
 void ss_sim_reset(ss_sim *sim);
@@ -152,7 +182,10 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
  * barycenters, lbfgs_history, threads; bending turned on or off) cannot change in
  * place: then nothing changes, *recreate (may be NULL) is set to 1, err names the
  * setting and SS_OK is returned: create the simulation again with the settings.
- * settings->face_mask is ignored (the simulated region stays). Allocates nothing. */
+ * settings->face_mask is ignored (the simulated region stays). A model setting
+ * (young, poisson, density, stiffness, bending, orient) on a model shared with
+ * another sim or a model reference is not changed either (*recreate = 1, as
+ * above): the model of other sims is never written. Allocates nothing. */
 int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recreate, char *err,
                         int err_sz);
 

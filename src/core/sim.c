@@ -114,7 +114,7 @@ static void *arena_take(arena_cursor *c, size_t count, size_t size) {
 
 /* Allocates the zeroed arena *arena for the fields placed by `place` (the
  * list run twice: sizes, then places). */
-#define SS_ARENA_ALLOC(arena, place)                                  \
+#define SS_ARENA_ALLOC(arena, bytes, place)                           \
   do {                                                                \
     arena_cursor c = {NULL, 0};                                       \
     place;                                                            \
@@ -125,18 +125,19 @@ static void *arena_take(arena_cursor *c, size_t count, size_t size) {
     c.off = 0;                                                        \
     place;                                                            \
     (arena) = c.base;                                                 \
+    (bytes) = size;                                                   \
   } while (0)
 
 static int model_arena(ss_model *m) {
   ss_model *owner = m;
-  SS_ARENA_ALLOC(m->arena, SS_MODEL_ARRAYS(SS_ARENA_PLACE));
+  SS_ARENA_ALLOC(m->arena, m->arena_bytes, SS_MODEL_ARRAYS(SS_ARENA_PLACE));
   return SS_OK;
 }
 
 static int data_arena(ss_sim *sim) {
   const ss_model *m = sim->m;
   ss_sim *owner = sim;
-  SS_ARENA_ALLOC(sim->arena, SS_DATA_ARRAYS(SS_ARENA_PLACE));
+  SS_ARENA_ALLOC(sim->arena, sim->arena_bytes, SS_DATA_ARRAYS(SS_ARENA_PLACE));
   return SS_OK;
 }
 
@@ -159,6 +160,8 @@ static void model_release(ss_model *m) {
   free(m->arena);
   free(m);
 }
+
+void ss_model_destroy(ss_model *model) { model_release(model); }
 
 /* The model's counts, arena, inputs and body topology (the rest is built by
  * model_build on a sim). */
@@ -202,6 +205,27 @@ static int model_build(ss_sim *sim, const ss_sim_mesh *skin, char *err, int err_
   if (status == SS_OK) status = ss_sim_energy_layout(sim, err, err_sz);
   if (status == SS_OK) ss_sim_diag_const(sim);
   return status;
+}
+
+/* 0 if the model settings of set are the model's (a sim on a shared model
+ * cannot have a material of its own), else an error naming the first that
+ * differs. */
+static int model_settings_agree(const ss_model *m, const ss_sim_settings *set, char *err,
+                                int err_sz) {
+  int n = 0;
+  const ss_setting *table = ss_settings_table(&n);
+  for (int i = 0; i < n; i++)
+    if (ss_sim_in_model(table[i].offset) && !ss_setting_equal(&table[i], &m->set, set))
+      return ss_fail(err, err_sz, SS_E_ARG,
+                     "setting %s is %g, the model's is %g: sims on one model share its material "
+                     "(ss_sim_create_from_model)",
+                     table[i].name, ss_setting_get(&table[i], set, 0),
+                     ss_setting_get(&table[i], &m->set, 0));
+  for (int f = 0; f < m->nface; f++)
+    if ((set->face_mask ? set->face_mask[f] != 0 : 1) != m->mask[f])
+      return ss_fail(err, err_sz, SS_E_ARG,
+                     "face_mask differs from the model's at face %d: sims on one model share it", f);
+  return SS_OK;
 }
 
 /* ---- data ---- */
@@ -317,6 +341,37 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   return create(out, body_nvert, body_rest, body_nface, body_faces, skin, settings, 1, err, err_sz);
 }
 
+int ss_model_create(ss_model **out, int body_nvert, const double *body_rest, int body_nface,
+                    const int *body_faces, const ss_sim_mesh *skin,
+                    const ss_sim_settings *settings, char *err, int err_sz) {
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
+  *out = NULL;
+  /* built on a sim without a solver (the rest orientation needs anchors at
+   * rest in the body's frames), which then lets it go */
+  ss_sim *sim = NULL;
+  int status = create(&sim, body_nvert, body_rest, body_nface, body_faces, skin, settings, 0, err, err_sz);
+  if (status != SS_OK) return status;
+  sim->m->refs++;
+  *out = sim->m;
+  ss_sim_destroy(sim);
+  return SS_OK;
+}
+
+int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_settings *settings,
+                             char *err, int err_sz) {
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
+  *out = NULL;
+  if (!model) return ss_fail(err, err_sz, SS_E_ARG, "model is NULL");
+  const ss_sim_settings *set = settings ? settings : &model->set;
+  int status = check_settings(set, err, err_sz);
+  if (status == SS_OK) status = model_settings_agree(model, set, err, err_sz);
+  if (status != SS_OK) return status;
+  model->refs++;
+  return sim_make(out, model, set, NULL, 0, 1, err, err_sz);
+}
+
+ss_model *ss_sim_model(const ss_sim *sim) { return sim ? sim->m : NULL; }
+
 int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *err, int err_sz) {
   if (!sim || !pos) return ss_fail(err, err_sz, SS_E_ARG, "sim or positions are NULL");
   size_t nv3 = 3 * (size_t)sim->m->nvert;
@@ -352,6 +407,15 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
     }
     refactor |= d->apply == SS_APPLY_REFACTOR;
     if (!material && ss_sim_in_model(d->offset)) material = d;
+  }
+  /* A model shared with other sims is never written: the change is refused
+   * (created again on a model of its own), not copied. */
+  if (material && sim->m->refs > 1) {
+    if (recreate) *recreate = 1;
+    return ss_fail(err, err_sz, SS_OK,
+                   "%s changed on a model shared by %d sims and references: the simulation must be "
+                   "created again",
+                   material->name, sim->m->refs);
   }
   const double old_bending = sim->set.bending;
   const unsigned char *mask = sim->set.face_mask;

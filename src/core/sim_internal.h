@@ -127,6 +127,7 @@ struct ss_model {
   ss_sim_settings set;        /* built with; its model settings (ss_sim_in_model) are every
                                  sim's on it. face_mask points to mask (or NULL) */
   void *arena;                /* every array below */
+  size_t arena_bytes;
   double mu, lam;             /* membrane Lamé parameters (stable form) */
   /* body */
   int nbvert, nbface;
@@ -151,6 +152,7 @@ struct ss_sim {
   ss_model *m;                /* the model this sim runs on (counted in m->refs) */
   ss_sim_settings set;        /* this sim's; face_mask points to m->mask (or NULL) */
   void *arena;                /* every array of SS_DATA_ARRAYS */
+  size_t arena_bytes;
   ss_mover *mover;            /* body frames and BVH in the current pose */
   int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
   int nthread_max;            /* threads made at create (walkers, team) */

@@ -1,0 +1,152 @@
+/* One model, several sims (ss_model_create, ss_sim_create_from_model): a sim
+ * on a shared model gets the bits of a sim made alone with the same settings
+ * (ss_sim_create), whatever the other sims on the model do between its steps;
+ * stepping never writes the model; the model outlives its creator's
+ * reference while a sim runs on it; a sim's model settings must be the
+ * model's; and a live change of a model setting on a shared model is refused
+ * (the other sims keep theirs), applied in place once the model is its own. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim_internal.h"
+#include "skin_sim/ss_run.h"
+#include "skin_sim/ss_scene.h"
+#include "skin_sim/ss_sim.h"
+#include "ss_test.h"
+
+enum { TRIS = 800, FRAMES = 10 };
+
+static unsigned long long positions_hash(const ss_sim *sim) {
+  return ss_hash_bytes(ss_sim_skin_positions(sim), 3 * (size_t)ss_sim_skin_nvert(sim) * sizeof(double));
+}
+
+static unsigned long long model_hash(const ss_model *m) {
+  return ss_hash_bytes(m->arena, m->arena_bytes) ^ ss_hash_bytes(&m->mu, sizeof m->mu) ^
+         ss_hash_bytes(&m->lam, sizeof m->lam);
+}
+
+/* Steps the sims of list (n) through the scene's frames, interleaved. */
+static void step_all(const ss_scene *sc, ss_sim **list, int n) {
+  double *pose = malloc(3 * (size_t)ss_scene_nvert(sc) * sizeof(double));
+  CHECK(pose != NULL);
+  char err[256] = "";
+  for (int f = 1; pose && f <= FRAMES; f++) {
+    ss_scene_pose(sc, f, pose);
+    for (int i = 0; i < n; i++)
+      CHECK_MSG(ss_sim_step(list[i], pose, 0.0, NULL, err, sizeof err) == SS_OK, "sim %d frame %d: %s",
+                i, f, err);
+  }
+  free(pose);
+}
+
+int main(void) {
+  char err[256] = "";
+  ss_scene *sc = NULL;
+  CHECK_EQ_INT(ss_scene_create(&sc, "twist", TRIS, err, sizeof err), SS_OK);
+  if (!sc) return ss_test_finish("test_sim_model");
+  const int nv = ss_scene_nvert(sc), nf = ss_scene_nface(sc);
+  const double *rest = ss_scene_rest(sc);
+  const int *faces = ss_scene_faces(sc);
+
+  /* run settings of two kinds on one material (bending on: hinges too) */
+  ss_sim_settings a = ss_sim_default_settings();
+  a.bending = 1e-4;
+  a.threads = 1;
+  ss_sim_settings b = a; /* a reference-like run: Newton, substeps, tight tol, project, tether */
+  b.solver = SS_SOLVER_NEWTON;
+  b.substeps = 2;
+  b.iterations = 10;
+  b.tol = 1e-6;
+  b.mover.method = SS_METHOD_PROJECT;
+  b.tether = 2.0;
+  b.damping = 0.5;
+
+  /* alone */
+  ss_sim *alone_a = NULL, *alone_b = NULL;
+  CHECK_MSG(ss_sim_create(&alone_a, nv, rest, nf, faces, NULL, &a, err, sizeof err) == SS_OK, "%s", err);
+  CHECK_MSG(ss_sim_create(&alone_b, nv, rest, nf, faces, NULL, &b, err, sizeof err) == SS_OK, "%s", err);
+  /* shared: a model built with a's settings, three sims on it */
+  ss_model *model = NULL;
+  CHECK_MSG(ss_model_create(&model, nv, rest, nf, faces, NULL, &a, err, sizeof err) == SS_OK, "%s", err);
+  if (!alone_a || !alone_b || !model) return ss_test_finish("test_sim_model");
+  ss_sim *on_a = NULL, *on_b = NULL, *on_null = NULL;
+  CHECK_MSG(ss_sim_create_from_model(&on_a, model, &a, err, sizeof err) == SS_OK, "%s", err);
+  CHECK_MSG(ss_sim_create_from_model(&on_b, model, &b, err, sizeof err) == SS_OK, "%s", err);
+  CHECK_MSG(ss_sim_create_from_model(&on_null, model, NULL, err, sizeof err) == SS_OK, "%s", err);
+  if (!on_a || !on_b || !on_null) return ss_test_finish("test_sim_model");
+  CHECK(ss_sim_model(on_a) == model && ss_sim_model(on_b) == model);
+  CHECK(ss_sim_model(alone_a) != model);
+  CHECK(ss_sim_get_settings(on_b)->solver == SS_SOLVER_NEWTON);
+  CHECK_EQ_INT(model->refs, 4);
+  /* the model of a sim made alone is the model ss_model_create builds */
+  CHECK(model_hash(model) == model_hash(ss_sim_model(alone_a)));
+  const unsigned long long before = model_hash(model);
+
+  /* the creator's reference may go first: the sims keep the model */
+  ss_model_destroy(model);
+  CHECK_EQ_INT(model->refs, 3);
+  ss_sim *shared[3] = {on_a, on_b, on_null};
+  step_all(sc, shared, 3);
+  ss_sim *single[2] = {alone_a, alone_b};
+  step_all(sc, single, 2);
+  CHECK_MSG(positions_hash(on_a) == positions_hash(alone_a), "quasi-Newton on a shared model: %016llx, alone %016llx",
+            positions_hash(on_a), positions_hash(alone_a));
+  CHECK_MSG(positions_hash(on_b) == positions_hash(alone_b), "Newton on a shared model: %016llx, alone %016llx",
+            positions_hash(on_b), positions_hash(alone_b));
+  CHECK(positions_hash(on_null) == positions_hash(alone_a));
+  CHECK(positions_hash(on_a) != positions_hash(on_b)); /* the two runs did differ */
+  CHECK_MSG(model_hash(model) == before, "stepping wrote the shared model");
+  printf("model arena %zu bytes, data arena %zu bytes (twist, %d triangles)\n", model->arena_bytes,
+         on_a->arena_bytes, nf);
+
+  /* a sim's model settings must be the model's */
+  ss_sim *bad = NULL;
+  ss_sim_settings c = a;
+  c.young *= 2.0;
+  CHECK_EQ_INT(ss_sim_create_from_model(&bad, ss_sim_model(on_a), &c, err, sizeof err), SS_E_ARG);
+  CHECK_MSG(bad == NULL && strstr(err, "young"), "%s", err);
+  c = a;
+  c.barycenter_anchors = 0;
+  CHECK_EQ_INT(ss_sim_create_from_model(&bad, ss_sim_model(on_a), &c, err, sizeof err), SS_E_ARG);
+  CHECK_MSG(strstr(err, "barycenters"), "%s", err);
+  unsigned char *mask = malloc((size_t)nf);
+  CHECK(mask != NULL);
+  if (mask) {
+    memset(mask, 1, (size_t)nf);
+    mask[nf / 2] = 0;
+    c = a;
+    c.face_mask = mask;
+    CHECK_EQ_INT(ss_sim_create_from_model(&bad, ss_sim_model(on_a), &c, err, sizeof err), SS_E_ARG);
+    CHECK_MSG(strstr(err, "face_mask"), "%s", err);
+    free(mask);
+  }
+  CHECK_EQ_INT(ss_sim_create_from_model(&bad, NULL, &a, err, sizeof err), SS_E_ARG);
+
+  /* live changes: a run setting changes on a shared model; a model setting is
+   * refused (the other sims' model is never written) */
+  int recreate = -1;
+  c = a;
+  c.tol = 1e-3;
+  c.damping = 1.0;
+  CHECK(ss_sim_set_settings(on_a, &c, &recreate, err, sizeof err) == SS_OK && recreate == 0);
+  CHECK(ss_sim_get_settings(on_a)->tol == 1e-3);
+  c.young = 80.0;
+  CHECK(ss_sim_set_settings(on_a, &c, &recreate, err, sizeof err) == SS_OK && recreate == 1);
+  CHECK_MSG(strstr(err, "young") && strstr(err, "shared"), "%s", err);
+  CHECK(ss_sim_get_settings(on_a)->young == a.young && ss_sim_get_settings(on_a)->tol == 1e-3);
+  CHECK_MSG(model_hash(model) == before, "a refused change wrote the shared model");
+  /* once on_a is the model's only user, the change is made in place */
+  ss_sim_destroy(on_b);
+  ss_sim_destroy(on_null);
+  CHECK_EQ_INT(model->refs, 1);
+  CHECK(ss_sim_set_settings(on_a, &c, &recreate, err, sizeof err) == SS_OK && recreate == 0);
+  CHECK(ss_sim_get_settings(on_a)->young == 80.0);
+  CHECK(model_hash(ss_sim_model(on_a)) != before);
+
+  ss_sim_destroy(on_a);
+  ss_sim_destroy(alone_a);
+  ss_sim_destroy(alone_b);
+  ss_scene_destroy(sc);
+  return ss_test_finish("test_sim_model");
+}
