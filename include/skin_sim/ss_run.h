@@ -60,6 +60,9 @@ typedef struct ss_run_settings {
                           it still this long and measure the rest return; 0 (default): no */
   const ss_sim_mesh *skin; /* a skin mesh of its own (e.g. coarser than the body), placed
                               on the body at rest; NULL (default): a welded copy of the body */
+  ss_model *model;         /* a model to run on, shared with other runs of this body and skin
+                              (ss_run_model_create; its model settings must be sim's); NULL
+                              (default): the run builds its own */
 } ss_run_settings;
 ss_run_settings ss_run_default_settings(void);
 
@@ -123,6 +126,12 @@ typedef int (*ss_frame_fn)(void *user, int frame, const ss_sim *sim, const doubl
 int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,
                 void *frame_user, ss_progress_fn progress, void *progress_user,
                 ss_run_stats *stats, char *err, int err_sz);
+/* The model ss_run_body builds for body and settings (its skin, its model
+ * settings), to share between runs through ss_run_settings.model: the run
+ * itself, its reference and its truth (ss_reference_settings keeps it). Release
+ * with ss_model_destroy. */
+int ss_run_model_create(ss_model **out, const ss_body *body, const ss_run_settings *settings,
+                        char *err, int err_sz);
 
 /* ss_run_body over a built-in scene. */
 int ss_run_scene(const ss_scene *scene, const ss_run_settings *settings, ss_frame_fn on_frame,

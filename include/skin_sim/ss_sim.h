@@ -163,6 +163,9 @@ int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_setting
 /* The model sim runs on (valid while sim is; pass it to ss_sim_create_from_model
  * to run another sim on it). */
 ss_model *ss_sim_model(const ss_sim *sim);
+/* The body a model was built on: its vertex and face counts. */
+int ss_model_body_nvert(const ss_model *model);
+int ss_model_body_nface(const ss_model *model);
 
 /* Back to the rest state (skin at rest, zero velocity, anchors as bound at
  * create), e.g. when time goes backwards. */

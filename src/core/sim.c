@@ -371,6 +371,8 @@ int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_setting
 }
 
 ss_model *ss_sim_model(const ss_sim *sim) { return sim ? sim->m : NULL; }
+int ss_model_body_nvert(const ss_model *model) { return model->nbvert; }
+int ss_model_body_nface(const ss_model *model) { return model->nbface; }
 
 int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *err, int err_sz) {
   if (!sim || !pos) return ss_fail(err, err_sz, SS_E_ARG, "sim or positions are NULL");

@@ -33,6 +33,9 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   ss_run_settings r = *run;
   const ss_sim_settings def = ss_sim_default_settings();
   r.skin = NULL;
+  /* the run's model is the reference's (run settings only differ below) when
+   * it is of the welded body, not of a skin of the run's own */
+  if (run->skin) r.model = NULL;
   r.settle = 0.0; /* the reference covers the motion's frames only */
   r.sim.solver = SS_SOLVER_NEWTON;
   r.sim.substeps = run->sim.substeps > SS_REFERENCE_SUBSTEPS ? run->sim.substeps

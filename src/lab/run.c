@@ -23,6 +23,7 @@ ss_run_settings ss_run_default_settings(void) {
   s.snag_factor = 3.0;
   s.settle = 0.0;
   s.skin = NULL;
+  s.model = NULL;
   return s;
 }
 
@@ -200,6 +201,37 @@ static void remember_anchors(run_meas *m, const ss_sim *sim) {
   memcpy(m->old_uv, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)m->nanchor);
 }
 
+/* The run's sim (model NULL) or model (sim NULL): settings->skin, or else
+ * the welded body (a no-op copy where the body has no seams). */
+static int run_create(ss_sim **sim, ss_model **model, const ss_body *body,
+                      const ss_run_settings *settings, char *err, int err_sz) {
+  const int nvert = body->nvert, nface = body->nface;
+  ss_sim_mesh skin;
+  ss_weld *weld = NULL;
+  if (settings->skin) {
+    skin = *settings->skin;
+  } else {
+    int status = ss_weld_create(&weld, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
+    if (status) return status;
+    skin = (ss_sim_mesh){weld->nweld, weld->pos, nface, weld->faces};
+  }
+  int status = sim ? ss_sim_create(sim, nvert, body->rest, nface, body->faces, &skin,
+                                   &settings->sim, err, err_sz)
+                   : ss_model_create(model, nvert, body->rest, nface, body->faces, &skin,
+                                     &settings->sim, err, err_sz);
+  ss_weld_destroy(weld);
+  return status;
+}
+
+int ss_run_model_create(ss_model **out, const ss_body *body, const ss_run_settings *settings,
+                        char *err, int err_sz) {
+  if (!out) return ss_fail(err, err_sz, SS_E_ARG, "run: out is NULL");
+  *out = NULL;
+  if (!body || !settings || !body->rest || !body->faces)
+    return ss_fail(err, err_sz, SS_E_ARG, "run: NULL argument");
+  return run_create(NULL, out, body, settings, err, err_sz);
+}
+
 int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_fn on_frame,
                 void *frame_user, ss_progress_fn progress, void *progress_user,
                 ss_run_stats *stats, char *err, int err_sz) {
@@ -219,18 +251,14 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
 
   ss_sim *sim = NULL;
   int status;
-  if (settings->skin) {
-    status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, settings->skin,
-                           &settings->sim, err, err_sz);
+  if (settings->model) {
+    if (ss_model_body_nvert(settings->model) != nvert || ss_model_body_nface(settings->model) != nface)
+      return ss_fail(err, err_sz, SS_E_ARG, "run: the model is of another body (%d vertices, %d faces; "
+                     "the body has %d, %d)", ss_model_body_nvert(settings->model),
+                     ss_model_body_nface(settings->model), nvert, nface);
+    status = ss_sim_create_from_model(&sim, settings->model, &settings->sim, err, err_sz);
   } else {
-    /* welded skin (a no-op copy where the body has no seams) */
-    ss_weld *weld = NULL;
-    status = ss_weld_create(&weld, nvert, body->rest, nface, body->faces, -1.0, err, err_sz);
-    if (status) return status;
-    ss_sim_mesh skin = {weld->nweld, weld->pos, nface, weld->faces};
-    status = ss_sim_create(&sim, nvert, body->rest, nface, body->faces, &skin, &settings->sim,
-                           err, err_sz);
-    ss_weld_destroy(weld);
+    status = run_create(&sim, NULL, body, settings, err, err_sz);
   }
   if (status) return status;
   const ss_topo *topo = ss_sim_body_topo(sim);

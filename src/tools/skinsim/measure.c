@@ -69,6 +69,16 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   if (!cache_dir)
     return ss_run_body(body, s, on_frame, frame_user, progress_fn, progress_user, &res->st, err,
                        err_sz);
+  /* the run, its reference and its truth run on one model, built once
+   * (ss_reference_settings keeps it where it is the reference's) */
+  ss_model *model = NULL;
+  ss_run_settings shared = *s;
+  if (!s->model) {
+    int st = ss_run_model_create(&model, body, s, err, err_sz);
+    if (st) return st;
+    shared.model = model;
+  }
+  s = &shared;
   ss_reference *ref = NULL, *base_ref = NULL, *truth_ref = NULL;
   int status = ss_reference_get(&ref, body, s, cache_dir, NULL, NULL, err, err_sz);
   if (!status && base)
@@ -81,6 +91,7 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   if (status) {
     ss_reference_destroy(ref);
     ss_reference_destroy(base_ref);
+    ss_model_destroy(model);
     return status;
   }
   if (truth_ref) {
@@ -110,6 +121,7 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   ss_reference_destroy(truth_ref);
   ss_reference_destroy(ref);
   ss_reference_destroy(base_ref);
+  ss_model_destroy(model);
   return status;
 }
 
