@@ -1,14 +1,16 @@
 /* ss_sim: the dynamic skin of the paper (Kautzman, Cameron, Kim 2018,
  * sections 1 and 3; DESIGN.md, "The skin model").
  *
- * A step of length dt runs `substeps` substeps of h = dt / substeps; each:
+ * A step of length dt runs `substeps` substeps of h = dt / substeps, each the
+ * stages below in order (ss_stage, the `stages` table before ss_sim_step):
  *   1. pose     the body at the linearly interpolated pose; per-face frames
  *               (and BVH) updated once through the mover; anchor positions;
  *               vertices outside the simulated region put on their anchors;
  *   2. solve    implicit Euler as minimisation (sim_energy.c), starting from
  *               the skin carried along by its anchors, by Newton or L-BFGS
  *               directions in one loop (solver.c);
- *   3. velocity v = (x - x_n) / h;
+ *   3. guard    a solve that met a non-finite value keeps the last finite
+ *               state; velocities v = (x - x_n) / h;
  *   4. anchors  the spring force drags each anchor of a free point towards the
  *               skin point it holds: a* = a0 + (1 - exp(-slide h)) (p - a0)
  *               (slide a rate per second, so any substep count converges to
@@ -645,6 +647,114 @@ static void choose_threads(ss_sim *sim, double step_ms) {
   if (sim->thread_probe == 0) sim->nthread = sim->nthread_max;
 }
 
+/* ---- the stages of a substep, run in this order (as Box2D's solver.h lists
+ * the stages of its step): see the head of this file. Each works on the
+ * data of the sim and the substep's record; a solve that fails is kept by
+ * the guard, and ends the step after it. */
+typedef enum ss_stage {
+  SS_STAGE_POSE,    /* body pose of the substep, frames, anchor positions */
+  SS_STAGE_SOLVE,   /* implicit Euler as minimisation */
+  SS_STAGE_GUARD,   /* nothing non-finite enters the state; velocities */
+  SS_STAGE_ANCHORS, /* anchors slide towards the skin (and walk home) */
+  SS_STAGE_COUNT
+} ss_stage;
+
+typedef struct substep {
+  const double *body_pos; /* the pose at the end of the step */
+  double w;               /* share of the way from body_prev to body_pos */
+  int last;               /* the last substep: exactly body_pos */
+  double h;               /* its length */
+  int status;             /* the solver's: SS_OK or SS_E_SOLVER */
+  int converged, stalled, nonfinite;
+} substep;
+
+static void stage_pose(ss_sim *sim, substep *sub) {
+  ss_sim_stats *st = sim->st;
+  const size_t nv3 = 3 * (size_t)sim->m->nvert, nb3 = 3 * (size_t)sim->m->nbvert;
+  const double *body_pos = sub->body_pos;
+  const double w = sub->w;
+  for (size_t i = 0; i < nb3; i++) sim->body_sub[i] = sim->body_prev[i] + w * (body_pos[i] - sim->body_prev[i]);
+  if (sub->last) memcpy(sim->body_sub, body_pos, nb3 * sizeof(double));
+  double t0 = ss_now_ms();
+  /* Where the free vertices' anchors were in the previous pose: the start
+   * of the solve moves each vertex along with its anchor. */
+  const ss_frames *fr_prev = ss_mover_frames(sim->mover);
+  for (int k = 0; k < sim->m->ndof; k++) {
+    int v = sim->m->dof_vert[k];
+    if (sim->anchor_face[v] >= 0)
+      ss_anchor_position(fr_prev, sim->anchor_face[v], sim->anchor_uv + 2 * v, sim->guess + 3 * k);
+    else
+      memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
+  }
+  ss_mover_set_pose(sim->mover, sim->body_sub);
+  update_anchor_positions(sim, sim->body_sub);
+  st->pose_ms += ss_now_ms() - t0;
+  memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));
+  for (int v = 0; v < sim->m->nvert; v++)
+    if (sim->m->dof[v] < 0) memcpy(sim->x + 3 * v, sim->anchor_pos + 3 * v, 3 * sizeof(double));
+  memcpy(sim->xfull_t, sim->x, nv3 * sizeof(double));
+}
+
+/* Starts from the skin carried along by its anchors (fewer iterations than
+ * the inertial prediction x + h v when the body leads: about 40% fewer on
+ * twist and boundary, 60% on armpit; ~5% more on fold). */
+static void stage_solve(ss_sim *sim, substep *sub) {
+  if (sim->m->ndof == 0) return;
+  ss_sim_energy_begin(sim, sub->h);
+  for (int k = 0; k < sim->m->ndof; k++) {
+    int v = sim->m->dof_vert[k];
+    for (int i = 0; i < 3; i++)
+      sim->xd[3 * k + i] = sim->x_prev[3 * v + i] + (sim->anchor_pos[3 * v + i] - sim->guess[3 * k + i]);
+  }
+  sub->status = ss_solver_solve(sim, sim->xd, &sub->converged, &sub->stalled, &sub->nonfinite);
+}
+
+static void stage_guard(ss_sim *sim, substep *sub) {
+  ss_sim_stats *st = sim->st;
+  if (sim->m->ndof > 0) {
+    if (sub->status != SS_OK || sub->nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->m->ndof)) {
+      /* Keep the last good state of the free vertices, at rest. */
+      for (int k = 0; k < sim->m->ndof; k++) {
+        int v = sim->m->dof_vert[k];
+        memcpy(sim->xd + 3 * k, sim->x_prev + 3 * v, 3 * sizeof(double));
+        memset(sim->v + 3 * v, 0, 3 * sizeof(double));
+      }
+      if (sub->status == SS_OK) sub->nonfinite = 1;
+      sub->converged = 0;
+    }
+    ss_sim_scatter(sim, sim->xd, sim->x);
+  }
+  st->converged &= sub->converged;
+  st->stalled += sub->stalled;
+  st->failures += sub->nonfinite != 0;
+  /* velocities, never Inf in the state (only reachable after ss_sim_set_state) */
+  const size_t nv3 = 3 * (size_t)sim->m->nvert;
+  int v_overflow = 0;
+  for (size_t i = 0; i < nv3; i++) {
+    sim->v[i] = (sim->x[i] - sim->x_prev[i]) / sub->h;
+    if (!isfinite(sim->v[i])) sim->v[i] = 0.0, v_overflow = 1;
+  }
+  st->failures += v_overflow;
+}
+
+static void stage_anchors(ss_sim *sim, substep *sub) {
+  if (sub->status != SS_OK) return;
+  /* the fractions of the way of this substep */
+  const double h = sub->h;
+  sim->slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0;
+  sim->tether_frac = sim->set.tether > 0.0 ? -expm1(-sim->set.tether * h) : 0.0;
+  double t0 = ss_now_ms();
+  move_anchors(sim, sim->st);
+  sim->st->walk_ms += ss_now_ms() - t0;
+}
+
+static void (*const stages[SS_STAGE_COUNT])(ss_sim *, substep *) = {
+    [SS_STAGE_POSE] = stage_pose,
+    [SS_STAGE_SOLVE] = stage_solve,
+    [SS_STAGE_GUARD] = stage_guard,
+    [SS_STAGE_ANCHORS] = stage_anchors,
+};
+
 int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *stats, char *err,
                 int err_sz) {
   ss_sim_stats local;
@@ -674,74 +784,14 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
   int substeps = sim->set.substeps;
   double h = dt / substeps;
-  size_t nv3 = 3 * (size_t)sim->m->nvert, nb3 = 3 * (size_t)sim->m->nbvert;
+  const size_t nb3 = 3 * (size_t)sim->m->nbvert;
   int status = SS_OK;
   st->converged = 1;
-  for (int s = 1; s <= substeps; s++) {
+  for (int s = 1; s <= substeps && status == SS_OK; s++) {
     st->substeps++;
-    /* 1. pose */
-    double w = (double)s / substeps;
-    for (size_t i = 0; i < nb3; i++) sim->body_sub[i] = sim->body_prev[i] + w * (body_pos[i] - sim->body_prev[i]);
-    if (s == substeps) memcpy(sim->body_sub, body_pos, nb3 * sizeof(double));
-    double t0 = ss_now_ms();
-    /* Where the free vertices' anchors were in the previous pose: the start
-     * of the solve moves each vertex along with its anchor. */
-    const ss_frames *fr_prev = ss_mover_frames(sim->mover);
-    for (int k = 0; k < sim->m->ndof; k++) {
-      int v = sim->m->dof_vert[k];
-      if (sim->anchor_face[v] >= 0)
-        ss_anchor_position(fr_prev, sim->anchor_face[v], sim->anchor_uv + 2 * v, sim->guess + 3 * k);
-      else
-        memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
-    }
-    ss_mover_set_pose(sim->mover, sim->body_sub);
-    update_anchor_positions(sim, sim->body_sub);
-    st->pose_ms += ss_now_ms() - t0;
-    memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));
-    for (int v = 0; v < sim->m->nvert; v++)
-      if (sim->m->dof[v] < 0) memcpy(sim->x + 3 * v, sim->anchor_pos + 3 * v, 3 * sizeof(double));
-    memcpy(sim->xfull_t, sim->x, nv3 * sizeof(double));
-    /* 2. solve, starting from the skin carried along by its anchors (fewer
-     * iterations than the inertial prediction x + h v when the body leads:
-     * about 40% fewer on twist and boundary, 60% on armpit; ~5% more on fold) */
-    int converged = 1, stalled = 0, nonfinite = 0;
-    if (sim->m->ndof > 0) {
-      ss_sim_energy_begin(sim, h);
-      for (int k = 0; k < sim->m->ndof; k++) {
-        int v = sim->m->dof_vert[k];
-        for (int i = 0; i < 3; i++)
-          sim->xd[3 * k + i] = sim->x_prev[3 * v + i] + (sim->anchor_pos[3 * v + i] - sim->guess[3 * k + i]);
-      }
-      status = ss_solver_solve(sim, sim->xd, &converged, &stalled, &nonfinite);
-      if (status != SS_OK || nonfinite == 1 || !all_finite(sim->xd, 3 * (size_t)sim->m->ndof)) {
-        /* Keep the last good state of the free vertices, at rest. */
-        for (int k = 0; k < sim->m->ndof; k++) {
-          int v = sim->m->dof_vert[k];
-          memcpy(sim->xd + 3 * k, sim->x_prev + 3 * v, 3 * sizeof(double));
-          memset(sim->v + 3 * v, 0, 3 * sizeof(double));
-        }
-        if (status == SS_OK) nonfinite = 1;
-        converged = 0;
-      }
-      ss_sim_scatter(sim, sim->xd, sim->x);
-    }
-    st->converged &= converged;
-    st->stalled += stalled;
-    st->failures += nonfinite != 0;
-    /* 3. velocities */
-    int v_overflow = 0; /* never Inf in the state (only reachable after ss_sim_set_state) */
-    for (size_t i = 0; i < nv3; i++) {
-      sim->v[i] = (sim->x[i] - sim->x_prev[i]) / h;
-      if (!isfinite(sim->v[i])) sim->v[i] = 0.0, v_overflow = 1;
-    }
-    st->failures += v_overflow;
-    if (status != SS_OK) break;
-    /* 4. anchors: the fractions of the way of this substep */
-    sim->slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0;
-    sim->tether_frac = sim->set.tether > 0.0 ? -expm1(-sim->set.tether * h) : 0.0;
-    t0 = ss_now_ms();
-    move_anchors(sim, st);
-    st->walk_ms += ss_now_ms() - t0;
+    substep sub = {body_pos, (double)s / substeps, s == substeps, h, SS_OK, 1, 0, 0};
+    for (int k = 0; k < SS_STAGE_COUNT; k++) stages[k](sim, &sub);
+    status = sub.status;
   }
   memcpy(sim->body_prev, body_pos, nb3 * sizeof(double));
   area_ratios(sim, st);
