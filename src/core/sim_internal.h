@@ -1,6 +1,7 @@
 /* Internal: the inside of ss_sim, shared by its modules.
  *
- *   sim.c            create / destroy / step / reset / accessors
+ *   sim_model.c      model and data: arenas, create / destroy, sims sharing a model
+ *   sim.c            step (its stages) / reset / live settings / accessors
  *   sim_bind.c       anchors at create (copy or closest point), face mask, hinges
  *   sim_pattern.c    sparsity pattern of the unknowns and element-to-slot maps
  *   sim_energy.c     E(x), its gradient, and Hessian assembly over all terms
