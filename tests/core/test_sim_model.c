@@ -4,12 +4,15 @@
  * stepping never writes the model; the model outlives its creator's
  * reference while a sim runs on it; a sim's model settings must be the
  * model's; and a live change of a model setting on a shared model is refused
- * (the other sims keep theirs), applied in place once the model is its own. */
+ * (the other sims keep theirs), applied in place once the model is its own;
+ * and a reference and a truth run (src/lab/reference.c) on the run's model
+ * are the ones computed alone. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "sim_internal.h"
+#include "skin_sim/ss_reference.h"
 #include "skin_sim/ss_run.h"
 #include "skin_sim/ss_scene.h"
 #include "skin_sim/ss_sim.h"
@@ -147,6 +150,37 @@ int main(void) {
   ss_sim_destroy(on_a);
   ss_sim_destroy(alone_a);
   ss_sim_destroy(alone_b);
+
+  /* the lab: a run's reference and truth (src/lab/reference.c) on the run's
+   * model, built once (ss_run_model_create), are those computed alone */
+  ss_body body = ss_body_of_scene(sc);
+  ss_run_settings run = ss_run_default_settings();
+  run.frames = 3;
+  run.sim.mover.method = SS_METHOD_PROJECT; /* the truth walks: another run setting */
+  ss_model *rm = NULL;
+  CHECK_MSG(ss_run_model_create(&rm, &body, &run, err, sizeof err) == SS_OK, "%s", err);
+  ss_run_settings on_model = run;
+  on_model.model = rm;
+  const ss_run_settings truth_alone = ss_truth_settings(&run), truth_shared = ss_truth_settings(&on_model);
+  CHECK(ss_reference_settings(&on_model).model == rm && truth_shared.model == rm);
+  const ss_run_settings *cases[2][2] = {{&run, &on_model}, {&truth_alone, &truth_shared}};
+  for (int k = 0; rm && k < 2; k++) {
+    ss_reference *r0 = NULL, *r1 = NULL;
+    CHECK_MSG(ss_reference_get(&r0, &body, cases[k][0], NULL, NULL, NULL, err, sizeof err) == SS_OK, "%s", err);
+    CHECK_MSG(ss_reference_get(&r1, &body, cases[k][1], NULL, NULL, NULL, err, sizeof err) == SS_OK, "%s", err);
+    if (r0 && r1) {
+      CHECK(r0->key == r1->key && r0->frames == r1->frames && r0->nvert == r1->nvert);
+      CHECK_MSG(memcmp(r0->pos, r1->pos, sizeof(double) * 3 * (size_t)r0->nvert * (size_t)r0->frames) == 0,
+                "%s on the run's model differs from the one computed alone", k ? "truth" : "reference");
+    }
+    ss_reference_destroy(r0);
+    ss_reference_destroy(r1);
+  }
+  /* a custom skin's model is not the reference's (the welded body): dropped */
+  ss_sim_mesh own = {nv, rest, nf, faces};
+  on_model.skin = &own;
+  CHECK(ss_reference_settings(&on_model).model == NULL);
+  ss_model_destroy(rm);
   ss_scene_destroy(sc);
   return ss_test_finish("test_sim_model");
 }
