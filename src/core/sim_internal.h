@@ -45,8 +45,9 @@ enum ss_vert_kind {
  * nothing else allocates, checks or frees them. The model's counts that are
  * only known while it is built (dofs, hinges, blocks of the pattern) are
  * allocated at bounds known before: nvert for dofs, nhinge_max for hinges.
- * Not in the arenas: the body topology (ss_topo), the mover, the walkers and
- * the CHOLMOD objects, each with its own create and destroy. */
+ * Not in the arenas: the body topology (ss_topo), the mover, the walker
+ * objects (their pointers are) and the CHOLMOD objects, each with its own
+ * create and destroy. */
 
 /* name, type, count, shape */
 #define SS_MODEL_ARRAYS(X)                                                                       \
@@ -182,7 +183,9 @@ struct ss_sim {
   SS_DATA_ARRAYS(SS_ARENA_FIELD)
 };
 
-/* 1 if setting d is part of the model (all sims on one model share it). */
+/* 1 if the setting at this offset of ss_sim_settings is a model setting (young,
+ * poisson, density, stiffness, barycenters, bending, orient): every sim on a
+ * model has the model's (sim_model.c). */
 int ss_sim_in_model(size_t offset);
 
 /* ---- sim_bind.c ---- */
