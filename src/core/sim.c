@@ -188,6 +188,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   res.face = sim->anchor_face[a];
   res.uv[0] = sim->anchor_uv[2 * a];
   res.uv[1] = sim->anchor_uv[2 * a + 1];
+  int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
     if (walker)
@@ -225,6 +226,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
       home_stretch(fr, h, target, res.uv);
       res.face = h;
       sim->anchor_pull[a] += sqrt(pull2);
+      moved = 1;
     } else if (pull2 > 0.0) {
       const int face = res.face;
       const double uv[2] = {res.uv[0], res.uv[1]};
@@ -237,12 +239,13 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
       sim->anchor_pull[a] += sqrt(pull2);
       sim->anchor_path[a] += back.length;
       c->steps += back.steps;
+      moved = 1;
     }
   }
   sim->anchor_face[a] = res.face;
   sim->anchor_uv[2 * a] = res.uv[0];
   sim->anchor_uv[2 * a + 1] = res.uv[1];
-  c->moved++;
+  c->moved += moved;
   c->boundary += res.stop == SS_STOP_BOUNDARY;
   c->crease += res.stop == SS_STOP_CREASE;
   c->step_limit += res.stop == SS_STOP_STEP_LIMIT;

@@ -3,7 +3,8 @@
  * masses, anchor spring stiffnesses, membrane rest data and bending hinges.
  *
  * Binding (DESIGN.md, "Anchor springs"): a skin that is a copy of the body
- * anchors each vertex at its own corner of the first body face using it
+ * anchors each vertex at its own corner of the first body face using it that
+ * is not a sliver (else the first at all)
  * (canonical coordinates (0,0), (1,0) or (0,1)) and each face barycenter at
  * (1/3, 1/3) of the same face: exact, no search. A separate skin mesh is bound
  * by Euclidean closest point on the body at rest (the BVH), once.
@@ -37,14 +38,39 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
   }
   if (!skin) {
     static const double corner_uv[3][2] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
-    for (int f = 0; f < nf; f++)
-      for (int c = 0; c < 3; c++) {
-        int v = sim->m->faces[3 * f + c];
-        if (sim->m->anchor_face0[v] >= 0) continue;
-        sim->m->anchor_face0[v] = f;
-        sim->m->anchor_uv0[2 * v] = corner_uv[c][0];
-        sim->m->anchor_uv0[2 * v + 1] = corner_uv[c][1];
+    /* A vertex is bound at its corner of the first body face using it that
+     * is not a sliver (rest area at least SS_ORIENT_MIN_AREA mean squared
+     * edges; else the first face at all). The point is the same whichever
+     * face; the face is where the tether walks it home, and a sliver's
+     * plane swings with the last bits of its apex: anchors going home into
+     * one landed at coordinates that differed by 5e-6 between Newton and
+     * quasi-Newton after two frames (slivers scene, aspect ~300), and the
+     * two solvers parted by 3e-3 edge lengths within ten frames. */
+    double *area = malloc((size_t)(nf ? nf : 1) * sizeof *area);
+    if (!area) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory binding the skin");
+    double e2 = 0.0;
+    for (int f = 0; f < nf; f++) {
+      const double *p0 = body_rest + 3 * sim->m->faces[3 * f], *p1 = body_rest + 3 * sim->m->faces[3 * f + 1],
+                   *p2 = body_rest + 3 * sim->m->faces[3 * f + 2];
+      double u[3], w[3], n[3];
+      for (int i = 0; i < 3; i++) u[i] = p1[i] - p0[i], w[i] = p2[i] - p0[i];
+      n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2], n[2] = u[0] * w[1] - u[1] * w[0];
+      area[f] = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int i = 0; i < 3; i++) e2 += (u[i] * u[i] + w[i] * w[i] + (w[i] - u[i]) * (w[i] - u[i])) / 3.0;
+    }
+    const double min_area = SS_ORIENT_MIN_AREA * (nf ? e2 / nf : 0.0);
+    for (int pass = 0; pass < 2; pass++)
+      for (int f = 0; f < nf; f++) {
+        if (pass == 0 && !(area[f] >= min_area)) continue;
+        for (int c = 0; c < 3; c++) {
+          int v = sim->m->faces[3 * f + c];
+          if (sim->m->anchor_face0[v] >= 0) continue;
+          sim->m->anchor_face0[v] = f;
+          sim->m->anchor_uv0[2 * v] = corner_uv[c][0];
+          sim->m->anchor_uv0[2 * v + 1] = corner_uv[c][1];
+        }
       }
+    free(area);
     if (sim->set.barycenter_anchors)
       for (int f = 0; f < nf; f++) {
         sim->m->anchor_face0[nv + f] = f;

@@ -3,7 +3,14 @@
  * and holds still; with a tether whose walk home outpaces the slide, every
  * skin vertex comes back to within 0.1 mean edge lengths of its rest
  * position, with no snag and no failure; settling does not change the
- * motion's final_hash; without settle the rest fields stay 0. */
+ * motion's final_hash; without settle the rest fields stay 0. And tether
+ * 3 /s (the default-to-be, issue 11) is drift-free with every other setting at
+ * its default: on `fold` and `twist` (1000 triangles), which drift with tether 0
+ * (rest error max 0.30 and 1.00 edge lengths, rms 0.29 and 0.89), the skin comes
+ * home to within 0.1 edge lengths (rms 0.02) while it still slides during the
+ * motion. (Not the default yet: on the demo avatar one vertex stays 0.2 edge
+ * lengths off the body, see README "The dynamic skin", and test_rest_long asks
+ * 0.1 at the defaults.) */
 #include <math.h>
 #include <stdio.h>
 
@@ -13,6 +20,7 @@
 
 /* slide -30 ln(1 - share): that share of the way per 1/30 s frame */
 #define SLIDE_DEFAULT (ss_sim_default_settings().slide)
+#define TETHER_DRIFT_FREE 3.0 /* 1/s */
 #define SLIDE_SLOW (-30.0 * log(0.9)) /* a tenth of the way per frame: 3.16 /s */
 
 static ss_run_stats run(const ss_scene *scene, double settle, double tether, double slide) {
@@ -28,8 +36,34 @@ static ss_run_stats run(const ss_scene *scene, double settle, double tether, dou
   return st;
 }
 
+/* Tether 3 /s and the other defaults: drift-free on a scene that drifts without. */
+static void check_tether_comes_home(const char *name) {
+  char err[256] = "";
+  ss_scene *scene = NULL;
+  if (ss_scene_create(&scene, name, 1000, err, sizeof err) != SS_OK) {
+    CHECK_MSG(0, "%s: %s", name, err);
+    return;
+  }
+  ss_run_settings s = ss_run_default_settings();
+  s.settle = 3.0;
+  s.sim.tether = TETHER_DRIFT_FREE;
+  ss_run_stats st;
+  int status = ss_run_scene(scene, &s, NULL, NULL, NULL, NULL, &st, err, sizeof err);
+  CHECK_MSG(status == SS_OK, "%s", err);
+  printf("test_rest_return: %s at the defaults but tether %g /s: rest error rms / max %.4f / %.4f "
+         "edges, slide max %.3f edges\n", name, s.sim.tether, st.rest_error_rms, st.rest_error_max,
+         st.slide_max);
+  CHECK(st.snags == 0 && st.failures == 0);
+  CHECK(st.slide_max > 0.05); /* it still slides during the motion (fold 0.11, twist 6.4) */
+  CHECK_MSG(st.rest_error_max <= 0.1 && st.rest_error_rms <= 0.02, "%s: rest error rms %g max %g at tether 3",
+            name, st.rest_error_rms, st.rest_error_max);
+  ss_scene_destroy(scene);
+}
+
 int main(void) {
   char err[256] = "";
+  check_tether_comes_home("fold");
+  check_tether_comes_home("twist");
   ss_scene *scene = NULL;
   if (ss_scene_create(&scene, "elbow", 1000, err, sizeof err) != SS_OK) {
     fprintf(stderr, "test_rest_return: %s\n", err);
