@@ -90,44 +90,43 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
   return 1;
 }
 
-/* s of face f at positions xfull and its gradient (9, corners in face order). */
-static double signed_ratio(const ss_sim *sim, const double *xfull, int f, const double n[3],
-                           double grad[9]) {
+/* s of face f at positions xfull against the unit normal n; with s < S0 (the
+ * only faces the term acts on) also its gradient (9, corners in face order).
+ * Bit for bit the s and gradient of the formula at the head of this file. */
+static inline double face_ratio(const ss_sim *sim, const double *xfull, int f, const double n[3],
+                                double grad[9]) {
   const int *fv = sim->m->faces + 3 * f;
   const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
   double e1[3], e2[3];
   for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
   const double c = sim->m->orient_sign[f] / (2.0 * sim->m->rest_area[f]);
-  double d1[3] = {e2[1] * n[2] - e2[2] * n[1], e2[2] * n[0] - e2[0] * n[2], e2[0] * n[1] - e2[1] * n[0]};
-  double d2[3] = {n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
+  const double d1[3] = {e2[1] * n[2] - e2[2] * n[1], e2[2] * n[0] - e2[0] * n[2], e2[0] * n[1] - e2[1] * n[0]};
+  const double s = c * (e1[0] * d1[0] + e1[1] * d1[1] + e1[2] * d1[2]);
+  if (!(s < SS_ORIENT_S0)) return s;
+  const double d2[3] = {n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
   for (int i = 0; i < 3; i++) {
     grad[3 + i] = c * d1[i];
     grad[6 + i] = c * d2[i];
     grad[i] = -grad[3 + i] - grad[6 + i];
   }
-  return c * (e1[0] * d1[0] + e1[1] * d1[1] + e1[2] * d1[2]);
+  return s;
 }
 
-/* How deep free vertex q (dof) is below the body surface at its anchor:
- * -(x - a) . n with n the unit normal halfway between its anchor's face and
- * the face it was bound to (0 where they disagree by over 120 degrees, or
- * where it has no anchor face). */
-static double vertex_depth(const ss_sim *sim, const ss_frames *fr, int q, const double *xfull,
-                           double n[3]) {
+/* The unit normal free vertex q (dof) is judged against for its depth
+ * under the body surface at its anchor, -(x - a) . n: halfway between its
+ * anchor's face and the face it was bound to. 0 (not judged) where they
+ * disagree by over 120 degrees, where it has no anchor face or no spring. */
+static int vertex_normal(const ss_sim *sim, const ss_frames *fr, int q, double n[3]) {
   const int v = sim->m->dof_vert[q], fa = sim->anchor_face[v], fh = sim->m->anchor_face0[v];
-  if (fa < 0 || fh < 0 || sim->m->k_vert[v] == 0.0) return 0.0; /* held on the body only */
+  if (fa < 0 || fh < 0 || sim->m->k_vert[v] == 0.0) return 0; /* held on the body only */
   /* a sliver's normal swings with the smallest move of its corners: not trusted */
   const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
-  if (!(fr->area[fa] >= min_area && fr->area[fh] >= min_area)) return 0.0;
+  if (!(fr->area[fa] >= min_area && fr->area[fh] >= min_area)) return 0;
   for (int k = 0; k < 3; k++) n[k] = fr->normal[3 * fa + k] + fr->normal[3 * fh + k];
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 1.0)) return 0.0;
-  double d = 0.0;
-  for (int k = 0; k < 3; k++) {
-    n[k] /= len;
-    d -= (xfull[3 * v + k] - sim->anchor_pos[3 * v + k]) * n[k];
-  }
-  return d;
+  if (!(len > 1.0)) return 0;
+  for (int k = 0; k < 3; k++) n[k] /= len;
+  return 1;
 }
 
 /* The depth spring: SS_ORIENT_DEPTH orient per rest area, the depth in mean
@@ -156,23 +155,58 @@ int ss_sim_orient_init(ss_sim *sim) {
     double n[3], g[9];
     if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
     sim->m->orient_sign[f] = 1;
-    double s = signed_ratio(sim, sim->m->rest, f, n, g);
+    double s = face_ratio(sim, sim->m->rest, f, n, g);
     sim->m->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
   }
   return SS_OK;
 }
 
+/* What the term reads that is fixed during a solve, in orient_n: per
+ * simulated face q (simface order) its unit body normal and 1 if judged (0:
+ * not, with a zero normal), and per dof k at 4 (nface + k) its vertex's
+ * normal and 1 if its depth is judged. The same bits as computing them in
+ * each evaluation: the anchors and the body pose do not move in a solve. */
+void ss_sim_orient_begin(ss_sim *sim) {
+  const ss_frames *fr = ss_mover_frames(sim->mover);
+  double *on = sim->orient_n;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    const int f = sim->m->simface[q];
+    double *n = on + 4 * (size_t)q;
+    n[0] = n[1] = n[2] = n[3] = 0.0;
+    if (!sim->m->orient_sign[f]) continue;
+    if (ss_sim_orient_normal(sim, fr, f, n)) n[3] = 1.0;
+    else n[0] = n[1] = n[2] = 0.0;
+  }
+  double *nd = on + 4 * (size_t)sim->m->nface;
+  for (int q = 0; q < sim->m->ndof; q++) {
+    double *n = nd + 4 * (size_t)q;
+    n[0] = n[1] = n[2] = n[3] = 0.0;
+    if (vertex_normal(sim, fr, q, n)) n[3] = 1.0;
+    else n[0] = n[1] = n[2] = 0.0;
+  }
+}
+
+/* Depth of dof q's vertex under the body at its anchor, against its cached
+ * normal n (judged: n[3] != 0). */
+static inline double dof_depth(const ss_sim *sim, int q, const double *xfull, const double *n) {
+  const int v = sim->m->dof_vert[q];
+  const double *x = xfull + 3 * v, *a = sim->anchor_pos + 3 * v;
+  double d = 0.0;
+  for (int k = 0; k < 3; k++) d -= (x[k] - a[k]) * n[k];
+  return d;
+}
+
 double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
   const double k = sim->set.orient;
   if (!(k > 0.0)) return 0.0;
-  const ss_frames *fr = ss_mover_frames(sim->mover);
+  const double *on = sim->orient_n;
   double e = 0.0;
   for (int q = 0; q < sim->m->nsimface; q++) {
+    const double *n = on + 4 * (size_t)q;
+    if (n[3] == 0.0) continue;
     const int f = sim->m->simface[q];
-    if (!sim->m->orient_sign[f]) continue;
-    double n[3], gs[9];
-    if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
-    const double s = signed_ratio(sim, xfull, f, n, gs);
+    double gs[9];
+    const double s = face_ratio(sim, xfull, f, n, gs);
     if (!(s < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f], d = SS_ORIENT_S0 - s;
     e += 0.5 * w * d * d;
@@ -185,9 +219,11 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
     }
   }
   /* no free vertex below the body surface at its anchor */
+  const double *nd = on + 4 * (size_t)sim->m->nface;
   for (int q = 0; q < sim->m->ndof; q++) {
-    double n[3];
-    const double depth = vertex_depth(sim, fr, q, xfull, n);
+    const double *n = nd + 4 * (size_t)q;
+    if (n[3] == 0.0) continue;
+    const double depth = dof_depth(sim, q, xfull, n);
     if (!(depth > 0.0)) continue;
     const double w = depth_weight(sim, q);
     e += 0.5 * w * depth * depth;
@@ -200,13 +236,13 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
 void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals) {
   const double k = sim->set.orient;
   if (!(k > 0.0)) return;
-  const ss_frames *fr = ss_mover_frames(sim->mover);
+  const double *on = sim->orient_n;
   for (int q = 0; q < sim->m->nsimface; q++) {
+    const double *n = on + 4 * (size_t)q;
+    if (n[3] == 0.0) continue;
     const int f = sim->m->simface[q];
-    if (!sim->m->orient_sign[f]) continue;
-    double n[3], gs[9];
-    if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
-    if (!(signed_ratio(sim, xfull, f, n, gs) < SS_ORIENT_S0)) continue;
+    double gs[9];
+    if (!(face_ratio(sim, xfull, f, n, gs) < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f];
     const int *fv = sim->m->faces + 3 * f;
     /* upper triangle through the face's block ranks, as the membrane's */
@@ -223,9 +259,11 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
       }
     }
   }
+  const double *nd = on + 4 * (size_t)sim->m->nface;
   for (int q = 0; q < sim->m->ndof; q++) {
-    double n[3];
-    if (!(vertex_depth(sim, fr, q, xfull, n) > 0.0)) continue;
+    const double *n = nd + 4 * (size_t)q;
+    if (n[3] == 0.0) continue;
+    if (!(dof_depth(sim, q, xfull, n) > 0.0)) continue;
     const double w = depth_weight(sim, q);
     const int diag_rank = sim->m->bcolp[q + 1] - sim->m->bcolp[q] - 1;
     for (int c1 = 0; c1 < 3; c1++)

@@ -39,6 +39,7 @@ void ss_sim_energy_begin(ss_sim *sim, double h) {
       sim->target[3 * k + i] = (pred + c * h * xn) / (1.0 + c * h) + g[i] / w;
     }
   }
+  ss_sim_orient_begin(sim); /* orient.c: its normals in this pose */
 }
 
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull) {

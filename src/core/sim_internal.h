@@ -118,7 +118,8 @@ enum ss_vert_kind {
   X(lb_s, double, SS_SIM_QN_HISTORY(sim) * 3 * (size_t)m->ndof, "(m x ndof x 3) L-BFGS s ring") \
   X(lb_y, double, SS_SIM_QN_HISTORY(sim) * 3 * (size_t)m->ndof, "(m x ndof x 3) L-BFGS y ring") \
   X(lb_rho, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
-  X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")
+  X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
+  X(orient_n, double, 4 * ((size_t)m->nface + m->nvert), "orient.c: per simface, then per dof at 4 nface: n, judged")
 #define SS_SIM_QN_HISTORY(sim) \
   ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
 
@@ -207,6 +208,10 @@ int ss_sim_orient_init(ss_sim *sim);
 /* The unit body normal skin face f is judged against, in the pose of fr;
  * 0 where the face is not judged (see orient.c). */
 int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]);
+/* The normals of the faces and free vertices in the current pose and anchors
+ * (orient_n), which energy and Hessian read: after every move of either
+ * (ss_sim_energy_begin calls it). */
+void ss_sim_orient_begin(ss_sim *sim);
 /* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0. */
 double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g);
 /* Adds its (Gauss-Newton, PSD) Hessian to the 3n x 3n upper-triangular values. */
