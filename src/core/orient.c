@@ -90,25 +90,29 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
   return 1;
 }
 
-/* s of face f at positions xfull against the unit normal n; with s < S0 (the
+/* c = sign_f / (2 A_f) of face f (its rest_area > 0). */
+static inline double face_c(const ss_sim *sim, int f) {
+  return sim->m->orient_sign[f] / (2.0 * sim->m->rest_area[f]);
+}
+
+/* s of face f at positions xfull against the unit normal n, c = face_c; with s < S0 (the
  * only faces the term acts on) also its gradient (9, corners in face order).
  * Bit for bit the s and gradient of the formula at the head of this file. */
 static inline double face_ratio(const ss_sim *sim, const double *xfull, int f, const double n[3],
-                                double grad[9]) {
+                                double c, double grad[9]) {
+  /* scalars, not arrays: no trip through the stack between the products */
   const int *fv = sim->m->faces + 3 * f;
   const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
-  double e1[3], e2[3];
-  for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
-  const double c = sim->m->orient_sign[f] / (2.0 * sim->m->rest_area[f]);
-  const double d1[3] = {e2[1] * n[2] - e2[2] * n[1], e2[2] * n[0] - e2[0] * n[2], e2[0] * n[1] - e2[1] * n[0]};
-  const double s = c * (e1[0] * d1[0] + e1[1] * d1[1] + e1[2] * d1[2]);
+  const double a0 = p1[0] - p0[0], a1 = p1[1] - p0[1], a2 = p1[2] - p0[2]; /* e1 */
+  const double b0 = p2[0] - p0[0], b1 = p2[1] - p0[1], b2 = p2[2] - p0[2]; /* e2 */
+  const double n0 = n[0], n1 = n[1], n2 = n[2];
+  const double d10 = b1 * n2 - b2 * n1, d11 = b2 * n0 - b0 * n2, d12 = b0 * n1 - b1 * n0; /* e2 x n */
+  const double s = c * (a0 * d10 + a1 * d11 + a2 * d12);
   if (!(s < SS_ORIENT_S0)) return s;
-  const double d2[3] = {n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]};
-  for (int i = 0; i < 3; i++) {
-    grad[3 + i] = c * d1[i];
-    grad[6 + i] = c * d2[i];
-    grad[i] = -grad[3 + i] - grad[6 + i];
-  }
+  const double d20 = n1 * a2 - n2 * a1, d21 = n2 * a0 - n0 * a2, d22 = n0 * a1 - n1 * a0; /* n x e1 */
+  grad[3] = c * d10, grad[4] = c * d11, grad[5] = c * d12;
+  grad[6] = c * d20, grad[7] = c * d21, grad[8] = c * d22;
+  grad[0] = -grad[3] - grad[6], grad[1] = -grad[4] - grad[7], grad[2] = -grad[5] - grad[8];
   return s;
 }
 
@@ -155,15 +159,15 @@ int ss_sim_orient_init(ss_sim *sim) {
     double n[3], g[9];
     if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
     sim->m->orient_sign[f] = 1;
-    double s = face_ratio(sim, sim->m->rest, f, n, g);
+    double s = face_ratio(sim, sim->m->rest, f, n, face_c(sim, f), g);
     sim->m->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
   }
   return SS_OK;
 }
 
 /* What the term reads that is fixed during a solve, in orient_n: per
- * simulated face q (simface order) its unit body normal and 1 if judged (0:
- * not, with a zero normal), and per dof k at 4 (nface + k) its vertex's
+ * simulated face q (simface order) its unit body normal and, if judged,
+ * face_c (else 0, with a zero normal: face_c of a judged face is not 0), and per dof k at 4 (nface + k) its vertex's
  * normal and 1 if its depth is judged. The same bits as computing them in
  * each evaluation: the anchors and the body pose do not move in a solve. */
 void ss_sim_orient_begin(ss_sim *sim) {
@@ -174,7 +178,7 @@ void ss_sim_orient_begin(ss_sim *sim) {
     double *n = on + 4 * (size_t)q;
     n[0] = n[1] = n[2] = n[3] = 0.0;
     if (!sim->m->orient_sign[f]) continue;
-    if (ss_sim_orient_normal(sim, fr, f, n)) n[3] = 1.0;
+    if (ss_sim_orient_normal(sim, fr, f, n)) n[3] = face_c(sim, f);
     else n[0] = n[1] = n[2] = 0.0;
   }
   double *nd = on + 4 * (size_t)sim->m->nface;
@@ -206,7 +210,7 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
     if (n[3] == 0.0) continue;
     const int f = sim->m->simface[q];
     double gs[9];
-    const double s = face_ratio(sim, xfull, f, n, gs);
+    const double s = face_ratio(sim, xfull, f, n, n[3], gs);
     if (!(s < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f], d = SS_ORIENT_S0 - s;
     e += 0.5 * w * d * d;
@@ -242,7 +246,7 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
     if (n[3] == 0.0) continue;
     const int f = sim->m->simface[q];
     double gs[9];
-    if (!(face_ratio(sim, xfull, f, n, gs) < SS_ORIENT_S0)) continue;
+    if (!(face_ratio(sim, xfull, f, n, n[3], gs) < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f];
     const int *fv = sim->m->faces + 3 * f;
     /* upper triangle through the face's block ranks, as the membrane's */

@@ -119,7 +119,7 @@ enum ss_vert_kind {
   X(lb_y, double, SS_SIM_QN_HISTORY(sim) * 3 * (size_t)m->ndof, "(m x ndof x 3) L-BFGS y ring") \
   X(lb_rho, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
   X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
-  X(orient_n, double, 4 * ((size_t)m->nface + m->nvert), "orient.c: per simface, then per dof at 4 nface: n, judged")
+  X(orient_n, double, 4 * ((size_t)m->nface + m->nvert), "orient.c: per simface n, face_c (0: not judged); per dof at 4 nface n, judged")
 #define SS_SIM_QN_HISTORY(sim) \
   ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
 
