@@ -84,7 +84,8 @@ typedef struct ss_run_stats {
   double min_area_ratio, max_area_ratio; /* over all frames and simulated faces */
   double hug_rms, hug_max;         /* mean edge lengths */
   double mean_edge_length;         /* body at rest, metres */
-  int inverted_faces_max;          /* most simulated skin faces turned against the body in a frame */
+  int inverted_faces_max;          /* most simulated skin faces turned against the body in a frame
+                                      (slivers, SS_SLIVER_AREA, not judged) */
   double inside_max;               /* deepest skin vertex under the body surface, mean edge lengths */
   double slide_max, slide_max_m;   /* farthest anchor from where it was bound during the motion:
                                       mean edge lengths, metres */

@@ -26,6 +26,12 @@
 extern "C" {
 #endif
 
+/* A skin face of rest area below SS_SLIVER_AREA times the mean rest edge
+ * length squared is a sliver: its normal swings with the smallest move of a
+ * corner, so it is judged neither by the orient term (it does not resist
+ * turning over) nor by the inverted-face count of runs (ss_run_stats). */
+#define SS_SLIVER_AREA 0.01
+
 /* ---- settings ------------------------------------------------------------- */
 
 enum ss_solver {

@@ -201,7 +201,7 @@ void ss_sim_build_material(ss_sim *sim);
 
 /* ---- orient.c: skin faces resist turning over against the body ---- */
 #define SS_ORIENT_S0 0.2 /* signed projected area ratio below which the term acts */
-#define SS_ORIENT_MIN_AREA 0.01 /* faces of rest area below this times l^2 are not judged */
+#define SS_ORIENT_MIN_AREA SS_SLIVER_AREA /* faces of rest area below this times l^2 are not judged */
 #define SS_ORIENT_DEPTH 0.1 /* depth spring of a vertex under the body, per orient (orient.c) */
 /* orient_sign from the rest skin and the anchors at rest (after ss_sim_reset). */
 int ss_sim_orient_init(ss_sim *sim);

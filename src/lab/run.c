@@ -322,6 +322,9 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
     anchored_normal(&m, sim, f, nb);
     double d = n[0] * nb[0] + n[1] * nb[1] + n[2] * nb[2];
     m.face_sign[f] = (signed char)(d > 0.0 ? 1 : d < 0.0 ? -1 : 0);
+    /* a sliver stands at any angle to the body without having turned over
+     * (the slivers scene at tether 3: 235 of them "inverted" at ~90 degrees) */
+    if (!(m.rest_area[f] >= SS_SLIVER_AREA * edge * edge)) m.face_sign[f] = 0;
   }
 
   long long iterations = 0, walk_steps = 0, anchor_updates = 0;
