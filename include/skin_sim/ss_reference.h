@@ -94,6 +94,27 @@ void ss_ref_error_add(ss_ref_error *e, int frame, const double *pos);
 /* RMS distance over the frames added, in mean edge lengths (0 if none). */
 double ss_ref_error_value(const ss_ref_error *e);
 
+/* Runs run over body (ss_run_body) and measures its skin against nref
+ * references at once, frame by frame, so that no caller keeps its own frame
+ * callback for it: errors[k] is ss_ref_error_value against refs[k] (0 for a
+ * NULL refs[k]), set in every case, on an error over the frames run before
+ * it. The run's own skin (ss_sim_skin_nvert / _rest at the first frame) is
+ * compared, vertex to vertex if it is the reference's, else through closest
+ * points (ss_ref_error_create). on_frame (may be NULL) is called after each
+ * frame as by ss_run_body; progress (may be NULL) and stats are ss_run_body's.
+ * Returns SS_OK or an error with a message: ss_run_body's, or that of
+ * ss_ref_error_create (the run then stops at its first frame). */
+int ss_run_ref_errors(const ss_body *body, const ss_run_settings *run,
+                      const ss_reference *const *refs, int nref, double *errors,
+                      ss_frame_fn on_frame, void *frame_user, ss_progress_fn progress,
+                      void *progress_user, ss_run_stats *stats, char *err, int err_sz);
+
+/* The RMS distance between two references a and b of the same body and
+ * frames (e.g. the truth at 16 and at 32 substeps: is it converged?), in mean
+ * edge lengths of b: a's skin positions added to an ss_ref_error of b at every
+ * frame. NAN if a's skin cannot be bound to b's (ss_ref_error_create). */
+double ss_ref_difference(const ss_reference *a, const ss_reference *b);
+
 #ifdef __cplusplus
 }
 #endif

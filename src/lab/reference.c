@@ -431,3 +431,60 @@ double ss_ref_error_value(const ss_ref_error *e) {
   if (!e || e->count == 0 || !(e->ref->mean_edge_length > 0.0)) return 0.0;
   return sqrt(e->sum2 / (double)e->count) / e->ref->mean_edge_length;
 }
+
+/* ---- a run against references, two references against each other ------------ */
+
+typedef struct run_errors {
+  const ss_reference *const *refs;
+  int nref;
+  ss_ref_error **e; /* (nref) made at the first frame, from the run's own skin */
+  int status;
+  char msg[256];
+  ss_frame_fn next;
+  void *next_user;
+} run_errors;
+
+static int errors_on_frame(void *user, int frame, const ss_sim *sim, const double *body_pos) {
+  run_errors *r = user;
+  for (int k = 0; k < r->nref && !r->status; k++) {
+    if (!r->refs[k]) continue;
+    if (!r->e[k])
+      r->status = ss_ref_error_create(&r->e[k], r->refs[k], ss_sim_skin_nvert(sim),
+                                      ss_sim_skin_rest(sim), r->msg, sizeof r->msg);
+    if (!r->status) ss_ref_error_add(r->e[k], frame, ss_sim_skin_positions(sim));
+  }
+  if (r->status) return 1;
+  return r->next ? r->next(r->next_user, frame, sim, body_pos) : 0;
+}
+
+int ss_run_ref_errors(const ss_body *body, const ss_run_settings *run,
+                      const ss_reference *const *refs, int nref, double *errors,
+                      ss_frame_fn on_frame, void *frame_user, ss_progress_fn progress,
+                      void *progress_user, ss_run_stats *stats, char *err, int err_sz) {
+  if (nref < 0 || (nref > 0 && (!refs || !errors)))
+    return ss_fail(err, err_sz, SS_E_ARG, "reference error: NULL argument");
+  run_errors r = {refs, nref, NULL, 0, "", on_frame, frame_user};
+  if (nref > 0) {
+    r.e = calloc((size_t)nref, sizeof *r.e);
+    if (!r.e) return ss_fail(err, err_sz, SS_E_NOMEM, "reference error: out of memory");
+  }
+  int status = ss_run_body(body, run, errors_on_frame, &r, progress, progress_user, stats, err,
+                           err_sz);
+  if (!status && r.status) status = ss_fail(err, err_sz, r.status, "%s", r.msg);
+  for (int k = 0; k < nref; k++) {
+    errors[k] = ss_ref_error_value(r.e[k]);
+    ss_ref_error_destroy(r.e[k]);
+  }
+  free(r.e);
+  return status;
+}
+
+double ss_ref_difference(const ss_reference *a, const ss_reference *b) {
+  ss_ref_error *e = NULL;
+  if (ss_ref_error_create(&e, b, a->nvert, a->rest, NULL, 0)) return NAN;
+  for (int f = 1; f <= a->frames; f++)
+    ss_ref_error_add(e, f, a->pos + 3 * (size_t)a->nvert * (size_t)(f - 1));
+  double v = ss_ref_error_value(e);
+  ss_ref_error_destroy(e);
+  return v;
+}

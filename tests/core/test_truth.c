@@ -18,37 +18,20 @@
 
 #define FRAMES 12
 
-typedef struct err_user {
-  ss_ref_error *e;
-} err_user;
-
-static int add_frame(void *user, int frame, const ss_sim *sim, const double *body_pos) {
-  (void)body_pos;
-  err_user *u = user;
-  ss_ref_error_add(u->e, frame, ss_sim_skin_positions(sim));
-  return 0;
-}
-
-/* error_vs_truth of run s against truth; -1 on error. */
+/* error_vs_truth of run s against truth (ss_run_ref_errors); -1 on error. */
 static double error_against(const ss_body *body, const ss_reference *truth,
                             const ss_run_settings *s) {
   char err[256] = "";
   ss_run_settings rs = *s;
   rs.frames = FRAMES;
-  ss_ref_error *e = NULL;
+  double v = -1.0;
+  ss_run_stats st = {0};
   /* the welded skin of a scene is the body's own: bound vertex to vertex */
-  if (ss_ref_error_create(&e, truth, truth->nvert, truth->rest, err, sizeof err) != SS_OK) {
-    CHECK_MSG(0, "%s", err);
-    return -1.0;
-  }
-  err_user u = {e};
-  ss_run_stats st;
-  int status = ss_run_body(body, &rs, add_frame, &u, NULL, NULL, &st, err, sizeof err);
+  int status = ss_run_ref_errors(body, &rs, &truth, 1, &v, NULL, NULL, NULL, NULL, &st, err,
+                                 sizeof err);
   CHECK_MSG(status == SS_OK, "%s", err);
   CHECK(st.failures == 0 && st.snags == 0);
-  double v = status == SS_OK ? ss_ref_error_value(e) : -1.0;
-  ss_ref_error_destroy(e);
-  return v;
+  return status == SS_OK ? v : -1.0;
 }
 
 static ss_run_settings converged_walk(int substeps) {

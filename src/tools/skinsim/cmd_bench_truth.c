@@ -26,43 +26,6 @@
 
 #define MAX_LEVELS 5 /* 16 .. 256 substeps */
 
-typedef struct err_user {
-  ss_ref_error *e;
-} err_user;
-
-static int add_frame(void *user, int frame, const ss_sim *sim, const double *body_pos) {
-  (void)body_pos;
-  err_user *u = user;
-  ss_ref_error_add(u->e, frame, ss_sim_skin_positions(sim));
-  return 0;
-}
-
-/* error_vs_truth of run s (its own skin is the truth's: compared vertex to vertex). */
-static int error_of(const ss_body *body, const ss_reference *truth, const ss_run_settings *s,
-                    double *out, long long *snags, char *err, int err_sz) {
-  ss_ref_error *e = NULL;
-  int status = ss_ref_error_create(&e, truth, truth->nvert, truth->rest, err, err_sz);
-  if (status) return status;
-  err_user u = {e};
-  ss_run_stats st;
-  status = ss_run_body(body, s, add_frame, &u, NULL, NULL, &st, err, err_sz);
-  *out = status ? NAN : ss_ref_error_value(e);
-  *snags = st.snags;
-  ss_ref_error_destroy(e);
-  return status;
-}
-
-/* RMS distance between two references of the same skin, in mean edge lengths. */
-static double ref_difference(const ss_reference *a, const ss_reference *b) {
-  ss_ref_error *e = NULL;
-  if (ss_ref_error_create(&e, b, a->nvert, a->rest, NULL, 0)) return NAN;
-  for (int f = 1; f <= a->frames; f++)
-    ss_ref_error_add(e, f, a->pos + 3 * (size_t)a->nvert * (size_t)(f - 1));
-  double v = ss_ref_error_value(e);
-  ss_ref_error_destroy(e);
-  return v;
-}
-
 /* 1 if name is in the comma-separated list (NULL: every body). */
 static int listed(const char *list, const char *name) {
   if (!list) return 1;
@@ -173,7 +136,7 @@ int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_sub
       t.sim.substeps = SS_REFERENCE_SUBSTEPS << k;
       if (truth_tol > 0.0) t.sim.tol = truth_tol;
       status = ss_reference_get(&ref[k], &body, &t, cache_dir, NULL, NULL, err, sizeof err);
-      if (!status && k > 0) diff[k - 1] = ref_difference(ref[k - 1], ref[k]);
+      if (!status && k > 0) diff[k - 1] = ss_ref_difference(ref[k - 1], ref[k]);
     }
     static const struct { int method, rings; } methods[3] = {
         {SS_METHOD_WALK, 0}, {SS_METHOD_PROJECT, 0}, {SS_METHOD_NRING, 2}};
@@ -183,7 +146,12 @@ int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_sub
       ss_run_settings r = s;
       r.sim.mover.method = methods[m].method;
       if (methods[m].rings) r.sim.mover.nring_rings = methods[m].rings;
-      status = error_of(&body, ref[0], &r, &e[m], &snags[m], err, sizeof err);
+      /* error_vs_truth: its own skin is the truth's, compared vertex to vertex */
+      const ss_reference *truth = ref[0];
+      ss_run_stats st = {0};
+      status = ss_run_ref_errors(&body, &r, &truth, 1, &e[m], NULL, NULL, NULL, NULL, &st, err,
+                                 sizeof err);
+      snags[m] = st.snags;
     }
     if (status) {
       fprintf(stderr, "truth doubling %s: FAILED: %s\n", label, err);

@@ -38,28 +38,6 @@ int measure_cache_dir(const char *dir, char *out, int out_sz) {
   return 0;
 }
 
-typedef struct error_frame {
-  const ss_reference *ref[3];
-  ss_ref_error *err[3];
-  int status;
-  char msg[256];
-  ss_frame_fn next;
-  void *next_user;
-} error_frame;
-
-static int error_on_frame(void *user, int frame, const ss_sim *sim, const double *body_pos) {
-  error_frame *e = user;
-  for (int k = 0; k < 3 && !e->status; k++) {
-    if (!e->ref[k]) continue;
-    if (!e->err[k])
-      e->status = ss_ref_error_create(&e->err[k], e->ref[k], ss_sim_skin_nvert(sim),
-                                      ss_sim_skin_rest(sim), e->msg, sizeof e->msg);
-    if (!e->status) ss_ref_error_add(e->err[k], frame, ss_sim_skin_positions(sim));
-  }
-  if (e->status) return 1;
-  return e->next ? e->next(e->next_user, frame, sim, body_pos) : 0;
-}
-
 int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_settings *base,
                 const char *cache_dir, int truth, ss_frame_fn on_frame, void *frame_user,
                 ss_progress_fn progress_fn, void *progress_user, measure_result *res, char *err,
@@ -107,17 +85,14 @@ int measure_run(const ss_body *body, const ss_run_settings *s, const ss_run_sett
   res->reference_ms = ref->ms;
   res->reference_key = ref->key;
   res->reference_substeps = ss_reference_settings(s).sim.substeps;
-  error_frame e = {{ref, base_ref, truth_ref}, {NULL, NULL, NULL}, 0, "", on_frame, frame_user};
-  status = ss_run_body(body, s, error_on_frame, &e, progress_fn, progress_user, &res->st, err,
-                       err_sz);
-  if (!status && e.status) {
-    snprintf(err, (size_t)err_sz, "%s", e.msg);
-    status = e.status;
-  }
-  res->error_vs_reference = ss_ref_error_value(e.err[0]);
-  res->error_vs_base_reference = ss_ref_error_value(e.err[1]);
-  res->error_vs_truth = ss_ref_error_value(e.err[2]);
-  for (int k = 0; k < 3; k++) ss_ref_error_destroy(e.err[k]);
+  /* the three errors in one pass (a NULL reference: error 0) */
+  const ss_reference *refs[3] = {ref, base_ref, truth_ref};
+  double errors[3];
+  status = ss_run_ref_errors(body, s, refs, 3, errors, on_frame, frame_user, progress_fn,
+                             progress_user, &res->st, err, err_sz);
+  res->error_vs_reference = errors[0];
+  res->error_vs_base_reference = errors[1];
+  res->error_vs_truth = errors[2];
   ss_reference_destroy(truth_ref);
   ss_reference_destroy(ref);
   ss_reference_destroy(base_ref);
