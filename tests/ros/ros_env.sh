@@ -27,7 +27,11 @@
 # the master's log), ROS_ENV_DIR (NAME.log of each ros_env_bg process). Functions:
 # ros_env_bg, ros_env_stop PID..., ros_env_wait_node NODE [S] (ROS_ENV_START_S: the
 # start-up bound the tests use, default 60),
-# ros_env_wait_subscribers TOPIC N [S], ros_env_free_port, ros_env_now_ms.
+# ros_env_wait_subscribers TOPIC N [S], ros_env_free_port, ros_env_now_ms; for the test
+# scripts' common steps: ros_env_check NAME EXPR (ok/FAIL lines, ROS_ENV_FAIL: the exit
+# status), ros_env_node_exe, ros_env_helper_exe, ros_env_run, ros_env_sigint,
+# ros_env_launch_skin, ros_env_set_robot_description, ros_env_ellipsoid_obj,
+# ros_env_hostile_meshes, ros_env_check_sanitizer (each described where defined).
 # Everything here works under `set -euo pipefail` as well as without it.
 
 export PATH=/usr/bin:/bin:$PATH
@@ -40,6 +44,10 @@ ROS_ENV_STOP_TIMEOUT=${ROS_ENV_STOP_TIMEOUT:-5}
 # 2-core machine under ASan, roslaunch alone was seen to need over 20 s.
 ROS_ENV_START_S=${ROS_ENV_START_S:-60}
 ROS_ENV_LAST_PID=
+ROS_ENV_FAIL=0
+ROS_ENV_BUILD=
+# the source tree this file belongs to (the scripts source it as SRC/tests/ros/ros_env.sh)
+ROS_ENV_SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 
 ros_env_log() { echo "ros_env: $*" >&2; }
 
@@ -199,6 +207,7 @@ ros_env_cleanup() {
 # ros_env_setup BUILD_DIR: see the top of this file. Returns 0, 77 (no ROS) or 1.
 ros_env_setup() {
   local bld="$1"
+  ROS_ENV_BUILD=$bld
   if ! command -v rosmaster > /dev/null 2>&1 || [ ! -x /usr/lib/rosout/rosout ]; then
     ros_env_log "ROS 1 is not installed (rosmaster, /usr/lib/rosout/rosout): skipped"
     return 77
@@ -275,4 +284,97 @@ ros_env_setup() {
     return 1
   done
   return 1
+}
+
+# ---- steps the test scripts share (after ros_env_setup)
+
+# ros_env_check NAME EXPR: evals EXPR, prints "ok: NAME" or "FAIL: NAME" (then ROS_ENV_FAIL=1).
+# shellcheck disable=SC2034  # ROS_ENV_FAIL: the scripts' exit status
+ros_env_check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; ROS_ENV_FAIL=1; fi; }
+
+# ros_env_node_exe NODE: prints the path of the package's node NODE (BUILD/devel/lib/skin_sim), or says FAIL and returns 1.
+ros_env_node_exe() {
+  local exe
+  exe=$(find "$ROS_ENV_BUILD/devel/lib/skin_sim" -name "$1" -type f | head -n 1)
+  if [ -z "$exe" ] || [ ! -x "$exe" ]; then echo "FAIL: $1 not built" >&2; return 1; fi
+  echo "$exe"
+}
+
+# ros_env_helper_exe NAME: prints the path of the test helper BUILD/tests/ros/NAME, or says FAIL and returns 1.
+ros_env_helper_exe() {
+  [ -x "$ROS_ENV_BUILD/tests/ros/$1" ] || { echo "FAIL: $ROS_ENV_BUILD/tests/ros/$1 not built" >&2; return 1; }
+  echo "$ROS_ENV_BUILD/tests/ros/$1"
+}
+
+# ros_env_run NAME CMD [ARGS...]: runs CMD in the foreground into $ROS_ENV_DIR/NAME.log, shows that log, returns CMD's exit status.
+ros_env_run() {
+  local name="$1" rc
+  shift
+  "$@" > "$ROS_ENV_DIR/$name.log" 2>&1
+  rc=$?
+  cat "$ROS_ENV_DIR/$name.log"
+  return "$rc"
+}
+
+# ros_env_sigint PID [S]: sends SIGINT to PID, gives it S seconds (default 5) to end, returns its exit status.
+ros_env_sigint() {
+  local pid="$1" i
+  kill -INT "$pid"
+  for ((i = 0; i < ${2:-5} * 20; i++)); do kill -0 "$pid" 2> /dev/null || break; sleep 0.05; done
+  wait "$pid"
+}
+
+# ros_env_launch_skin NAME QUEUE [S]: ros_env_bg NAME roslaunch skin.launch (queue_size:=QUEUE), waits for /skin_sim (S, default ROS_ENV_START_S).
+ros_env_launch_skin() {
+  ros_env_bg "$1" roslaunch "$ROS_ENV_SRC/launch/skin.launch" output:=screen queue_size:="$2"
+  ros_env_wait_node /skin_sim "${3:-$ROS_ENV_START_S}" "$ROS_ENV_LAST_PID"
+}
+
+# ros_env_set_robot_description URDF: puts the text of the file URDF on the master as /robot_description.
+ros_env_set_robot_description() {
+  /usr/bin/python3 -c 'import sys, xmlrpc.client
+xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", open(sys.argv[2]).read())' \
+    "$ROS_MASTER_URI" "$1"
+}
+
+# ros_env_ellipsoid_obj FILE NU NV: writes a torso-sized ellipsoid OBJ of NU x NV segments (2 + NU * (NV - 1) vertices).
+ros_env_ellipsoid_obj() {
+  /usr/bin/python3 - "$1" "$2" "$3" <<'PY'
+import math, sys
+nu, nv = int(sys.argv[2]), int(sys.argv[3])
+verts = [(0.0, 0.0, 0.7)]
+for j in range(1, nv):
+    th = math.pi * j / nv
+    for i in range(nu):
+        ph = 2 * math.pi * i / nu
+        verts.append((0.15 * math.sin(th) * math.cos(ph), 0.15 * math.sin(th) * math.sin(ph),
+                      0.35 + 0.35 * math.cos(th)))
+verts.append((0.0, 0.0, 0.0))
+ring = lambda j, i: 1 + (j - 1) * nu + (i % nu)
+faces = [(0, ring(1, i), ring(1, i + 1)) for i in range(nu)]
+for j in range(1, nv - 1):
+    for i in range(nu):
+        a, b, c, e = ring(j, i), ring(j, i + 1), ring(j + 1, i), ring(j + 1, i + 1)
+        faces += [(a, c, e), (a, e, b)]
+faces += [(ring(nv - 1, i), len(verts) - 1, ring(nv - 1, i + 1)) for i in range(nu)]
+with open(sys.argv[1], "w") as f:
+    f.writelines("v %.6f %.6f %.6f\n" % v for v in verts)
+    f.writelines("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in faces)
+PY
+}
+
+# ros_env_hostile_meshes DIR: writes into DIR fifo.obj (a FIFO), huge.off (declares billions of vertices), abort.off (makes assimp 5.2 abort).
+ros_env_hostile_meshes() {
+  mkdir -p "$1"
+  mkfifo "$1/fifo.obj"
+  printf 'OFF\n4000000000 3000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$1/huge.off"
+  printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 193 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$1/abort.off"
+}
+
+# ros_env_check_sanitizer LOG NAME: if LOG holds a sanitizer report, shows it and fails the check NAME.
+ros_env_check_sanitizer() {
+  if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$1"; then
+    grep -E -A5 "runtime error|AddressSanitizer|LeakSanitizer" "$1" | head -30
+    ros_env_check "$2" false
+  fi
 }

@@ -14,11 +14,8 @@ bld="$1"
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-probe="$bld/tests/ros/skin_probe"
-[ -x "$probe" ] || { echo "FAIL: $probe not built"; exit 1; }
+probe=$(ros_env_helper_exe skin_probe) || exit 1
 export PATH=/usr/bin:$PATH
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 
 # diag NAME: the next skin_sim status on /diagnostics, into $ROS_ENV_DIR/diag_NAME.txt
 diag() {
@@ -28,16 +25,16 @@ diag() {
 }
 level_is() { grep -q "level: $2" "$ROS_ENV_DIR/diag_$1.txt"; }
 
-ros_env_bg launch roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
+ros_env_launch_skin launch 120; started=$?
 lpid=$ROS_ENV_LAST_PID
-if ! ros_env_wait_node /skin_sim "$ROS_ENV_START_S" "$lpid"; then
-  check "skin node starts from skin.launch" false
+if [ "$started" -ne 0 ]; then
+  ros_env_check "skin node starts from skin.launch" false
   exit 1
 fi
 
 # 1. no input yet
 diag idle
-check "idle: status named after the node, WARN, no input" \
+ros_env_check "idle: status named after the node, WARN, no input" \
   "grep -q 'name: \"skin_sim: skin\"' '$ROS_ENV_DIR/diag_idle.txt' && level_is idle 1 && grep -q 'no kinematic_mesh' '$ROS_ENV_DIR/diag_idle.txt'"
 
 # 2. a good stream at 10 Hz (8 s): OK, every figure present
@@ -48,14 +45,14 @@ diag good
 wait $ppid
 rc=$?
 tail -3 "$ROS_ENV_DIR/probe_stream.log"
-check "good: skin_probe stream passes (exit $rc)" "[ $rc -eq 0 ]"
-check "good: level OK, 'stepping normally'" "level_is good 0 && grep -q 'stepping normally' '$ROS_ENV_DIR/diag_good.txt'"
+ros_env_check "good: skin_probe stream passes (exit $rc)" "[ $rc -eq 0 ]"
+ros_env_check "good: level OK, 'stepping normally'" "level_is good 0 && grep -q 'stepping normally' '$ROS_ENV_DIR/diag_good.txt'"
 for k in "step time mean (ms)" "step time max (ms)" "input period (ms)" "step budget (ms)" \
          "inputs received" "inputs processed" "inputs rejected" "inputs dropped" \
          "inputs skipped" "resets" "failures" "window (s)"; do
-  check "good: key '$k' present" "grep -qF 'key: \"$k\"' '$ROS_ENV_DIR/diag_good.txt'"
+  ros_env_check "good: key '$k' present" "grep -qF 'key: \"$k\"' '$ROS_ENV_DIR/diag_good.txt'"
 done
-check "good: input period measured (100 ms)" \
+ros_env_check "good: input period measured (100 ms)" \
   "grep -A1 'key: \"input period (ms)\"' '$ROS_ENV_DIR/diag_good.txt' | grep -q 'value: \"100.00\"'"
 
 # 3. NaN meshes only (8 s at 10 Hz): ERROR, every input rejected
@@ -66,33 +63,26 @@ diag bad
 wait $ppid
 rc=$?
 cat "$ROS_ENV_DIR/probe_bad.log"
-check "bad: skin_probe badstream passes (exit $rc)" "[ $rc -eq 0 ]"
-check "bad: level ERROR, 'every input rejected'" "level_is bad 2 && grep -q 'every input rejected' '$ROS_ENV_DIR/diag_bad.txt'"
+ros_env_check "bad: skin_probe badstream passes (exit $rc)" "[ $rc -eq 0 ]"
+ros_env_check "bad: level ERROR, 'every input rejected'" "level_is bad 2 && grep -q 'every input rejected' '$ROS_ENV_DIR/diag_bad.txt'"
 ros_env_stop "$lpid"
 
 # 4. ~reset on a fresh node
-ros_env_bg launch_reset roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
+ros_env_launch_skin launch_reset 120; started=$?
 lpid=$ROS_ENV_LAST_PID
-if ros_env_wait_node /skin_sim "$ROS_ENV_START_S" "$lpid"; then
-  "$probe" reset > "$ROS_ENV_DIR/probe_reset.log" 2>&1
-  rc=$?
-  cat "$ROS_ENV_DIR/probe_reset.log"
-  check "reset: skin_probe reset passes (exit $rc)" "[ $rc -eq 0 ]"
-  "$probe" reset "timeout 20 rosservice call /skin_sim/reset" > "$ROS_ENV_DIR/probe_reset2.log" 2>&1
-  rc=$?
-  cat "$ROS_ENV_DIR/probe_reset2.log"
-  check "reset: with rosservice call /skin_sim/reset (exit $rc)" "[ $rc -eq 0 ]"
-  check "reset: logged" "grep -q '~reset: skin created again' '$ROS_ENV_DIR/launch_reset.log'"
-  check "reset: the second reset (rosservice) counted" \
+if [ "$started" -eq 0 ]; then
+  ros_env_run probe_reset "$probe" reset; rc=$?
+  ros_env_check "reset: skin_probe reset passes (exit $rc)" "[ $rc -eq 0 ]"
+  ros_env_run probe_reset2 "$probe" reset "timeout 20 rosservice call /skin_sim/reset"; rc=$?
+  ros_env_check "reset: with rosservice call /skin_sim/reset (exit $rc)" "[ $rc -eq 0 ]"
+  ros_env_check "reset: logged" "grep -q '~reset: skin created again' '$ROS_ENV_DIR/launch_reset.log'"
+  ros_env_check "reset: the second reset (rosservice) counted" \
     "[ \$(grep -c '~reset: skin created again' '$ROS_ENV_DIR/launch_reset.log') -eq 2 ]"
   ros_env_stop "$lpid"
 else
-  check "reset: skin node starts" false
+  ros_env_check "reset: skin node starts" false
 fi
 for l in launch launch_reset; do
-  if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/$l.log"; then
-    grep -E -A5 "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/$l.log" | head -30
-    check "$l: no sanitizer report from the skin node" false
-  fi
+  ros_env_check_sanitizer "$ROS_ENV_DIR/$l.log" "$l: no sanitizer report from the skin node"
 done
-exit $fail
+exit "$ROS_ENV_FAIL"

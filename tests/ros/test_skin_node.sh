@@ -14,31 +14,24 @@ bld="$1"
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-probe="$bld/tests/ros/skin_probe"
-[ -x "$probe" ] || { echo "FAIL: $probe not built"; exit 1; }
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+probe=$(ros_env_helper_exe skin_probe) || exit 1
 t0=$(ros_env_now_ms)
 
 # run_part NAME QUEUE PROBE_ARGS...: a fresh skin node (skin.launch queue_size:=QUEUE)
 run_part() {
   local part="$1" queue="$2"; shift 2
-  ros_env_bg "launch_$part" roslaunch "$src/launch/skin.launch" output:=screen queue_size:="$queue"
-  local lpid=$ROS_ENV_LAST_PID
-  if ! ros_env_wait_node /skin_sim "$ROS_ENV_START_S" "$lpid"; then
-    check "$part: skin node starts from skin.launch" false
+  local lpid rc
+  ros_env_launch_skin "launch_$part" "$queue"; rc=$?
+  lpid=$ROS_ENV_LAST_PID
+  if [ "$rc" -ne 0 ]; then
+    ros_env_check "$part: skin node starts from skin.launch" false
     ros_env_stop "$lpid" # a node left behind would spoil the later parts
     return
   fi
-  "$probe" "$@" > "$ROS_ENV_DIR/probe_$part.log" 2>&1
-  local rc=$?
-  cat "$ROS_ENV_DIR/probe_$part.log"
-  check "$part: skin_probe $* passes (exit $rc)" "[ $rc -eq 0 ]"
+  ros_env_run "probe_$part" "$probe" "$@"; rc=$?
+  ros_env_check "$part: skin_probe $* passes (exit $rc)" "[ $rc -eq 0 ]"
   ros_env_stop "$lpid"
-  if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/launch_$part.log"; then
-    grep -E -A5 "runtime error|AddressSanitizer|LeakSanitizer" "$ROS_ENV_DIR/launch_$part.log" | head -30
-    check "$part: no sanitizer report from the skin node" false
-  fi
+  ros_env_check_sanitizer "$ROS_ENV_DIR/launch_$part.log" "$part: no sanitizer report from the skin node"
 }
 
 # a queue long enough for the whole stream: every mesh is stepped even where the skin
@@ -48,11 +41,11 @@ run_part stream 120 stream 90 30
 run_part burst 1 burst 40
 run_part bad 120 bad
 l="$ROS_ENV_DIR/launch_bad.log"
-check "bad: rejections are logged, one line each (throttled), saying why" \
+ros_env_check "bad: rejections are logged, one line each (throttled), saying why" \
   "grep -q 'rejected kinematic_mesh: .*multiple of 3' '$l' && [ \$(grep -c 'rejected kinematic_mesh' '$l') -le 9 ]"
-check "bad: each kind of problem is named (sizes, non-finite, topology)" "grep -q 'non-finite' '$l' && grep -q 'without a new topology_id' '$l'"
+ros_env_check "bad: each kind of problem is named (sizes, non-finite, topology)" "grep -q 'non-finite' '$l' && grep -q 'without a new topology_id' '$l'"
 run_part jump 120 jump
-check "jump: the resets are logged" "grep -q 'skin reset' '$ROS_ENV_DIR/launch_jump.log'"
+ros_env_check "jump: the resets are logged" "grep -q 'skin reset' '$ROS_ENV_DIR/launch_jump.log'"
 
 echo "test_skin_node: $(($(ros_env_now_ms) - t0)) ms after the master was up"
-exit $fail
+exit "$ROS_ENV_FAIL"

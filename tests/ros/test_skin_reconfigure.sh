@@ -17,30 +17,27 @@ bld="$1"
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-probe="$bld/tests/ros/skin_probe"
-[ -x "$probe" ] || { echo "FAIL: $probe not built"; exit 1; }
+probe=$(ros_env_helper_exe skin_probe) || exit 1
 [ -x /usr/lib/dynamic_reconfigure/dynparam ] || [ -n "$(command -v dynparam)" ] || \
   /usr/bin/python3 -c 'import dynamic_reconfigure.client' 2>/dev/null || {
   echo "python3-dynamic-reconfigure is not installed (scripts/install_deps.sh): skipped"; exit 77; }
 export PATH=/usr/bin:$PATH
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 dynparam() { timeout 120 rosrun dynamic_reconfigure dynparam "$@"; }
 log="$ROS_ENV_DIR/launch.log"
 
-ros_env_bg launch roslaunch "$src/launch/skin.launch" output:=screen queue_size:=120
+ros_env_launch_skin launch 120 20; started=$?
 lpid=$ROS_ENV_LAST_PID
-if ! ros_env_wait_node /skin_sim 20 "$lpid"; then
-  check "skin node starts from skin.launch" false
+if [ "$started" -ne 0 ]; then
+  ros_env_check "skin node starts from skin.launch" false
   exit 1
 fi
 
 dynparam get /skin_sim > "$ROS_ENV_DIR/get0.txt" 2>&1; rc=$?
 echo "--- dynparam get /skin_sim:"; cat "$ROS_ENV_DIR/get0.txt"
-check "dynparam get /skin_sim exits 0" "[ $rc -eq 0 ]"
+ros_env_check "dynparam get /skin_sim exits 0" "[ $rc -eq 0 ]"
 for k in "'slide': 20.79" "'poisson': 0.3" "'substeps': 1" "'method': 'walk'" \
          "'solver': 'quasi-newton'" "'barycenters': True" "'gravity': '0 0 0'" "'young': 50.0"; do
-  check "dynparam get shows $k" "grep -qF \"$k\" '$ROS_ENV_DIR/get0.txt'"
+  ros_env_check "dynparam get shows $k" "grep -qF \"$k\" '$ROS_ENV_DIR/get0.txt'"
 done
 
 # One long stream (the waving sheet, 10 Hz) with every skin_stats recorded, while the
@@ -59,9 +56,9 @@ wait_stats() { # wait_stats N: until N skin_stats were recorded (120 s at most)
 wait_stats 20
 n0=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 dynparam set /skin_sim substeps 3 > "$ROS_ENV_DIR/set_substeps.txt" 2>&1; rc=$?
-check "dynparam set /skin_sim substeps 3 exits 0" "[ $rc -eq 0 ]"
+ros_env_check "dynparam set /skin_sim substeps 3 exits 0" "[ $rc -eq 0 ]"
 dynparam set /skin_sim young 500 > /dev/null 2>&1; rc=$?
-check "dynparam set /skin_sim young 500 exits 0" "[ $rc -eq 0 ]"
+ros_env_check "dynparam set /skin_sim young 500 exits 0" "[ $rc -eq 0 ]"
 dynparam set /skin_sim poisson 0.7 > "$ROS_ENV_DIR/set_poisson.txt" 2>&1
 dynparam set /skin_sim method crawl > "$ROS_ENV_DIR/set_method.txt" 2>&1
 dynparam get /skin_sim > "$ROS_ENV_DIR/get1.txt" 2>&1
@@ -70,7 +67,7 @@ n1=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
 n1=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 dynparam set /skin_sim barycenters false > /dev/null 2>&1; rc=$?
-check "dynparam set /skin_sim barycenters false exits 0" "[ $rc -eq 0 ]"
+ros_env_check "dynparam set /skin_sim barycenters false exits 0" "[ $rc -eq 0 ]"
 "$probe" stream 1000 10 > "$ROS_ENV_DIR/probe2.log" 2>&1 &
 ppid=$!
 n2=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
@@ -104,26 +101,23 @@ print('SUBSTEPS_OK' if ok_sub else 'SUBSTEPS_BAD')
 print('RESETS_OK' if ok_res else 'RESETS_BAD')
 PY
 cat "$ROS_ENV_DIR/seq.txt"
-check "substeps 3: skin_stats' substeps per step triple from one step on, never back"   "grep -q SUBSTEPS_OK '$ROS_ENV_DIR/seq.txt'"
-check "log: substeps 1 -> 3" "grep -q 'dynamic_reconfigure: substeps 1 -> 3' '$log'"
-check "log: young 50 -> 500, refactored" \
+ros_env_check "substeps 3: skin_stats' substeps per step triple from one step on, never back"   "grep -q SUBSTEPS_OK '$ROS_ENV_DIR/seq.txt'"
+ros_env_check "log: substeps 1 -> 3" "grep -q 'dynamic_reconfigure: substeps 1 -> 3' '$log'"
+ros_env_check "log: young 50 -> 500, refactored" \
   "grep -q 'dynamic_reconfigure: young 50 -> 500' '$log' && grep -q 'refactored' '$log'"
-check "log: poisson 0.7 refused, naming it and the range" \
+ros_env_check "log: poisson 0.7 refused, naming it and the range" \
   "grep -q 'poisson refused: poisson must be in \[0, 0.5) (got 0.7); it stays 0.3' '$log'"
-check "log: method crawl refused, naming the choices" \
+ros_env_check "log: method crawl refused, naming the choices" \
   "grep -q \"method refused: method expects walk, project, nring, got 'crawl'\" '$log'"
-check "served config keeps what is in force (poisson 0.3, method walk, young 500, substeps 3)" \
+ros_env_check "served config keeps what is in force (poisson 0.3, method walk, young 500, substeps 3)" \
   "grep -qF \"'poisson': 0.3\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'method': 'walk'\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'young': 500.0\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'substeps': 3\" '$ROS_ENV_DIR/get1.txt'"
-check "parameter server mirrors it (rosparam get /skin_sim/young: 500.0, poisson 0.3)" \
+ros_env_check "parameter server mirrors it (rosparam get /skin_sim/young: 500.0, poisson 0.3)" \
   "[ \"\$(rosparam get /skin_sim/young)\" = 500.0 ] && [ \"\$(rosparam get /skin_sim/poisson)\" = 0.3 ]"
-check "barycenters false: no reset before, one after (the skin created again), output goes on" \
+ros_env_check "barycenters false: no reset before, one after (the skin created again), output goes on" \
   "grep -q RESETS_OK '$ROS_ENV_DIR/seq.txt'"
-check "log: says the skin is created again, without barycenter anchors (576 for 576 vertices)" \
+ros_env_check "log: says the skin is created again, without barycenter anchors (576 for 576 vertices)" \
   "grep -q 'the skin is created again on the next kinematic_mesh' '$log' && grep -q 'skin created again with the new settings' '$log' && grep -q '576 anchors' '$log'"
-check "dynparam get: barycenters False" "grep -qF \"'barycenters': False\" '$ROS_ENV_DIR/get2.txt'"
+ros_env_check "dynparam get: barycenters False" "grep -qF \"'barycenters': False\" '$ROS_ENV_DIR/get2.txt'"
 ros_env_stop "$lpid"
-if grep -qE "runtime error|AddressSanitizer|LeakSanitizer" "$log"; then
-  grep -E -A5 "runtime error|AddressSanitizer|LeakSanitizer" "$log" | head -30
-  check "no sanitizer report from the skin node" false
-fi
-exit $fail
+ros_env_check_sanitizer "$log" "no sanitizer report from the skin node"
+exit "$ROS_ENV_FAIL"
