@@ -84,7 +84,9 @@ enum ss_vert_kind {
   X(grad_ptr, int, (size_t)m->nvert + 2, "(ndof + 1) CSR: the face_grad slots each dof sums")    \
   X(grad_slot, int, 6 * (size_t)m->nface + 1,                                                    \
     "in the order of the sum (springs by face, then membrane by face)")                          \
-  X(diag_const, double, (size_t)m->nvert, "(ndof) diagonal of the scalar matrix without inertia")
+  X(diag_const, double, (size_t)m->nvert, "(ndof) diagonal of the scalar matrix without inertia") \
+  X(diag_springs, double, (size_t)m->nvert,                                                      \
+    "(ndof) its anchor springs' part alone: a flat membrane's stiffness across its surface")
 
 /* The data of a run: counts of the built model `m` and of the sim's own
  * settings (solver, history) and threads. */
@@ -119,6 +121,7 @@ enum ss_vert_kind {
   X(lb_y, double, SS_SIM_QN_HISTORY(sim) * 3 * (size_t)m->ndof, "(m x ndof x 3) L-BFGS y ring") \
   X(lb_rho, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
   X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
+  X(skin_n, double, 3 * (size_t)m->ndof, "(ndof x 3) unit skin normal at the start of the solve (0: none)") \
   X(orient_n, double, 4 * ((size_t)m->nface + m->nvert), "orient.c: per simface n, face_c (0: not judged); per dof at 4 nface n, judged")
 #define SS_SIM_QN_HISTORY(sim) \
   ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
@@ -232,11 +235,15 @@ void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).
  * Returns NaN/Inf if anything is non-finite. */
 double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g);
-/* Convergence measure of a dof gradient: max over free vertices of
- * |g_v| / (D_v * mean edge length), D the diagonal of the scalar matrix
- * (inertia + springs + rest membrane stiffness): the size of a Jacobi step,
- * in edge lengths (see settings tol). */
+/* Convergence measure of a dof gradient: max over free vertices of the size
+ * of a Jacobi step in mean edge lengths (see settings tol), the gradient
+ * along the skin divided by D_v, the diagonal of the scalar matrix (inertia
+ * + springs + rest membrane stiffness), and across it (skin_n, set by
+ * ss_sim_normals_begin) by inertia + springs alone (sim_energy.c). */
 double ss_sim_residual(const ss_sim *sim, const double *g);
+/* The same judged by the scalar matrix's diagonal in every direction (the
+ * stiffness along the skin): how far from converged the membrane itself is. */
+double ss_sim_residual_along(const ss_sim *sim, const double *g);
 /* The same measure as a root mean square over free vertices. */
 double ss_sim_residual_rms(const ss_sim *sim, const double *g);
 /* Adds the Hessian of membrane and hinges at xfull to the values vals of the
@@ -246,7 +253,11 @@ double ss_sim_residual_rms(const ss_sim *sim, const double *g);
 void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact);
 /* Values of the constant part (inertia + springs) of H, for the current h. */
 void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
-/* diag_const from the model (once, at create). */
+/* The skin's unit vertex normals (skin_n) at the full positions xfull, at
+ * the start of each solve: the direction across the membrane, in which only
+ * inertia and the anchor springs hold a flat skin (ss_sim_residual). */
+void ss_sim_normals_begin(ss_sim *sim, const double *xfull);
+/* diag_const and diag_springs from the model (once, at create). */
 void ss_sim_diag_const(ss_sim *sim);
 /* Values of the scalar n x n matrix: inertia + springs + rest membrane
  * Laplacian scaled by (mu + lam). */

@@ -66,6 +66,7 @@ int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *
   int status = ops->begin(&s);
   if (status != SS_OK) return status;
   s.e = ss_sim_energy_at(sim, xd, s.g);
+  ss_sim_normals_begin(sim, sim->xfull_t); /* xfull_t: xd scattered by the evaluation */
   double res = ss_sim_residual(sim, s.g);
   if (!isfinite(s.e) || !isfinite(res)) {
     *nonfinite = 1;
@@ -84,6 +85,9 @@ int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *
                                                                       : sim->set.iterations;
       if (!ops->safety_net || !(sim->set.safety_residual > 0.0 && res > sim->set.safety_residual) || it >= hard)
         break;
+      /* far from converged along the skin, where the membrane is crushed or
+       * torn, not merely across it (ss_sim_residual_along) */
+      if (!(ss_sim_residual_along(sim, s.g) > sim->set.safety_residual)) break;
     }
     st->iterations++;
     int ls = 0;
