@@ -4,13 +4,12 @@
  * skin vertex comes back to within 0.1 mean edge lengths of its rest
  * position, with no snag and no failure; settling does not change the
  * motion's final_hash; without settle the rest fields stay 0. And tether
- * 3 /s (the default-to-be, issue 11) is drift-free with every other setting at
+ * 3 /s (the default, issue 11) is drift-free with every other setting at
  * its default: on `fold` and `twist` (1000 triangles), which drift with tether 0
  * (rest error max 0.30 and 1.00 edge lengths, rms 0.29 and 0.89), the skin comes
  * home to within 0.1 edge lengths (rms 0.02) while it still slides during the
- * motion. (Not the default yet: on the demo avatar one vertex stays 0.2 edge
- * lengths off the body, see README "The dynamic skin", and test_rest_long asks
- * 0.1 at the defaults.) */
+ * motion. (The default since the stopping test judges the residual across
+ * the skin: see README "The dynamic skin".) */
 #include <math.h>
 #include <stdio.h>
 

@@ -22,7 +22,8 @@ static void defaults(void) {
   CHECK(s.dt == 1.0 / 30.0 && s.substeps == 1 && s.iterations == 8 && s.tol == 1e-4);
   CHECK(s.safety_residual == 0.05 && s.iterations_max == 32 && s.lbfgs_history == 6);
   CHECK(s.young == 50.0 && s.poisson == 0.3 && s.density == 1.0 && s.anchor_stiffness == 1e3);
-  CHECK(s.barycenter_anchors == 1 && s.bending == 0.0 && s.damping == 0.0 && s.tether == 0.0);
+  CHECK(s.barycenter_anchors == 1 && s.bending == 0.0 && s.damping == 0.0);
+  CHECK(s.tether == 3.0); /* drift-free: the skin comes home after a motion (issue 11) */
   CHECK(s.slide == 30.0 * log(2.0)); /* the former default, bit for bit */
   CHECK(s.gravity[0] == 0.0 && s.gravity[1] == 0.0 && s.gravity[2] == 0.0);
   CHECK(s.mover.walk_max_steps == 512 && s.mover.nring_rings == 2 && s.face_mask == NULL);
