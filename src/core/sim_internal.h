@@ -30,8 +30,9 @@ enum ss_vert_kind {
 /* ---- model and data (MuJoCo's mjModel / mjData split) ----------------------
  *
  * The MODEL of a skin on a body is everything fixed once it is built:
- * topology, rest data, masses and springs, hinges, the sparsity pattern and
- * the packed energy layout. Several sims may run on one model (a reference
+ * topology, rest data, masses and springs, hinges, the sparsity pattern,
+ * the packed energy layout and the symbolic analysis of the solver's matrix
+ * (below, "symbolic analysis"). Several sims may run on one model (a reference
  * or truth run, a second skin of the same body: ss_sim_create_from_model);
  * nothing writes it while stepping, and ss_sim_set_settings changes its
  * material only when the model is not shared (else it asks for a new sim).
@@ -151,6 +152,17 @@ struct ss_model {
   int nblock;
   int nnz3;                   /* stored entries of the 3n x 3n matrix */
   int bary_base;              /* first slot of the springs' part of face_grad */
+  /* Symbolic analysis (fill-reducing ordering and symbolic factor, which
+   * depend on the pattern alone) of the matrix of the solver the model was
+   * built for (set.solver at model_build): the scalar n x n one (quasi-Newton,
+   * solver_qn.c) or the 3n x 3n one (Newton, solver_newton.c); the other is
+   * NULL, both are without dofs. Made once with the model's own
+   * cholmod_common; each sim on the model factors a copy of its own
+   * (cholmod_copy_factor), and a sim with the other solver analyses its
+   * matrix itself. Freed by the model's destroy. */
+  cholmod_common cc;
+  int cc_started;
+  cholmod_factor *sym_qn, *sym_newton;
   SS_MODEL_ARRAYS(SS_ARENA_FIELD)
 };
 
@@ -278,6 +290,10 @@ int ss_solver_create(ss_sim *sim, char *err, int err_sz);
 int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite);
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz);
 int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz);
+/* The model's symbolic analysis (m->sym_newton / m->sym_qn, with m->cc) for
+ * its built pattern, once at model_build (ndof > 0). */
+int ss_solver_newton_analyze(ss_model *m, char *err, int err_sz);
+int ss_solver_qn_analyze(ss_model *m, char *err, int err_sz);
 /* Energy and gradient g at the unknowns xd (scattered into xfull_t), timed
  * into the step's assemble_ms. */
 double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g);

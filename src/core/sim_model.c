@@ -3,7 +3,7 @@
  *
  * ss_sim_create = model_new (counts, arena, inputs, body topology) +
  * model_build on the new sim (anchors bound, vertex kinds, masses, hinges,
- * pattern, energy layout, rest orientation) + the sim's data (mover, walkers,
+ * pattern, energy layout, symbolic analysis, rest orientation) + the sim's data (mover, walkers,
  * arena, state at rest) + its solver. ss_sim_create_from_model skips the
  * model's two steps and takes a reference to it instead. */
 #include <stddef.h>
@@ -111,6 +111,11 @@ int ss_sim_in_model(size_t offset) {
 
 static void model_release(ss_model *m) {
   if (!m || --m->refs > 0) return;
+  if (m->cc_started) {
+    cholmod_free_factor(&m->sym_qn, &m->cc);
+    cholmod_free_factor(&m->sym_newton, &m->cc);
+    cholmod_finish(&m->cc);
+  }
   ss_topo_destroy(m->btopo);
   free(m->arena);
   free(m);
@@ -151,14 +156,28 @@ static int model_new(ss_model **out, int body_nvert, const double *body_rest, in
   return SS_OK;
 }
 
+/* The symbolic analysis of the model's pattern for the solver of its
+ * settings (sim_internal.h, "symbolic analysis"): once here, not once per
+ * sim, so that a second sim on the model (ss_sim_create_from_model) copies
+ * it instead of ordering the matrix again. */
+static int model_analyze(ss_model *m, char *err, int err_sz) {
+  cholmod_start(&m->cc);
+  m->cc_started = 1;
+  m->cc.print = 0; /* the core never prints: errors come back as status */
+  if (m->ndof == 0) return SS_OK;
+  return m->set.solver == SS_SOLVER_NEWTON ? ss_solver_newton_analyze(m, err, err_sz)
+                                           : ss_solver_qn_analyze(m, err, err_sz);
+}
+
 /* The rest of the model, on the sim being created with it: anchors bound,
- * vertex kinds, masses, hinges, pattern, energy layout. */
+ * vertex kinds, masses, hinges, pattern, energy layout, symbolic analysis. */
 static int model_build(ss_sim *sim, const ss_sim_mesh *skin, char *err, int err_sz) {
   int status = ss_sim_bind(sim, skin, sim->m->body_rest, err, err_sz);
   if (status == SS_OK) status = ss_sim_build_model(sim, err, err_sz);
   if (status == SS_OK) status = ss_sim_build_pattern(sim, err, err_sz);
   if (status == SS_OK) status = ss_sim_energy_layout(sim, err, err_sz);
   if (status == SS_OK) ss_sim_diag_const(sim);
+  if (status == SS_OK) status = model_analyze(sim->m, err, err_sz);
   return status;
 }
 

@@ -12,7 +12,8 @@
  * decrease, a Jacobi-scaled gradient step is taken. H is a 3n x 3n symmetric matrix with its
  * upper triangle stored in compressed columns; its pattern and the map from
  * element entries to slots are built once (sim_pattern.c), cholmod_analyze
- * (fill-reducing ordering, symbolic factor) runs once at create, then
+ * (fill-reducing ordering, symbolic factor) runs once per model (each sim
+ * copies its symbolic factor), then
  * cholmod_factorize per iteration and cholmod_solve2 with reused workspace.
  *
  * The outer loop, the line search and convergence are solver.c's and
@@ -24,6 +25,39 @@
 #include "solver.h"
 #include "ss_err.h"
 
+/* The pattern of H: each block of the model's block pattern expanded to
+ * 3 x 3 (upper triangle of the diagonal blocks). */
+static void hessian_pattern(const ss_model *m, cholmod_sparse *H) {
+  int *p = H->p, *ri = H->i;
+  for (int c = 0; c <= 3 * m->ndof; c++) p[c] = m->colp3[c];
+  for (int j = 0; j < m->ndof; j++) {
+    for (int b = 0; b < 3; b++) {
+      int s = m->colp3[3 * j + b];
+      for (int q = m->bcolp[j]; q < m->bcolp[j + 1]; q++) {
+        int i = m->brow[q];
+        int last = i == j ? b : 2;
+        for (int a = 0; a <= last; a++) ri[s++] = 3 * i + a;
+      }
+    }
+  }
+}
+
+int ss_solver_newton_analyze(ss_model *m, char *err, int err_sz) {
+  cholmod_common *cc = &m->cc;
+  const size_t n3 = 3 * (size_t)m->ndof;
+  /* the analysis reads the pattern alone: no values; cc keeps CHOLMOD's
+   * defaults (supernodal or simplicial as it judges), as each sim's does */
+  cholmod_sparse *H = cholmod_allocate_sparse(n3, n3, (size_t)m->nnz3, 1, 1, 1, CHOLMOD_PATTERN, cc);
+  if (!H) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the Newton analysis");
+  hessian_pattern(m, H);
+  m->sym_newton = cholmod_analyze(H, cc);
+  cholmod_free_sparse(&H, cc);
+  if (!m->sym_newton || cc->status < CHOLMOD_OK)
+    return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD analysis of the Newton matrix failed (status %d)",
+                   cc->status);
+  return SS_OK;
+}
+
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
   int n3 = 3 * sim->m->ndof;
   cholmod_common *cc = &sim->cc;
@@ -31,19 +65,10 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
   sim->nb = cholmod_zeros((size_t)n3, 1, CHOLMOD_REAL, cc);
   if (!sim->H || !sim->nb)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the Newton matrix");
-  int *p = sim->H->p, *ri = sim->H->i;
-  for (int c = 0; c <= n3; c++) p[c] = sim->m->colp3[c];
-  for (int j = 0; j < sim->m->ndof; j++) {
-    for (int b = 0; b < 3; b++) {
-      int s = sim->m->colp3[3 * j + b];
-      for (int q = sim->m->bcolp[j]; q < sim->m->bcolp[j + 1]; q++) {
-        int i = sim->m->brow[q];
-        int last = i == j ? b : 2;
-        for (int a = 0; a <= last; a++) ri[s++] = 3 * i + a;
-      }
-    }
-  }
-  sim->LH = cholmod_analyze(sim->H, cc);
+  hessian_pattern(sim->m, sim->H);
+  /* The model's symbolic factor, copied (numeric factorisations are this
+   * sim's); analysed here only on a model built for quasi-Newton. */
+  sim->LH = sim->m->sym_newton ? cholmod_copy_factor(sim->m->sym_newton, cc) : cholmod_analyze(sim->H, cc);
   if (!sim->LH || cc->status < CHOLMOD_OK)
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD analysis of the Newton matrix failed (status %d)",
                    cc->status);

@@ -8,8 +8,8 @@
  *   A = M/h^2 (+ damping) + anchor springs + (mu + lam) * cotangent Laplacian,
  * every term of which is isotropic, so A = L (x) I3 with L the scalar n x n
  * matrix on the same pattern (sim_pattern.c). L is factored by CHOLMOD once
- * per topology and time step (analysis at create, numeric factorisation when
- * h changes), and each application of A^-1 is one cholmod_solve2 with three
+ * per topology and time step (analysis once per model, sim_internal.h
+ * "symbolic analysis"; numeric factorisation when h changes), and each application of A^-1 is one cholmod_solve2 with three
  * right-hand sides (x, y, z): about 27 times fewer flops than factoring the
  * 3n x 3n matrix. An iteration costs one energy gradient, one pair of
  * triangular solves and O(m n) vector work.
@@ -72,6 +72,39 @@ static int apply_inverse(ss_sim *sim, const double *q, double *z) {
   return SS_OK;
 }
 
+/* The pattern of the scalar matrix: the model's block pattern itself. */
+static void scalar_pattern(const ss_model *m, cholmod_sparse *A) {
+  memcpy(A->p, m->bcolp, ((size_t)m->ndof + 1) * sizeof(int));
+  memcpy(A->i, m->brow, (size_t)m->nblock * sizeof(int));
+}
+
+/* A simplicial LL' factor: with three right-hand sides the solve is memory
+ * bound, CHOLMOD's simplicial solve does the three columns in one pass over
+ * L, and no BLAS (nor its threads) is involved, which keeps the result
+ * bit-for-bit reproducible. supernodal is read by cholmod_analyze (the model's
+ * cc), final_ll by cholmod_factorize (each sim's): both cc's are set alike.
+ * (Each cholmod_common serves only this solver.) */
+static void scalar_common(cholmod_common *cc) {
+  cc->supernodal = CHOLMOD_SIMPLICIAL;
+  cc->final_ll = 1;
+}
+
+int ss_solver_qn_analyze(ss_model *m, char *err, int err_sz) {
+  cholmod_common *cc = &m->cc;
+  const size_t n = (size_t)m->ndof;
+  /* the analysis reads the pattern alone: no values */
+  cholmod_sparse *A = cholmod_allocate_sparse(n, n, (size_t)m->nblock, 1, 1, 1, CHOLMOD_PATTERN, cc);
+  if (!A) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the quasi-Newton analysis");
+  scalar_pattern(m, A);
+  scalar_common(cc);
+  m->sym_qn = cholmod_analyze(A, cc);
+  cholmod_free_sparse(&A, cc);
+  if (!m->sym_qn || cc->status < CHOLMOD_OK)
+    return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD analysis of the quasi-Newton matrix failed (status %d)",
+                   cc->status);
+  return SS_OK;
+}
+
 int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
   int n = sim->m->ndof;
   cholmod_common *cc = &sim->cc;
@@ -81,16 +114,11 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
   sim->qb = cholmod_zeros((size_t)n, 3, CHOLMOD_REAL, cc);
   if (!sim->A || !sim->qb)
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the quasi-Newton solver");
-  memcpy(sim->A->p, sim->m->bcolp, ((size_t)n + 1) * sizeof(int));
-  memcpy(sim->A->i, sim->m->brow, (size_t)sim->m->nblock * sizeof(int));
-  /* A simplicial LL' factor: with three right-hand sides the solve is
-   * memory bound, CHOLMOD's simplicial solve does the three columns in one
-   * pass over L, and no BLAS (nor its threads) is involved, which keeps the
-   * result bit-for-bit reproducible. The factorisation itself is once per h.
-   * (This cholmod_common serves only this solver.) */
-  cc->supernodal = CHOLMOD_SIMPLICIAL;
-  cc->final_ll = 1;
-  sim->LA = cholmod_analyze(sim->A, cc);
+  scalar_pattern(sim->m, sim->A);
+  scalar_common(cc);
+  /* The model's symbolic factor, copied (the numeric factorisation, once
+   * per h, is this sim's); analysed here only on a model built for Newton. */
+  sim->LA = sim->m->sym_qn ? cholmod_copy_factor(sim->m->sym_qn, cc) : cholmod_analyze(sim->A, cc);
   if (!sim->LA || cc->status < CHOLMOD_OK)
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD analysis of the quasi-Newton matrix failed (status %d)",
                    cc->status);
