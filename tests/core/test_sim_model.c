@@ -82,6 +82,11 @@ int main(void) {
   CHECK(ss_sim_model(alone_a) != model);
   CHECK(ss_sim_get_settings(on_b)->solver == SS_SOLVER_NEWTON);
   CHECK_EQ_INT(model->refs, 4);
+  /* the symbolic analysis is the model's, for its solver: on_a copies it, on_b
+   * (Newton on a quasi-Newton model) analyses its own matrix */
+  CHECK(model->sym_qn != NULL && model->sym_newton == NULL);
+  CHECK(ss_sim_model(alone_b)->sym_newton != NULL && ss_sim_model(alone_b)->sym_qn == NULL);
+  CHECK(on_a->LA != NULL && on_a->LA != model->sym_qn && on_b->LH != NULL);
   /* the model of a sim made alone is the model ss_model_create builds */
   CHECK(model_hash(model) == model_hash(ss_sim_model(alone_a)));
   const unsigned long long before = model_hash(model);
