@@ -9,10 +9,11 @@
  * every term of which is isotropic, so A = L (x) I3 with L the scalar n x n
  * matrix on the same pattern (sim_pattern.c). L is factored by CHOLMOD once
  * per topology and time step (analysis once per model, sim_internal.h
- * "symbolic analysis"; numeric factorisation when h changes), and each application of A^-1 is one cholmod_solve2 with three
- * right-hand sides (x, y, z): about 27 times fewer flops than factoring the
- * 3n x 3n matrix. An iteration costs one energy gradient, one pair of
- * triangular solves and O(m n) vector work.
+ * "symbolic analysis"; numeric factorisation when h changes), and each
+ * application of A^-1 is one cholmod_solve2 with three right-hand sides
+ * (x, y, z): about 27 times fewer flops than factoring the 3n x 3n matrix.
+ * An iteration costs one energy gradient, one pair of triangular solves and
+ * O(m n) vector work.
  *
  * The history is cleared at the start of every substep. A direction that is
  * not a descent direction (possible when curvature pairs are stale) is
