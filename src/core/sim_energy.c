@@ -208,6 +208,13 @@ double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
   return e;
 }
 
+/* The stiffness across the skin is taken as at least this share of that
+ * along it (the true ratio is 1/640 at the demo avatar's fingers). A tenth
+ * is enough for a vertex lifted a fifth of an edge off its anchor to count
+ * as unconverged (ten times tol there) while a step across the skin is
+ * judged at most ten times larger than it would be along it, not hundreds. */
+#define SS_ACROSS_MIN 0.1
+
 /* The residual of dof k in mean rest edge lengths: the gradient divided by
  * the stiffness that holds the vertex, which is not the same in every
  * direction. Along the skin, inertia, the anchor springs and the membrane
@@ -218,13 +225,6 @@ double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
  * the demo avatar's fingers). Judged by the membrane's diagonal alone, a
  * vertex 0.2 edge lengths off its anchor across the skin passed for
  * converged, and after a motion the skin never came home. */
-/* The stiffness across the skin is taken as at least this share of that
- * along it (the true ratio is 1/640 at the demo avatar's fingers). A tenth
- * is enough for a vertex lifted a fifth of an edge off its anchor to count
- * as unconverged (ten times tol there) while a step across the skin is
- * judged at most ten times larger than it would be along it, not hundreds. */
-#define SS_ACROSS_MIN 0.1
-
 static double dof_residual2(const ss_sim *sim, const double *g, int k) {
   const double *gk = g + 3 * k, *n = sim->skin_n + 3 * k;
   double g2 = gk[0] * gk[0] + gk[1] * gk[1] + gk[2] * gk[2];

@@ -83,11 +83,11 @@ int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *
       /* past the budget: go on only while far from converged (safety net) */
       const int hard = sim->set.iterations_max > sim->set.iterations ? sim->set.iterations_max
                                                                       : sim->set.iterations;
-      if (!ops->safety_net || !(sim->set.safety_residual > 0.0 && res > sim->set.safety_residual) || it >= hard)
-        break;
       /* far from converged along the skin, where the membrane is crushed or
-       * torn, not merely across it (ss_sim_residual_along) */
-      if (!(ss_sim_residual_along(sim, s.g) > sim->set.safety_residual)) break;
+       * torn, not merely across it (ss_sim_residual_along <= res) */
+      if (!ops->safety_net || !(sim->set.safety_residual > 0.0) || it >= hard ||
+          !(ss_sim_residual_along(sim, s.g) > sim->set.safety_residual))
+        break;
     }
     st->iterations++;
     int ls = 0;

@@ -151,6 +151,7 @@ int bench_truth_doubling(const char *out_dir, const char *cache_dir, int max_sub
       ss_run_stats st = {0};
       status = ss_run_ref_errors(&body, &r, &truth, 1, &e[m], NULL, NULL, NULL, NULL, &st, err,
                                  sizeof err);
+      if (status) e[m] = NAN; /* a failed run has no error to report */
       snags[m] = st.snags;
     }
     if (status) {
