@@ -209,9 +209,27 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     double here[3], home[3];
     ss_anchor_position(fr, res.face, res.uv, here);
     ss_anchor_position(fr, sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a, home);
+    /* The step: tether_frac of the way, along the surface: the chord to
+     * home turned into the body's tangent plane here (kept at its length).
+     * The chord itself dives into the body where home is far round it, and
+     * half a turn round a capsule it points straight in: an anchor there
+     * walked nowhere (twist: 6 anchors half a turn from home for good). */
+    double d[3], d2 = 0.0, dn = 0.0;
+    const double *n = fr->normal + 3 * res.face;
+    for (int i = 0; i < 3; i++) {
+      d[i] = home[i] - here[i];
+      d2 += d[i] * d[i];
+      dn += d[i] * n[i];
+    }
+    double t2 = 0.0;
+    for (int i = 0; i < 3; i++) {
+      d[i] -= dn * n[i];
+      t2 += d[i] * d[i];
+    }
+    const double scale = t2 > 0.0 ? sim->tether_frac * sqrt(d2 / t2) : 0.0;
     double pull2 = 0.0;
     for (int i = 0; i < 3; i++) {
-      target[i] = here[i] + sim->tether_frac * (home[i] - here[i]);
+      target[i] = here[i] + scale * d[i];
       pull2 += (target[i] - here[i]) * (target[i] - here[i]);
     }
     const int h = sim->m->anchor_face0[a];

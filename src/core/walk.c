@@ -19,7 +19,8 @@
  * orthogonal projection of a* onto the face, as the paper asks. Otherwise it
  * leaves through edge k at h: with no face across k (boundary or non-manifold
  * edge) the walk stops at h; across k lies g: if g was already visited in this
- * walk the surface folds back (a crease) and the walk stops at h, on the edge;
+ * walk the surface folds back (a crease) and the walk stops on edge k at its
+ * point nearest a* ("the optimal anchor position lies along an edge");
  * else h is carried to the same point of the shared edge in g (matched by
  * welded vertex ids, so neighbours of either orientation work), and tracing
  * starts again in g towards a*. Points are clamped into the canonical
@@ -301,6 +302,11 @@ static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const
   return best_k;
 }
 
+/* Face f's walk record: origin, e1, e2, to_canon, ... */
+static inline const double *w_of(const ss_frames *fr, int f) {
+  return fr->walk + SS_FRAME_RECORD * (size_t)f;
+}
+
 /* World length of the canonical displacement (du, dv) on face f: |Dm (du, dv)|. */
 static inline double canonical_length(const double *e, double du, double dv) {
   double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
@@ -376,11 +382,27 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       walker->visited[face] = walker->stamp;
       stamped = 1;
     }
+    int k_edge = k_exit; /* the edge p lies on */
     int stop = cross_edge(walker, cross, &f, k_exit, s, p, max_steps, res);
     while (stop == SS_STOP_INSIDE && fr->walk[SS_FRAME_RECORD * (size_t)f + 15] != 0.0) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
       if (k_pass < 0) break;
+      k_edge = k_pass;
       stop = cross_edge(walker, cross, &f, k_pass, s, p, max_steps, res);
+    }
+    if (stop == SS_STOP_CREASE) {
+      /* "the optimal anchor position lies along an edge": the point of the
+       * crease edge nearest a*, not where the ray happened to meet it. At
+       * the ray's point an anchor pulled along a ridge (a tether walking
+       * home round the rim of a capsule's cap) met it again at the same
+       * point every frame and stayed there for good (twist, 1000
+       * triangles, settling after the motion: 18 anchors, a third to half a
+       * turn from home, did not move in 10 s). */
+      const double hu = p[0], hv = p[1];
+      double se;
+      edge_dist2(fr, f, k_edge, target, &se);
+      edge_point(k_edge, se, p);
+      res->length += canonical_length(w_of(fr, f) + 3, p[0] - hu, p[1] - hv);
     }
     if (stop != SS_STOP_INSIDE) {
       res->stop = stop;

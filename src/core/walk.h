@@ -82,7 +82,8 @@ static inline void ss_anchor_position(const ss_frames *frames, int face, const d
 enum ss_walk_stop {
   SS_STOP_INSIDE = 0,     /* the ray ended inside a face: the normal case */
   SS_STOP_BOUNDARY = 1,   /* hit a boundary (or non-manifold) edge: stopped on it */
-  SS_STOP_CREASE = 2,     /* would re-enter a face already visited: stopped on the edge */
+  SS_STOP_CREASE = 2,     /* would re-enter a face already visited: stopped on the edge, at
+                             its point nearest the target */
   SS_STOP_STEP_LIMIT = 3  /* crossed walk_max_steps edges: stopped where it was */
 };
 const char *ss_walk_stop_name(int stop);

@@ -1,6 +1,7 @@
 /* The anchor walk (paper, section 2): every stop reason, crossings between
  * faces of very different shapes and orientations, seams, slivers and
  * zero-area faces, clamping, and the step bound. */
+#include <math.h>
 #include <string.h>
 
 #include "mover.h"
@@ -164,7 +165,83 @@ static void test_crease(void) {
   CHECK_NEAR(a1[0], 0.0, 1e-12); /* on the shared edge x = z = 0 */
   CHECK_NEAR(a1[2], 0.0, 1e-12);
   CHECK(a1[1] >= 0.0 && a1[1] <= 1.0);
+  /* "the optimal anchor position lies along an edge": the point of the
+   * crease edge nearest the target, wherever the ray met it */
+  const double targets[2][3] = {{0.3, 0.85, -1.0}, {0.3, 0.1, -2.0}};
+  const double expect_y[2] = {0.85, 0.1};
+  for (int k = 0; k < 2; k++) {
+    ss_walk(e.walker, e.topo, e.frames, 0, uv, targets[k], 512, &r);
+    CHECK_EQ_INT(r.stop, SS_STOP_CREASE);
+    ss_anchor_position(e.frames, r.face, r.uv, a1);
+    CHECK_NEAR(a1[0], 0.0, 1e-12);
+    CHECK_NEAR(a1[1], expect_y[k], 1e-12);
+    CHECK_NEAR(a1[2], 0.0, 1e-12);
+  }
   env_free(&e);
+}
+
+/* Round a corner: from a grid vertex on a ridge (a corner of each face it
+ * may start in) towards points all round it, on the ridge's two slopes and
+ * in faces that only share the vertex with the start face, the walk ends
+ * exactly where the target projects (the tether walks anchors home to bind
+ * points, which are often body vertices). */
+static void test_round_corner(void) {
+  const double dirs[8][2] = {{-0.4, -0.3}, {0.3, 0.4}, {-0.3, 0.4}, {0.4, -0.3},
+                             {-0.5, 0.05}, {0.35, -0.5}, {0.45, 0.45}, {-0.45, -0.45}};
+  int n_faces = 0, stuck = 0, runs = 0;
+  /* the ridge along y (x = 2) or along x (y = 2), on the grid as made and mirrored */
+  for (int variant = 0; variant < 4; variant++) {
+    const int along_x = variant & 1, mirror = variant >> 1;
+    test_mesh m = test_grid(4, 4, 0.0, 1);
+    for (int v = 0; v < m.nvert; v++) {
+      double *p = m.pos + 3 * v;
+      if (mirror) p[0] = 4.0 - p[0];
+      p[2] = -0.2 * fabs(p[along_x ? 1 : 0] - 2.0);
+    }
+    if (mirror) /* keep the faces' winding (normals up) */
+      for (int f = 0; f < m.nface; f++) {
+        int t = m.faces[3 * f + 1];
+        m.faces[3 * f + 1] = m.faces[3 * f + 2];
+        m.faces[3 * f + 2] = t;
+      }
+    walk_env e = env_make(&m);
+    for (int f = 0; f < e.topo->nface; f++) {
+      const int *fv = m.faces + 3 * f;
+      for (int c = 0; c < 3; c++) {
+        const double *v = m.pos + 3 * fv[c];
+        if (fabs(v[0] - 2.0) > 1e-12 || fabs(v[1] - 2.0) > 1e-12) continue;
+        n_faces++;
+        const double uv[2] = {c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
+        for (int k = 0; k < 8; k++) {
+          const double d0 = along_x ? dirs[k][1] : dirs[k][0], d1 = along_x ? dirs[k][0] : dirs[k][1];
+          const double target[3] = {2.0 + d0, 2.0 + d1, 0.5};
+          ss_walk_result r;
+          ss_walk(e.walker, e.topo, e.frames, f, uv, target, 512, &r);
+          double a1[3];
+          ss_anchor_position(e.frames, r.face, r.uv, a1);
+          /* the ridge's two slopes z = slope (u - 2), u across the ridge:
+           * the target projects onto the one on its side (|du| >= 0.3: not
+           * into the ridge's wedge) */
+          const int across = along_x ? 1 : 0;
+          const double du = target[across] - 2.0, slope = du < 0.0 ? 0.2 : -0.2;
+          const double t = (target[2] - slope * du) / (1.0 + slope * slope);
+          double want[2] = {target[0], target[1]};
+          want[across] += t * slope;
+          runs++;
+          if (!(r.stop == SS_STOP_INSIDE && fabs(a1[0] - want[0]) < 1e-9 && fabs(a1[1] - want[1]) < 1e-9)) {
+            stuck++;
+            printf("test_round_corner: variant %d, from face %d corner %d to (%g, %g): stop %d at "
+                   "(%g, %g), want (%g, %g)\n", variant, f, c, target[0], target[1], r.stop, a1[0],
+                   a1[1], want[0], want[1]);
+          }
+        }
+      }
+    }
+    env_free(&e);
+    test_mesh_free(&m);
+  }
+  CHECK(n_faces >= 16);
+  CHECK_MSG(stuck == 0, "%d of %d walks round a corner did not end where the target projects", stuck, runs);
 }
 
 /* The step bound: a long strip, at most max_steps crossings. */
@@ -439,6 +516,7 @@ int main(void) {
   test_mixed_orientation();
   test_boundary();
   test_crease();
+  test_round_corner();
   test_step_limit();
   test_seamed_cube_walk();
   test_slivers_and_zero_area();
