@@ -30,8 +30,10 @@
  *    edge lengths;
  *  - slide: the largest distance of an anchor from where it was bound,
  *    measured in the current pose, over the motion's frames;
- *  - rest return (settle > 0): after the last frame the body blends linearly
- *    back to its rest pose over one second, then holds still for `settle`
+ *  - rest return (settle > 0): after the last frame the body goes back to
+ *    its rest pose over one second, linearly in its joint angles
+ *    (ss_body.pose_toward_rest; without it linearly in the positions), then
+ *    holds still for `settle`
  *    seconds while the skin keeps stepping; then each skin vertex's distance
  *    to its own rest position (RMS and maximum). Failures, snags, inversions
  *    and depth count the settle frames too; times, hug and slide are the
@@ -101,6 +103,10 @@ typedef struct ss_run_stats {
 /* A moving body from anywhere (a built-in scene, an avatar): its mesh at
  * rest and its pose at any frame. The caller owns the arrays. */
 typedef int (*ss_body_pose_fn)(void *user, double frame, double *pos); /* SS_OK or an error */
+/* The pose of frame `frame` a fraction w in [0, 1] of the way back to rest
+ * (0: that frame's pose, 1: rest), moved in the body's own joint angles (a
+ * skeleton's, a scene's), so that its parts keep their shape on the way. */
+typedef int (*ss_body_pose_toward_rest_fn)(void *user, double frame, double w, double *pos);
 typedef struct ss_body {
   int nvert, nface;
   const double *rest; /* (nvert x 3) the pose of frame 0 */
@@ -109,6 +115,9 @@ typedef struct ss_body {
   double fps;         /* frames per second (> 0) */
   ss_body_pose_fn pose;
   void *user;
+  /* optional (NULL: the settle blends the positions linearly: half way back a
+   * part turned by an angle a comes cos(a / 2) times as far from its joint) */
+  ss_body_pose_toward_rest_fn pose_toward_rest;
 } ss_body;
 
 /* The body of a built-in scene. */

@@ -35,6 +35,12 @@ double ss_scene_fps(const ss_scene *scene);               /* frames per second (
 /* Body positions at frame `frame` (fractional frames interpolate the motion,
  * for substeps) into pos (nvert x 3). Allocates nothing. */
 void ss_scene_pose(const ss_scene *scene, double frame, double *pos);
+/* The pose of frame `frame` a fraction w of the way back to rest (0: that
+ * frame's pose, 1: rest) in the motion's own joint angles and offsets, so
+ * that the body keeps its shape on the way (a blend of the positions would
+ * shrink a bent part towards its axis); the twist's spin goes back the short
+ * way. Allocates nothing. */
+void ss_scene_pose_toward_rest(const ss_scene *scene, double frame, double w, double *pos);
 
 #ifdef __cplusplus
 }

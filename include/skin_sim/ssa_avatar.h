@@ -214,6 +214,11 @@ int ssa_asset_anim_index(const ssa_asset *asset, const char *name);
  * interpolated (positions and scales linearly, rotations by slerp) and held
  * before the first and after the last key. */
 void ssa_asset_node_world(const ssa_asset *asset, int anim, double t, double *node_world);
+/* The same a fraction w in [0, 1] of the way from time t back to the clip's
+ * pose at time 0, per node: translations and scales linearly, rotations by
+ * slerp (so the limbs keep their shape on the way; w 0: as above). */
+void ssa_asset_node_world_toward_rest(const ssa_asset *asset, int anim, double t, double w,
+                                      double *node_world);
 
 /* Skinning matrices (bone_mat, nbone x 16): node_world[bone_node] x bone_offset. */
 void ssa_asset_skin_matrices(const ssa_asset *asset, const double *node_world, double *bone_mat);
@@ -380,6 +385,9 @@ int ssa_avatar_pose_joints_at(ssa_avatar *av, const double *root_pose, const dou
 /* Poses an asset avatar with animation anim (-1: rest) at t seconds. SS_E_ARG for a robot
  * avatar or an anim out of range. */
 int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out);
+/* As ssa_avatar_pose_anim, a fraction w in [0, 1] of the way back to the clip's pose at
+ * time 0 in the bones' own motion (ssa_asset_node_world_toward_rest). */
+int ssa_avatar_pose_anim_toward_rest(ssa_avatar *av, int anim, double t, double w, double *out);
 
 /* Marks the vertices whose dominant target (vert_link) is one of the named
  * links (robot avatars) or nodes (asset avatars): mask (nvert) gets 1 or 0.
@@ -458,6 +466,11 @@ int ssa_motion_bind(const ssa_motion *motion, const ssa_robot *robot, int *map, 
 /* Joint values at time t (clamped to the table's range, linear between
  * frames) written into q (robot njoint) through map; other entries untouched. */
 void ssa_motion_sample(const ssa_motion *motion, const int *map, double t, double *q);
+/* Joint values a fraction w in [0, 1] of the way from q to q_rest (njoint
+ * each) into out: linear per joint, a continuous joint the short way round
+ * (less than half a turn). out may be q. */
+void ssa_joints_toward(const ssa_robot *robot, const double *q, const double *q_rest, double w,
+                       double *out);
 /* Joint limits over a whole table bound with map: counts the values (frames x
  * columns) outside their joint's URDF limits and, if any, writes one sentence
  * naming the worst joint, its value and its limits and how many values of how

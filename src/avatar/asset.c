@@ -624,17 +624,8 @@ static void lerp_keys(const ssa_asset *as, int lo, int hi, double t, int n, doub
     out[c] = (1 - u) * as->key_value[4 * k + c] + u * as->key_value[4 * (k + 1) + c];
 }
 
-static void slerp_keys(const ssa_asset *as, int lo, int hi, double t, double *q) {
-  int k = find_key(as->key_time, lo, hi, t);
-  if (k < 0) k = lo;
-  const double *a = as->key_value + 4 * k;
-  if (k >= hi - 1 || t <= as->key_time[k]) {
-    memcpy(q, a, 4 * sizeof(double));
-    return;
-  }
-  const double *b = as->key_value + 4 * (k + 1);
-  double t0 = as->key_time[k], t1 = as->key_time[k + 1];
-  double u = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
+/* Spherical interpolation from unit quaternion a to b (the short way), u in [0, 1]. */
+static void slerp(const double *a, const double *b, double u, double *q) {
   double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
   double s = 1.0;
   if (d < 0) {
@@ -659,30 +650,68 @@ static void slerp_keys(const ssa_asset *as, int lo, int hi, double t, double *q)
   for (int c = 0; c < 4; c++) q[c] = n > 0 ? q[c] / n : (c == 3);
 }
 
+static void slerp_keys(const ssa_asset *as, int lo, int hi, double t, double *q) {
+  int k = find_key(as->key_time, lo, hi, t);
+  if (k < 0) k = lo;
+  const double *a = as->key_value + 4 * k;
+  if (k >= hi - 1 || t <= as->key_time[k]) {
+    memcpy(q, a, 4 * sizeof(double));
+    return;
+  }
+  const double *b = as->key_value + 4 * (k + 1);
+  double t0 = as->key_time[k], t1 = as->key_time[k + 1];
+  double u = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
+  slerp(a, b, u, q);
+}
+
+/* Node i's local translation, rotation and scale in animation anim (>= 0) at
+ * t; 0 if the animation has no channel for it (its local matrix holds). */
+static int node_trs(const ssa_asset *a, int anim, int i, double t, double tr[3], double q[4],
+                    double s[3]) {
+  int ch = a->anim_node_chan[anim * a->nnode + i];
+  if (ch < 0) return 0;
+  const double *rest = a->node_rest_trs + 10 * i;
+  const int *ks = a->chan_key_start + 4 * ch;
+  if (ks[1] > ks[0])
+    lerp_keys(a, ks[0], ks[1], t, 3, tr);
+  else
+    memcpy(tr, rest, 3 * sizeof(double));
+  if (ks[2] > ks[1])
+    slerp_keys(a, ks[1], ks[2], t, q);
+  else
+    memcpy(q, rest + 3, 4 * sizeof(double));
+  if (ks[3] > ks[2])
+    lerp_keys(a, ks[2], ks[3], t, 3, s);
+  else
+    memcpy(s, rest + 7, 3 * sizeof(double));
+  return 1;
+}
+
 void ssa_asset_node_world(const ssa_asset *a, int anim, double t, double *node_world) {
+  ssa_asset_node_world_toward_rest(a, anim, t, 0.0, node_world);
+}
+
+void ssa_asset_node_world_toward_rest(const ssa_asset *a, int anim, double t, double w,
+                                      double *node_world) {
   if (!a || !node_world) return;
   if (anim >= a->nanim) anim = -1;
   for (int i = 0; i < a->nnode; i++) {
-    double local[16];
-    int ch = anim >= 0 ? a->anim_node_chan[anim * a->nnode + i] : -1;
-    if (ch < 0) {
+    double local[16], tr[3], q[4], s[3];
+    if (anim < 0 || !node_trs(a, anim, i, t, tr, q, s)) {
       memcpy(local, a->node_local + 16 * i, sizeof local);
     } else {
-      const double *rest = a->node_rest_trs + 10 * i;
-      double tr[3], q[4], s[3];
-      const int *ks = a->chan_key_start + 4 * ch;
-      if (ks[1] > ks[0])
-        lerp_keys(a, ks[0], ks[1], t, 3, tr);
-      else
-        memcpy(tr, rest, sizeof tr);
-      if (ks[2] > ks[1])
-        slerp_keys(a, ks[1], ks[2], t, q);
-      else
-        memcpy(q, rest + 3, sizeof q);
-      if (ks[3] > ks[2])
-        lerp_keys(a, ks[2], ks[3], t, 3, s);
-      else
-        memcpy(s, rest + 7, sizeof s);
+      if (w > 0.0) { /* a fraction w of the way to the clip's first pose, in T, R and S */
+        double tr0[3], q0[4], s0[3];
+        node_trs(a, anim, i, 0.0, tr0, q0, s0);
+        const double u = w < 1.0 ? w : 1.0;
+        for (int k = 0; k < 3; k++) {
+          tr[k] += u * (tr0[k] - tr[k]);
+          s[k] += u * (s0[k] - s[k]);
+        }
+        double qt[4];
+        memcpy(qt, q, sizeof qt);
+        slerp(qt, q0, u, q);
+      }
       m4_from_tqs(tr, q, s, local);
     }
     const double *parent = a->node_parent[i] >= 0 ? node_world + 16 * a->node_parent[i] : a->root_fix;

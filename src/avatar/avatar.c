@@ -114,9 +114,14 @@ int ssa_avatar_pose_joints(ssa_avatar *av, const double *q, double *out) {
 }
 
 int ssa_avatar_pose_anim(ssa_avatar *av, int anim, double t, double *out) {
+  return ssa_avatar_pose_anim_toward_rest(av, anim, t, 0.0, out);
+}
+
+int ssa_avatar_pose_anim_toward_rest(ssa_avatar *av, int anim, double t, double w, double *out) {
   if (!av || !out || av->kind != SSA_AVATAR_ASSET || !av->asset) return SS_E_ARG;
   if (anim < -1 || anim >= av->asset->nanim || !isfinite(t)) return SS_E_ARG;
-  ssa_asset_node_world(av->asset, anim, t, av->target_world);
+  if (!(w >= 0.0 && w <= 1.0)) return SS_E_ARG;
+  ssa_asset_node_world_toward_rest(av->asset, anim, t, w, av->target_world);
   for (int b = 0; b < av->nbone; b++)
     m4_mul(av->target_world + 16 * av->bone_target[b], av->bone_offset + 16 * b, av->bone_mat + 16 * b);
   ssa_lbs(av->nvert, av->bind_pos, av->w_start, av->w_bone, av->w_weight, av->bone_mat, out);

@@ -359,3 +359,12 @@ int ssa_motion_check_limits(const ssa_motion *m, const int *map, const ssa_robot
   }
   return count;
 }
+
+void ssa_joints_toward(const ssa_robot *robot, const double *q, const double *q_rest, double w,
+                       double *out) {
+  for (int j = 0; j < robot->njoint; j++) {
+    double d = q_rest[j] - q[j];
+    if (robot->joint_type[j] == SSA_JOINT_CONTINUOUS) d = remainder(d, 2.0 * SSA_PI);
+    out[j] = q[j] + w * d;
+  }
+}

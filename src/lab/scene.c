@@ -361,29 +361,29 @@ static void joint_y(double p[3], double rx, double x, double z, double w, double
   ss_rotate(p, 1, c, a * ss_smooth((rx - (x - w)) / (2.0 * w)));
 }
 
-void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
+/* The pose of frame t > 0 with every joint angle and offset of the motion
+ * times `amount` (1: the motion itself, bit for bit; 0: rest). The twist's
+ * spin is first taken modulo a turn (the same pose), so that its way back
+ * to rest is less than half a turn. */
+static void pose_scaled(const ss_scene *s, double t, double amount, double *pos) {
   const int nv = s->nvert;
   const double *rest = s->rest;
-  memcpy(pos, rest, sizeof(double) * 3 * (size_t)nv);
-  double t = frame > 0.0 ? frame : 0.0; /* NaN and negatives: rest */
-  if (t > 1e6) t = 1e6;
-  if (t == 0.0) return;
   const double o[3] = {0.0, 0.0, 0.0};
   switch (s->kind) {
     case ARMPIT: {
       const double pivot[3] = {ARM_TORSO_R + ARM_GAP + ARM_R, 0.0, ARM_SHOULDER_Z};
-      double a = ARM_SWING * ss_smooth(t / ARM_SWING_FRAMES);
+      double a = amount * ARM_SWING * ss_smooth(t / ARM_SWING_FRAMES);
       for (int v = s->arm_first; v < nv; v++) ss_rotate(pos + 3 * v, 1, pivot, a);
       break;
     }
     case ELBOW: {
-      double a = -ELBOW_BEND * ss_smooth(t / ELBOW_FRAMES);
+      double a = -amount * ELBOW_BEND * ss_smooth(t / ELBOW_FRAMES);
       for (int v = 0; v < nv; v++)
         joint_y(pos + 3 * v, rest[3 * v], 0.0, ELBOW_AXIS_Z * ELBOW_R, ELBOW_BLEND * ELBOW_R, a);
       break;
     }
     case FOLD: {
-      double a = FOLD_AMP * wave(t, FOLD_PERIOD, 0.0);
+      double a = amount * FOLD_AMP * wave(t, FOLD_PERIOD, 0.0);
       double mid = 0.5 * (FOLD_X0 + FOLD_X1), half = 0.5 * (FOLD_X1 - FOLD_X0);
       for (int v = 0; v < nv; v++) joint_y(pos + 3 * v, rest[3 * v], mid, 0.0, half, a);
       break;
@@ -393,11 +393,13 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
       double u = t / TWIST_RAMP;
       double a = u < 1.0 ? s->omega * TWIST_RAMP * (u * u * u - 0.5 * u * u * u * u)
                          : s->omega * (0.5 * TWIST_RAMP + (t - TWIST_RAMP));
+      if (amount != 1.0) a = amount * remainder(a, 2.0 * SS_PI);
       for (int v = 0; v < nv; v++) ss_rotate(pos + 3 * v, 0, o, a);
       break;
     }
     case SLIVERS: {
-      double a1 = 0.45 * wave(t, SLIV_PERIOD, 0.0), a2 = 0.6 * wave(t, SLIV_PERIOD, 1.0);
+      double a1 = amount * 0.45 * wave(t, SLIV_PERIOD, 0.0);
+      double a2 = amount * 0.6 * wave(t, SLIV_PERIOD, 1.0);
       for (int v = 0; v < nv; v++) { /* distal joint first, in rest space */
         joint_y(pos + 3 * v, rest[3 * v], 0.2, 0.0, 0.08, a2);
         joint_y(pos + 3 * v, rest[3 * v], -0.15, 0.0, 0.08, a1);
@@ -405,9 +407,9 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
       break;
     }
     case BOUNDARY: {
-      double bend = 0.7 * sin(SS_PI * t / 60.0) * sin(SS_PI * t / 60.0);
-      double turn = 0.3 * wave(t, 60.0, 0.0);
-      double dx = 0.15 * wave(t, 45.0, 0.0), dy = 0.05 * wave(t, 30.0, 0.0);
+      double bend = amount * 0.7 * sin(SS_PI * t / 60.0) * sin(SS_PI * t / 60.0);
+      double turn = amount * 0.3 * wave(t, 60.0, 0.0);
+      double dx = amount * 0.15 * wave(t, 45.0, 0.0), dy = amount * 0.05 * wave(t, 30.0, 0.0);
       for (int v = 0; v < nv; v++) {
         double *p = pos + 3 * v;
         joint_y(p, rest[3 * v], 0.2, 0.0, 0.1, bend);
@@ -418,7 +420,27 @@ void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
       break;
     }
     case QUADRUPED:
-      ss_quad_pose(&s->quad, rest, t, pos);
+      ss_quad_pose(&s->quad, rest, t, amount, pos);
       break;
   }
+}
+
+/* A finite frame in [0, 1e6]; NaN and negatives: 0 (rest). */
+static double clamp_frame(double frame) {
+  double t = frame > 0.0 ? frame : 0.0;
+  return t > 1e6 ? 1e6 : t;
+}
+
+void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
+  memcpy(pos, s->rest, sizeof(double) * 3 * (size_t)s->nvert);
+  const double t = clamp_frame(frame);
+  if (t == 0.0) return;
+  pose_scaled(s, t, 1.0, pos);
+}
+
+void ss_scene_pose_toward_rest(const ss_scene *s, double frame, double w, double *pos) {
+  memcpy(pos, s->rest, sizeof(double) * 3 * (size_t)s->nvert);
+  const double t = clamp_frame(frame);
+  if (!(w < 1.0) || t == 0.0) return; /* NaN: rest */
+  pose_scaled(s, t, w > 0.0 ? 1.0 - w : 1.0, pos);
 }

@@ -123,9 +123,9 @@ static double spine_angle(double x, double a) {
   return a * (2.0 * ss_smooth((x + SPINE_W) / (2.0 * SPINE_W)) - 1.0);
 }
 
-void ss_quad_pose(const ss_quad *q, const double *rest, double t, double *pos) {
+void ss_quad_pose(const ss_quad *q, const double *rest, double t, double amount, double *pos) {
   const double o[3] = {0.0, 0.0, 0.0};
-  double g = ss_smooth(t / RAMP); /* 0 at rest, 1 after the ramp */
+  double g = amount * ss_smooth(t / RAMP); /* 0 at rest, 1 after the ramp */
   double ph = 2.0 * SS_PI * t / PERIOD;
   double spine = g * SPINE * sin(ph);
 

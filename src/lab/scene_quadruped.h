@@ -18,8 +18,9 @@ typedef struct ss_quad {
 long long ss_quad_faces(int n);
 /* Appends the body at resolution n to mb and records its parts in q. */
 void ss_quad_build(ss_mb *mb, int n, ss_quad *q);
-/* The gallop at frame t > 0 (finite): writes pos (nvert x 3) from rest,
- * which pos must already hold. Allocates nothing. */
-void ss_quad_pose(const ss_quad *q, const double *rest, double t, double *pos);
+/* The gallop at frame t > 0 (finite), its every angle times amount (1: the
+ * gallop; 0: rest): writes pos (nvert x 3) from rest, which pos must already
+ * hold. Allocates nothing. */
+void ss_quad_pose(const ss_quad *q, const double *rest, double t, double amount, double *pos);
 
 #endif

@@ -121,6 +121,28 @@ static int run_case(const asset_case *c) {
   CHECK_EQ_INT(nonfinite, 0);
   CHECK_MSG(max_move > 0.02 * diag, "%s: the animation moves vertices by only %g (size %g)",
             c->path, max_move, diag);
+  /* the settle's way back to the clip's first pose (skinsim --settle), in the
+   * bones' own motion: w 0 is the pose (bit for bit), w 1 the first pose, and
+   * half way the body keeps its size */
+  {
+    const double t = 0.5 * a->anim_duration[0];
+    double *way = malloc(sizeof(double) * 3 * (size_t)av->nvert);
+    CHECK(ssa_avatar_pose_anim(av, 0, t, pos) == SS_OK);
+    CHECK(ssa_avatar_pose_anim_toward_rest(av, 0, t, 0.0, way) == SS_OK);
+    CHECK(memcmp(pos, way, sizeof(double) * 3 * (size_t)av->nvert) == 0);
+    CHECK(ssa_avatar_pose_anim(av, 0, 0.0, first) == SS_OK);
+    CHECK(ssa_avatar_pose_anim_toward_rest(av, 0, t, 1.0, way) == SS_OK);
+    double off = 0.0;
+    for (int i = 0; i < 3 * av->nvert; i++) off = fmax(off, fabs(way[i] - first[i]));
+    CHECK_MSG(off < 1e-9 * diag, "%s: w 1 is %g from the first pose", c->path, off);
+    CHECK(ssa_avatar_pose_anim_toward_rest(av, 0, t, 0.5, way) == SS_OK);
+    const double dg = bbox_diag(av->nvert, way);
+    CHECK_MSG(dg > 0.5 * diag && dg < 2.0 * diag, "%s: half way back: size %g, rest size %g",
+              c->path, dg, diag);
+    CHECK(ssa_avatar_pose_anim_toward_rest(av, 0, t, 1.5, way) == SS_E_ARG);
+    CHECK(ssa_avatar_pose_anim_toward_rest(av, 0, t, NAN, way) == SS_E_ARG);
+    free(way);
+  }
   qsort(ptimes, (size_t)nsample, sizeof(double), cmp_d);
   printf("%-28s v %5d f %5d bones %3d anims %d size %.3g m moved %.3g; medians: load %.1f ms, "
          "pose %.3f ms\n",

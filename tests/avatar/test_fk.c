@@ -144,6 +144,22 @@ int main(void) {
   CHECK(strstr(err, "elbow") != NULL);
   double nanv = NAN;
   CHECK_EQ_INT(ssa_robot_set_joints(r, q, 1, names, &nanv, err, sizeof err), SS_E_NONFINITE);
+  /* ssa_joints_toward (the settle's way back to rest): linear per joint, a
+   * continuous joint the short way round: from 6.0 rad to 0 it goes forward
+   * through 2 pi (6.0 + 0.5 (2 pi - 6.0) half way), a revolute one back */
+  {
+    double from[5] = {0}, to[5] = {0}, out[5];
+    from[j1] = 1.0, from[j2] = 0.4, from[j3] = 6.0;
+    ssa_joints_toward(r, from, to, 0.5, out);
+    CHECK_NEAR(out[j1], 0.5, 1e-15);
+    CHECK_NEAR(out[j2], 0.2, 1e-15);
+    CHECK_NEAR(out[j3], 6.0 + 0.5 * (2.0 * 3.14159265358979323846 - 6.0), 1e-12);
+    ssa_joints_toward(r, from, to, 0.0, out);
+    CHECK(out[j1] == 1.0 && out[j2] == 0.4 && out[j3] == 6.0);
+    ssa_joints_toward(r, from, from, 0.7, from); /* in place */
+    CHECK(from[j1] == 1.0 && from[j3] == 6.0);
+  }
+
   ssa_robot_destroy(r);
   ssa_robot_destroy(NULL);
   return ss_test_finish("test_fk");

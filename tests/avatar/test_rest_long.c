@@ -23,7 +23,7 @@
 typedef struct demo {
   ssa_avatar *av;
   int motion;
-  double *q;
+  double *q, *q_rest;
 } demo;
 
 static int pose(void *user, double frame, double *pos) {
@@ -33,19 +33,32 @@ static int pose(void *user, double frame, double *pos) {
   return status ? status : ssa_avatar_pose_joints(d->av, d->q, pos);
 }
 
+/* The settle's way back to rest, in joint space (as skinsim's avatars). */
+static int pose_toward_rest(void *user, double frame, double w, double *pos) {
+  demo *d = user;
+  memset(d->q, 0, sizeof(double) * (size_t)d->av->robot->njoint);
+  int status = ssa_motion_builtin_eval(d->motion, frame / FPS, d->av->robot, d->q);
+  if (status) return status;
+  ssa_joints_toward(d->av->robot, d->q, d->q_rest, w, d->q);
+  return ssa_avatar_pose_joints(d->av, d->q, pos);
+}
+
 int main(void) {
   char err[256] = "";
-  demo d = {NULL, ssa_motion_builtin_index("all"), NULL};
+  demo d = {NULL, ssa_motion_builtin_index("all"), NULL, NULL};
   CHECK(d.motion >= 0);
   int status = ssa_avatar_mannequin(&d.av, 5000, err, sizeof err);
   CHECK_MSG(status == SS_OK, "mannequin: %s", err);
   if (status || d.motion < 0) return ss_test_finish("test_rest_long");
   d.q = calloc((size_t)d.av->robot->njoint + 1, sizeof(double));
+  d.q_rest = calloc((size_t)d.av->robot->njoint + 1, sizeof(double));
   double *rest = malloc(sizeof(double) * 3 * (size_t)d.av->nvert);
-  CHECK(d.q && rest);
-  if (d.q && rest && pose(&d, 0.0, rest) == SS_OK) {
+  CHECK(d.q && d.q_rest && rest);
+  if (d.q && d.q_rest && rest && pose(&d, 0.0, rest) == SS_OK) {
+    memcpy(d.q_rest, d.q, sizeof(double) * (size_t)d.av->robot->njoint);
     const double period = ssa_motion_builtin_period(d.motion);
-    ss_body body = {d.av->nvert, d.av->nface, rest, d.av->faces, 0, FPS, pose, &d};
+    ss_body body = {d.av->nvert, d.av->nface, rest, d.av->faces, 0, FPS, pose, &d,
+                    pose_toward_rest};
     ss_run_settings s = ss_run_default_settings(); /* the default skin */
     s.frames = (int)ceil(3.0 * period * FPS);
     s.settle = 3.0;
@@ -67,6 +80,7 @@ int main(void) {
   }
   free(rest);
   free(d.q);
+  free(d.q_rest);
   ssa_avatar_destroy(d.av);
   return ss_test_finish("test_rest_long");
 }

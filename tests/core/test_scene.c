@@ -235,6 +235,19 @@ static int all_finite(const double *p, int n) {
   return 1;
 }
 
+/* Signed volume enclosed by the faces at pos. */
+static double volume(const ss_scene *s, const double *pos) {
+  const int nf = ss_scene_nface(s);
+  const int *f = ss_scene_faces(s);
+  double vol = 0.0;
+  for (int i = 0; i < nf; i++) {
+    double c[3];
+    cross(pos + 3 * f[3 * i + 1], pos + 3 * f[3 * i + 2], c);
+    vol += dot(pos + 3 * f[3 * i], c) / 6.0;
+  }
+  return vol;
+}
+
 static void check_scene(int index) {
   const char *name = ss_scene_name(index);
   char err[256] = "";
@@ -290,6 +303,58 @@ static void check_scene(int index) {
   for (int v = 0; v < nv; v++) jump = fmax(jump, dist(pos + 3 * v, pos2 + 3 * v));
   const double edge = mean_edge(s, rest);
   CHECK_MSG(jump < 0.2 * edge, "%s: pose jumps %g in 0.01 frame", name, jump);
+
+  /* the settle's way back to rest (ss_scene_pose_toward_rest): w 0 is the
+   * frame's pose and w 1 rest, bit for bit; on the way the body keeps its
+   * shape: no edge stretched or shrunk, and (closed bodies) the volume not
+   * changed, more than during the motion itself (+ 2%); a blend of the
+   * positions fails this on armpit, elbow, twist, slivers and boundary */
+  {
+    double motion_dev = 0.0, way_dev = 0.0, lin_dev = 0.0;
+    double motion_vol = 0.0, way_vol = 0.0, lin_vol = 0.0;
+    const double vol0 = volume(s, rest);
+    double *last = malloc(sizeof(double) * 3 * (size_t)nv);
+    double *lin = malloc(sizeof(double) * 3 * (size_t)nv);
+    ss_scene_pose(s, frames, last);
+    ss_scene_pose_toward_rest(s, frames, 0.0, pos);
+    CHECK_MSG(memcmp(pos, last, sizeof(double) * 3 * (size_t)nv) == 0, "%s: w 0 is not the pose", name);
+    ss_scene_pose_toward_rest(s, frames, 1.0, pos);
+    CHECK_MSG(memcmp(pos, rest, sizeof(double) * 3 * (size_t)nv) == 0, "%s: w 1 is not rest", name);
+    for (int k = 0; k <= frames + 8; k++) {
+      const double w = k > frames ? (k - frames) / 8.0 : -1.0;
+      if (w < 0.0) ss_scene_pose(s, k, pos);
+      else ss_scene_pose_toward_rest(s, frames, w, pos);
+      for (int i = 0; w >= 0.0 && i < 3 * nv; i++) lin[i] = last[i] + w * (rest[i] - last[i]);
+      double dev = 0.0, dev_lin = 0.0;
+      for (int i = 0; i < nf; i++)
+        for (int c = 0; c < 3; c++) {
+          const int a = f[3 * i + c], b = f[3 * i + (c + 1) % 3];
+          const double l0 = dist(rest + 3 * a, rest + 3 * b);
+          if (!(l0 > 0.0)) continue;
+          dev = fmax(dev, fabs(dist(pos + 3 * a, pos + 3 * b) / l0 - 1.0));
+          if (w >= 0.0) dev_lin = fmax(dev_lin, fabs(dist(lin + 3 * a, lin + 3 * b) / l0 - 1.0));
+        }
+      const double vdev = closed ? fabs(volume(s, pos) / vol0 - 1.0) : 0.0;
+      if (w < 0.0) {
+        motion_dev = fmax(motion_dev, dev);
+        motion_vol = fmax(motion_vol, vdev);
+      } else {
+        way_dev = fmax(way_dev, dev);
+        way_vol = fmax(way_vol, vdev);
+        lin_dev = fmax(lin_dev, dev_lin);
+        if (closed) lin_vol = fmax(lin_vol, fabs(volume(s, lin) / vol0 - 1.0));
+      }
+    }
+    printf("%-9s largest change of an edge / of the volume: motion %.3f / %.3f, way back to rest "
+           "%.3f / %.3f (positions blended: %.3f / %.3f)\n",
+           name, motion_dev, motion_vol, way_dev, way_vol, lin_dev, lin_vol);
+    CHECK_MSG(way_dev <= motion_dev + 0.02, "%s: the way back to rest changes an edge by %.3f, the "
+              "motion by %.3f", name, way_dev, motion_dev);
+    CHECK_MSG(way_vol <= motion_vol + 0.02, "%s: the way back to rest changes the volume by %.3f, "
+              "the motion by %.3f", name, way_vol, motion_vol);
+    free(last);
+    free(lin);
+  }
 
   /* topology: closed meshes are watertight and consistently oriented */
   long long *keys = half_edges(s);

@@ -22,24 +22,38 @@ struct avatar_body {
   ssa_motion *motion;  /* CSV motion, or NULL */
   int *map;            /* (motion njoint) robot joint of each column */
   double *q;           /* (robot njoint) */
+  double *q_rest;      /* (robot njoint) the joints at frame 0 */
   int anim;            /* asset animation, or -1 */
   unsigned char *face_mask;
   double *rest;        /* (nvert x 3) the pose of frame 0: where the skin starts */
 };
 
 
+/* A robot's joint values at t seconds into q. */
+static int joints_at(avatar_body *ab, double t, double *q) {
+  const ssa_robot *robot = ab->av->robot;
+  memset(q, 0, sizeof(double) * (size_t)robot->njoint);
+  if (ab->builtin >= 0) return ssa_motion_builtin_eval(ab->builtin, t, robot, q);
+  if (ab->motion) ssa_motion_sample(ab->motion, ab->map, t, q);
+  return SS_OK;
+}
+
 static int pose(void *user, double frame, double *pos) {
   avatar_body *ab = user;
   const double t = frame / AVATAR_FPS;
   if (ab->anim >= 0) return ssa_avatar_pose_anim(ab->av, ab->anim, t, pos);
-  const ssa_robot *robot = ab->av->robot;
-  memset(ab->q, 0, sizeof(double) * (size_t)robot->njoint);
-  if (ab->builtin >= 0) {
-    int status = ssa_motion_builtin_eval(ab->builtin, t, robot, ab->q);
-    if (status) return status;
-  } else if (ab->motion) {
-    ssa_motion_sample(ab->motion, ab->map, t, ab->q);
-  }
+  int status = joints_at(ab, t, ab->q);
+  return status ? status : ssa_avatar_pose_joints(ab->av, ab->q, pos);
+}
+
+/* ss_body.pose_toward_rest: in joint space (a robot) or in the bones' motion (an asset). */
+static int pose_toward_rest(void *user, double frame, double w, double *pos) {
+  avatar_body *ab = user;
+  const double t = frame / AVATAR_FPS;
+  if (ab->anim >= 0) return ssa_avatar_pose_anim_toward_rest(ab->av, ab->anim, t, w, pos);
+  int status = joints_at(ab, t, ab->q);
+  if (status) return status;
+  ssa_joints_toward(ab->av->robot, ab->q, ab->q_rest, w, ab->q);
   return ssa_avatar_pose_joints(ab->av, ab->q, pos);
 }
 
@@ -49,6 +63,7 @@ void avatar_body_close(avatar_body *ab) {
   ssa_motion_destroy(ab->motion);
   free(ab->map);
   free(ab->q);
+  free(ab->q_rest);
   free(ab->face_mask);
   free(ab->rest);
   free(ab);
@@ -206,8 +221,10 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   else
     status = ssa_avatar_load_asset(&ab->av, args->asset, &opts, err, err_sz);
   if (!status && ab->av->robot) {
-    ab->q = calloc((size_t)(ab->av->robot->njoint > 0 ? ab->av->robot->njoint : 1), sizeof(double));
-    if (!ab->q) status = SS_E_NOMEM;
+    const size_t nq = (size_t)(ab->av->robot->njoint > 0 ? ab->av->robot->njoint : 1);
+    ab->q = calloc(nq, sizeof(double));
+    ab->q_rest = calloc(nq, sizeof(double));
+    if (!ab->q || !ab->q_rest) status = SS_E_NOMEM;
     if (!status) status = open_motion(ab, args->motion ? args->motion : "all", args->strict_limits,
                                         &duration, err, err_sz);
   } else if (!status) {
@@ -234,6 +251,7 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   if (!status) {
     ab->rest = malloc(sizeof(double) * 3 * (size_t)ab->av->nvert);
     status = ab->rest ? pose(ab, 0.0, ab->rest) : SS_E_NOMEM;
+    if (!status && ab->q_rest) memcpy(ab->q_rest, ab->q, sizeof(double) * (size_t)ab->av->robot->njoint);
     if (status) snprintf(err, (size_t)err_sz, "posing the avatar at time 0 failed (%s)",
                          ss_status_string(status));
   }
@@ -249,6 +267,7 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   body->frames = duration > 0.0 ? (int)(duration * AVATAR_FPS + 0.5) : 1;
   if (body->frames < 1) body->frames = 1;
   body->pose = pose;
+  body->pose_toward_rest = pose_toward_rest;
   body->user = ab;
   *face_mask = ab->face_mask;
   *out = ab;
