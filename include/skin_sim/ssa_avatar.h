@@ -373,6 +373,10 @@ int ssa_avatar_from_robot_mesh(ssa_avatar **out, ssa_robot *robot, int nvert, co
                                int nface, const int *faces, const ssa_avatar_opts *opts,
                                char *err, int err_sz);
 /* An avatar from a rigged character file, driven by its own animation clips. */
+/* Sizes outside [SSA_ASSET_SIZE_MIN, SSA_ASSET_SIZE_MAX] metres (the largest extent
+ * of the rest pose) get one warning through opts->warn: a file in other units. */
+#define SSA_ASSET_SIZE_MIN 0.02
+#define SSA_ASSET_SIZE_MAX 20.0
 int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_avatar_opts *opts,
                           char *err, int err_sz);
 void ssa_avatar_destroy(ssa_avatar *av);

@@ -130,6 +130,28 @@ int ssa_avatar_pose_anim_toward_rest(ssa_avatar *av, int anim, double t, double 
 
 /* ---------------------------------------------------------------- asset avatars */
 
+static void warn(const ssa_avatar_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Files in centimetres or millimetres that say metres (glTF's unit; the
+ * Khronos Fox is 155 units long): a body the size of a building, or of a
+ * coin, with a skin whose density and stiffness are per square metre. One
+ * warning naming the size and the flag that fixes it. */
+static void check_size(const ssa_avatar_opts *o, const char *path, const ssa_avatar *av) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int v = 0; v < av->nvert; v++)
+    for (int k = 0; k < 3; k++) {
+      lo[k] = fmin(lo[k], av->rest_pos[3 * v + k]);
+      hi[k] = fmax(hi[k], av->rest_pos[3 * v + k]);
+    }
+  const double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+  if (size > SSA_ASSET_SIZE_MAX || (size > 0.0 && size < SSA_ASSET_SIZE_MIN))
+    warn(o, "asset '%s' is %.3g m across read at %.3g m per file unit: a file in %s? (skinsim "
+         "--asset-scale sets the metres per unit)", path, size, av->asset->root_fix[0] != 0.0 ?
+         sqrt(av->asset->root_fix[0] * av->asset->root_fix[0] + av->asset->root_fix[4] *
+              av->asset->root_fix[4] + av->asset->root_fix[8] * av->asset->root_fix[8]) : 1.0,
+         size > SSA_ASSET_SIZE_MAX ? "centimetres or millimetres" : "kilometres");
+}
+
 int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_avatar_opts *opts,
                           char *err, int err_sz) {
   if (!out) return ss_fail(err, err_sz, SS_E_ARG, "no output pointer given");
@@ -159,6 +181,7 @@ int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_av
   memcpy(av->w_bone, a->w_bone, sizeof(int) * (size_t)nw);
   memcpy(av->w_weight, a->w_weight, sizeof(double) * (size_t)nw);
   set_dominant(av);
+  check_size(&o, asset_path, av);
   *out = av;
   return SS_OK;
 }
@@ -337,7 +360,6 @@ int ssa_collada_up_axis(const char *path) {
   return 1;
 }
 
-static void warn(const ssa_avatar_opts *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void warn(const ssa_avatar_opts *o, const char *fmt, ...) {
   if (!o->warn) return;
   char msg[1024];
