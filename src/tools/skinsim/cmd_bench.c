@@ -54,7 +54,7 @@ typedef struct bench_case {
   int option;
   int reference;
   const char *variant; /* short label of what was varied */
-  double tether;       /* 1/s (rest sweep) */
+  double tether;       /* 1/s (the default; the rest sweep varies it) */
   double settle;       /* s: rest return measured after the motion (rest sweep); 0 none */
 } bench_case;
 
@@ -79,7 +79,7 @@ static bench_case base_case(const char *sweep, const char *body, int avatar, int
                             int frames) {
   ss_sim_settings d = ss_sim_default_settings();
   bench_case c = {sweep, body, avatar, tris, frames, SS_METHOD_WALK, d.mover.nring_rings,
-                  d.solver, d.iterations, 1, d.tol, OPT_NONE, 1, "base", 0.0, 0.0};
+                  d.solver, d.iterations, 1, d.tol, OPT_NONE, 1, "base", d.tether, 0.0};
   return c;
 }
 
