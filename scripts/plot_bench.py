@@ -359,7 +359,7 @@ def plot_rest_return(rows, out):
         ax.set_title(title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=6, loc="best")
-    fig.suptitle("Rest return: after the motion the body blends back to rest over 1 s and "
+    fig.suptitle("Rest return: after the motion the body goes back to rest over 1 s (in its joint angles) and "
                  "holds still (settle); solid walk, dotted project; dashed: the goals 0.02 rms, "
                  "0.1 max", fontsize=9)
     save(fig, out, "rest_return.png")
