@@ -399,10 +399,12 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
        * triangles, settling after the motion: 18 anchors, a third to half a
        * turn from home, did not move in 10 s). */
       const double hu = p[0], hv = p[1];
-      double se;
+      double se = NAN;
       edge_dist2(fr, f, k_edge, target, &se);
-      edge_point(k_edge, se, p);
-      res->length += canonical_length(w_of(fr, f) + 3, p[0] - hu, p[1] - hv);
+      if (isfinite(se)) { /* NaN where the face's corners overflow: stay at h */
+        edge_point(k_edge, se, p);
+        res->length += canonical_length(w_of(fr, f) + 3, p[0] - hu, p[1] - hv);
+      }
     }
     if (stop != SS_STOP_INSIDE) {
       res->stop = stop;

@@ -25,7 +25,7 @@ export PATH=/usr/bin:$PATH
 dynparam() { timeout 120 rosrun dynamic_reconfigure dynparam "$@"; }
 log="$ROS_ENV_DIR/launch.log"
 
-ros_env_launch_skin launch 120 20; started=$?
+ros_env_launch_skin launch 120; started=$?
 lpid=$ROS_ENV_LAST_PID
 if [ "$started" -ne 0 ]; then
   ros_env_check "skin node starts from skin.launch" false
