@@ -144,12 +144,13 @@ static void check_size(const ssa_avatar_opts *o, const char *path, const ssa_ava
       hi[k] = fmax(hi[k], av->rest_pos[3 * v + k]);
     }
   const double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-  if (size > SSA_ASSET_SIZE_MAX || (size > 0.0 && size < SSA_ASSET_SIZE_MIN))
+  if (size > SSA_ASSET_SIZE_MAX || (size > 0.0 && size < SSA_ASSET_SIZE_MIN)) {
+    const double *r = av->asset->root_fix; /* its first column: the scale times a rotation */
     warn(o, "asset '%s' is %.3g m across read at %.3g m per file unit: a file in %s? (skinsim "
-         "--asset-scale sets the metres per unit)", path, size, av->asset->root_fix[0] != 0.0 ?
-         sqrt(av->asset->root_fix[0] * av->asset->root_fix[0] + av->asset->root_fix[4] *
-              av->asset->root_fix[4] + av->asset->root_fix[8] * av->asset->root_fix[8]) : 1.0,
+         "--asset-scale sets the metres per unit)", path, size,
+         sqrt(r[0] * r[0] + r[4] * r[4] + r[8] * r[8]),
          size > SSA_ASSET_SIZE_MAX ? "centimetres or millimetres" : "kilometres");
+  }
 }
 
 int ssa_avatar_load_asset(ssa_avatar **out, const char *asset_path, const ssa_avatar_opts *opts,

@@ -302,11 +302,6 @@ static int pass_through_edge(const ss_walker *walker, const ss_topo *topo, const
   return best_k;
 }
 
-/* Face f's walk record: origin, e1, e2, to_canon, ... */
-static inline const double *w_of(const ss_frames *fr, int f) {
-  return fr->walk + SS_FRAME_RECORD * (size_t)f;
-}
-
 /* World length of the canonical displacement (du, dv) on face f: |Dm (du, dv)|. */
 static inline double canonical_length(const double *e, double du, double dv) {
   double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
@@ -403,7 +398,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       edge_dist2(fr, f, k_edge, target, &se);
       if (isfinite(se)) { /* NaN where the face's corners overflow: stay at h */
         edge_point(k_edge, se, p);
-        res->length += canonical_length(w_of(fr, f) + 3, p[0] - hu, p[1] - hv);
+        res->length += canonical_length(ss_frames_edges(fr, f), p[0] - hu, p[1] - hv);
       }
     }
     if (stop != SS_STOP_INSIDE) {

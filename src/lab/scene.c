@@ -425,22 +425,14 @@ static void pose_scaled(const ss_scene *s, double t, double amount, double *pos)
   }
 }
 
-/* A finite frame in [0, 1e6]; NaN and negatives: 0 (rest). */
-static double clamp_frame(double frame) {
-  double t = frame > 0.0 ? frame : 0.0;
-  return t > 1e6 ? 1e6 : t;
-}
-
 void ss_scene_pose(const ss_scene *s, double frame, double *pos) {
-  memcpy(pos, s->rest, sizeof(double) * 3 * (size_t)s->nvert);
-  const double t = clamp_frame(frame);
-  if (t == 0.0) return;
-  pose_scaled(s, t, 1.0, pos);
+  ss_scene_pose_toward_rest(s, frame, 0.0, pos);
 }
 
 void ss_scene_pose_toward_rest(const ss_scene *s, double frame, double w, double *pos) {
   memcpy(pos, s->rest, sizeof(double) * 3 * (size_t)s->nvert);
-  const double t = clamp_frame(frame);
-  if (!(w < 1.0) || t == 0.0) return; /* NaN: rest */
+  double t = frame > 0.0 ? frame : 0.0; /* NaN and negatives: rest */
+  if (t > 1e6) t = 1e6;
+  if (!(w < 1.0) || t == 0.0) return; /* w NaN: rest */
   pose_scaled(s, t, w > 0.0 ? 1.0 - w : 1.0, pos);
 }

@@ -251,7 +251,7 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   if (!status) {
     ab->rest = malloc(sizeof(double) * 3 * (size_t)ab->av->nvert);
     status = ab->rest ? pose(ab, 0.0, ab->rest) : SS_E_NOMEM;
-    if (!status && ab->q_rest) memcpy(ab->q_rest, ab->q, sizeof(double) * (size_t)ab->av->robot->njoint);
+    if (!status && ab->q_rest) status = joints_at(ab, 0.0, ab->q_rest); /* where the settle goes */
     if (status) snprintf(err, (size_t)err_sz, "posing the avatar at time 0 failed (%s)",
                          ss_status_string(status));
   }
