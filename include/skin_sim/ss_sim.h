@@ -237,6 +237,40 @@ typedef struct ss_sim_stats {
 int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *stats,
                 char *err, int err_sz);
 
+/* ---- warnings -------------------------------------------------------------- */
+
+/* What went wrong while stepping, counted over the life of a sim (as MuJoCo's
+ * mjData.warning): a step's ss_sim_stats say what happened in it, these keep
+ * the total for a caller that looks once a minute (a node's diagnostics).
+ * ss_sim_reset does not clear them (a node that resets its skin on a time
+ * jump still reports the hour's failures); ss_sim_clear_warnings does. */
+typedef enum ss_warning_kind {
+  SS_WARN_REFUSED = 0,  /* a step refused before anything changed: a non-finite body pose or a
+                           move whose velocity overflows (SS_E_NONFINITE); info: the vertex */
+  SS_WARN_FAILURE,      /* a substep met a non-finite value, the last good state kept
+                           (stats.failures); info: failures in that step */
+  SS_WARN_SOLVER,       /* CHOLMOD failed (SS_E_SOLVER); info: its status */
+  SS_WARN_STALLED,      /* a substep stopped where no step lowered the energy; info: substeps */
+  SS_WARN_UNCONVERGED,  /* a step ended with a substep above tol; info: substeps in the step */
+  SS_WARN_STEP_LIMIT,   /* anchor updates that hit walk_max_steps; info: how many in the step */
+  SS_NWARNING
+} ss_warning_kind;
+
+typedef struct ss_warning {
+  long long number;     /* steps in which it happened */
+  long long last_step;  /* the step it last happened in (1 = the first step after create;
+                           a refused step has the number the step would have had); 0: never */
+  int last_info;        /* what it was then (see ss_warning_kind) */
+} ss_warning;
+
+/* SS_NWARNING entries, indexed by ss_warning_kind (valid while sim is). */
+const ss_warning *ss_sim_warnings(const ss_sim *sim);
+/* Steps taken since create (refused steps not counted). */
+long long ss_sim_step_count(const ss_sim *sim);
+void ss_sim_clear_warnings(ss_sim *sim);
+/* Short name of a warning kind ("refused", "failure", ...; "unknown" out of range). */
+const char *ss_warning_name(int kind);
+
 /* ---- reading back ---------------------------------------------------------- */
 
 const ss_sim_settings *ss_sim_get_settings(const ss_sim *sim); /* face_mask points inside sim */

@@ -373,6 +373,13 @@ typedef struct substep {
   int converged, stalled, nonfinite;
 } substep;
 
+static void warn(ss_sim *sim, ss_warning_kind kind, long long step, int info) {
+  ss_warning *w = sim->warning + kind;
+  w->number++;
+  w->last_step = step;
+  w->last_info = info;
+}
+
 static void stage_pose(ss_sim *sim, substep *sub) {
   ss_sim_stats *st = sim->st;
   const size_t nv3 = 3 * (size_t)sim->m->nvert, nb3 = 3 * (size_t)sim->m->nbvert;
@@ -470,18 +477,22 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   if (!isfinite(dt)) return ss_fail(err, err_sz, SS_E_ARG, "dt is not finite");
   for (int v = 0; v < sim->m->nbvert; v++)
     for (int i = 0; i < 3; i++)
-      if (!isfinite(body_pos[3 * v + i]))
+      if (!isfinite(body_pos[3 * v + i])) {
+        warn(sim, SS_WARN_REFUSED, sim->nstep + 1, v);
         return ss_fail(err, err_sz, SS_E_NONFINITE, "body vertex %d has a non-finite coordinate", v);
+      }
   {
     /* Vertices that follow the body take its velocity (a convex combination
      * of vertex moves / h): refuse a move whose velocity would overflow,
      * before anything of the state changes. */
     const double h_sub = dt / sim->set.substeps, lim = 0.25 * DBL_MAX * h_sub;
     for (size_t i = 0; i < 3 * (size_t)sim->m->nbvert; i++)
-      if (!isfinite(body_pos[i] - sim->body_prev[i]) || !(fabs(body_pos[i] - sim->body_prev[i]) <= lim))
+      if (!isfinite(body_pos[i] - sim->body_prev[i]) || !(fabs(body_pos[i] - sim->body_prev[i]) <= lim)) {
+        warn(sim, SS_WARN_REFUSED, sim->nstep + 1, (int)(i / 3));
         return ss_fail(err, err_sz, SS_E_NONFINITE,
                        "body vertex %d moves %g in %g s: its velocity overflows; step refused",
                        (int)(i / 3), body_pos[i] - sim->body_prev[i], dt);
+      }
   }
   double t_start = ss_now_ms();
   sim->st = st;
@@ -500,6 +511,12 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   }
   memcpy(sim->body_prev, body_pos, nb3 * sizeof(double));
   area_ratios(sim, st);
+  const long long n = ++sim->nstep;
+  if (status != SS_OK) warn(sim, SS_WARN_SOLVER, n, sim->cc.status);
+  if (st->failures) warn(sim, SS_WARN_FAILURE, n, st->failures);
+  if (st->stalled) warn(sim, SS_WARN_STALLED, n, st->stalled);
+  if (!st->converged) warn(sim, SS_WARN_UNCONVERGED, n, st->substeps);
+  if (st->anchors_step_limit) warn(sim, SS_WARN_STEP_LIMIT, n, st->anchors_step_limit);
   st->total_ms = ss_now_ms() - t_start;
   choose_threads(sim, st->total_ms);
   sim->st = NULL;
@@ -507,6 +524,20 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     return ss_fail(err, err_sz, status, "the linear solver failed (CHOLMOD status %d); last good state kept",
                    sim->cc.status);
   return SS_OK;
+}
+
+/* ---- warnings ---- */
+const ss_warning *ss_sim_warnings(const ss_sim *sim) { return sim->warning; }
+long long ss_sim_step_count(const ss_sim *sim) { return sim->nstep; }
+void ss_sim_clear_warnings(ss_sim *sim) {
+  if (sim) memset(sim->warning, 0, sizeof sim->warning);
+}
+const char *ss_warning_name(int kind) {
+  static const char *const names[SS_NWARNING] = {
+      [SS_WARN_REFUSED] = "refused", [SS_WARN_FAILURE] = "failure",
+      [SS_WARN_SOLVER] = "solver", [SS_WARN_STALLED] = "stalled",
+      [SS_WARN_UNCONVERGED] = "unconverged", [SS_WARN_STEP_LIMIT] = "step_limit"};
+  return kind >= 0 && kind < SS_NWARNING ? names[kind] : "unknown";
 }
 
 /* ---- accessors ---- */

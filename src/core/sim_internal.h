@@ -196,6 +196,9 @@ struct ss_sim {
   int lb_count, lb_head;
   /* per-step counters */
   ss_sim_stats *st;
+  /* over the sim's life (ss_sim_warnings) */
+  long long nstep;
+  ss_warning warning[SS_NWARNING];
   SS_DATA_ARRAYS(SS_ARENA_FIELD)
 };
 

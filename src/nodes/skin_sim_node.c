@@ -672,13 +672,22 @@ static void diagnose(node *nd)
   snprintf(v[11], sizeof v[11], "%u", (unsigned)w.failures);
   snprintf(v[12], sizeof v[12], "%u", (unsigned)nd->resets);
   snprintf(v[13], sizeof v[13], "%d", nd->nweld);
-  rosc_kv kv[] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
+  rosc_kv kv[14 + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
                   {"step time max (ms)", v[2]}, {"input period (ms)", v[3]},
                   {"step budget (ms)", v[4]},   {"inputs received", v[5]},
                   {"inputs processed", v[6]},   {"inputs rejected", v[7]},
                   {"inputs dropped", v[8]},     {"inputs skipped", v[9]},
                   {"resets", v[10]},            {"failures", v[11]},
                   {"resets total", v[12]},      {"skin vertices", v[13]}};
+  /* the core's warnings over the skin's life (since it was last created) */
+  char wkey[SS_NWARNING][48], wval[SS_NWARNING][24];
+  const ss_warning *warn = nd->sim ? ss_sim_warnings(nd->sim) : NULL; /* no skin yet: 0 */
+  for (int k = 0; k < SS_NWARNING; k++) {
+    snprintf(wkey[k], sizeof wkey[k], "skin steps %s (since created)", ss_warning_name(k));
+    snprintf(wval[k], sizeof wval[k], "%lld", warn ? warn[k].number : 0LL);
+    kv[14 + k].key = wkey[k];
+    kv[14 + k].value = wval[k];
+  }
   rosc_diag_update(nd->diag, level, msg, kv, sizeof kv / sizeof kv[0]);
   nd->win.in = nd->frames_in;
   nd->win.processed = nd->processed;

@@ -457,6 +457,53 @@ static void test_bad_input(void) {
   fx_free(&g);
 }
 
+/* Warnings are counted over the sim's life: a refused step names its step
+ * and vertex, an unconverged step counts, ss_sim_reset keeps them and
+ * ss_sim_clear_warnings clears them. */
+static void test_warnings(void) {
+  fx_mesh g = fx_grid(6, 6, 1.0, 1.0, 0.0);
+  char err[256];
+  ss_sim *sim = NULL;
+  ss_sim_settings set = ss_sim_default_settings();
+  set.iterations = set.iterations_max = 200; /* converges: no warning */
+  CHECK_EQ_INT(ss_sim_create(&sim, g.nvert, g.pos, g.nface, g.faces, NULL, &set, err, sizeof err), SS_OK);
+  if (!sim) return;
+  const ss_warning *w = ss_sim_warnings(sim);
+  double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
+  fx_pose(&g, 0.1, pose);
+  ss_sim_stats st;
+  CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, err, sizeof err), SS_OK);
+  CHECK(st.converged && st.failures == 0);
+  CHECK(ss_sim_step_count(sim) == 1);
+  for (int k = 0; k < SS_NWARNING; k++) CHECK_MSG(w[k].number == 0, "%s after a clean step", ss_warning_name(k));
+  pose[10] = NAN; /* vertex 3 */
+  CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, err, sizeof err), SS_E_NONFINITE);
+  CHECK(w[SS_WARN_REFUSED].number == 1 && w[SS_WARN_REFUSED].last_step == 2 &&
+        w[SS_WARN_REFUSED].last_info == 3);
+  CHECK(ss_sim_step_count(sim) == 1);
+  ss_sim_reset(sim);
+  CHECK(w[SS_WARN_REFUSED].number == 1);
+  /* one iteration towards an unreachable tolerance */
+  set.iterations = set.iterations_max = 1;
+  set.tol = 1e-15;
+  int recreate = 0;
+  CHECK_EQ_INT(ss_sim_set_settings(sim, &set, &recreate, err, sizeof err), SS_OK);
+  CHECK(recreate == 0);
+  fx_pose(&g, 0.3, pose);
+  CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, err, sizeof err), SS_OK);
+  CHECK(!st.converged);
+  CHECK(w[SS_WARN_UNCONVERGED].number == 1 && w[SS_WARN_UNCONVERGED].last_step == 2 &&
+        w[SS_WARN_UNCONVERGED].last_info == st.substeps);
+  CHECK(w[SS_WARN_FAILURE].number == 0 && w[SS_WARN_SOLVER].number == 0);
+  ss_sim_clear_warnings(sim);
+  for (int k = 0; k < SS_NWARNING; k++) CHECK(w[k].number == 0 && w[k].last_step == 0);
+  CHECK(strcmp(ss_warning_name(SS_WARN_STEP_LIMIT), "step_limit") == 0);
+  CHECK(strcmp(ss_warning_name(SS_NWARNING), "unknown") == 0);
+  free(pose);
+  ss_sim_destroy(sim);
+  fx_free(&g);
+}
+
 /* Small and odd meshes: one triangle; a body with a vertex in no face (its
  * skin copy follows it) and a zero-area face. */
 static void test_small_meshes(void) {
@@ -625,6 +672,7 @@ int main(void) {
   test_bending_cantilever();
   test_slide();
   test_bad_input();
+  test_warnings();
   test_small_meshes();
   test_violent_motion();
   test_determinism();
