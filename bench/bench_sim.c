@@ -62,9 +62,9 @@ static int probe_create(probe *pr, const ss_sim *sim, int frames, char *err, int
   memset(pr, 0, sizeof *pr);
   ss_mover_settings ms = ss_sim_get_settings(sim)->mover;
   ms.method = SS_METHOD_WALK;
-  if (ss_mover_create(&pr->walk, ss_sim_body_topo(sim), &ms, err, err_sz)) return 1;
+  if (ss_mover_create(&pr->walk, ss_sim_body_topo(sim), &ms, NULL, err, err_sz)) return 1;
   ms.method = SS_METHOD_PROJECT;
-  if (ss_mover_create(&pr->project, ss_sim_body_topo(sim), &ms, err, err_sz)) return 1;
+  if (ss_mover_create(&pr->project, ss_sim_body_topo(sim), &ms, NULL, err, err_sz)) return 1;
   pr->nanchor = ss_sim_nanchors(sim);
   pr->nskinvert = ss_sim_skin_nvert(sim);
   size_t n = (size_t)pr->nanchor;

@@ -32,6 +32,7 @@ struct ss_bvh {
   int *first;       /* (nnode) leaf: first slot in face_order */
   int *count;       /* (nnode) leaf: number of faces */
   int *face_order;  /* (nface) faces, each leaf's faces contiguous */
+  int borrowed;     /* left, right, first, count, face_order are another BVH's */
   double *centroid; /* (nface x 3) scratch of the build */
   int *stack;       /* (3 x max nodes) scratch of the build */
 };
@@ -110,14 +111,35 @@ int ss_bvh_create(ss_bvh **out, const ss_topo *topo) {
   return SS_OK;
 }
 
+int ss_bvh_create_on(ss_bvh **out, const ss_bvh *shape) {
+  if (!out || !shape || shape->nnode == 0) return SS_E_ARG;
+  *out = NULL;
+  ss_bvh *b = calloc(1, sizeof *b);
+  if (!b) return SS_E_NOMEM;
+  *b = *shape;
+  b->borrowed = 1;
+  b->centroid = NULL; /* the build's scratch: never built again */
+  b->stack = NULL;
+  b->box = malloc(sizeof(double) * 6 * (size_t)shape->nnode);
+  if (!b->box) {
+    free(b);
+    return SS_E_NOMEM;
+  }
+  memcpy(b->box, shape->box, sizeof(double) * 6 * (size_t)shape->nnode);
+  *out = b;
+  return SS_OK;
+}
+
 void ss_bvh_destroy(ss_bvh *b) {
   if (!b) return;
   free(b->box);
-  free(b->left);
-  free(b->right);
-  free(b->first);
-  free(b->count);
-  free(b->face_order);
+  if (!b->borrowed) {
+    free(b->left);
+    free(b->right);
+    free(b->first);
+    free(b->count);
+    free(b->face_order);
+  }
   free(b->centroid);
   free(b->stack);
   free(b);

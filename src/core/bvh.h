@@ -8,6 +8,10 @@
 
 typedef struct ss_bvh ss_bvh;
 int ss_bvh_create(ss_bvh **out, const ss_topo *topo);
+/* A BVH with boxes of its own on the tree of `shape` (refitted at least once:
+ * its tree is built), which it borrows: shape must outlive it and is never
+ * written. A model keeps one tree of its body for every sim on it. */
+int ss_bvh_create_on(ss_bvh **out, const ss_bvh *shape);
 void ss_bvh_destroy(ss_bvh *bvh);
 /* Refits boxes to positions pos (nvert x 3). Allocates nothing. */
 void ss_bvh_refit(ss_bvh *bvh, const double *pos);

@@ -22,7 +22,7 @@ struct ss_mover {
 /* ss_mover_default_settings(): from the settings table (settings.c). */
 
 int ss_mover_create(ss_mover **out, const ss_topo *topo, const ss_mover_settings *settings,
-                    char *err, int err_sz) {
+                    const ss_bvh *bvh_shape, char *err, int err_sz) {
   if (!out || !topo || !settings) return ss_fail(err, err_sz, SS_E_ARG, "mover: NULL argument");
   *out = NULL;
   if (!ss_method_name(settings->method))
@@ -41,7 +41,8 @@ int ss_mover_create(ss_mover **out, const ss_topo *topo, const ss_mover_settings
   m->topo = topo;
   int status = ss_frames_create(&m->frames, topo->nface);
   if (!status) status = ss_walker_create(&m->walker, topo->nface);
-  if (!status && settings->method == SS_METHOD_PROJECT) status = ss_bvh_create(&m->bvh, topo);
+  if (!status && settings->method == SS_METHOD_PROJECT)
+    status = bvh_shape ? ss_bvh_create_on(&m->bvh, bvh_shape) : ss_bvh_create(&m->bvh, topo);
   if (!status && settings->method == SS_METHOD_NRING) status = ss_nring_create(&m->nring, topo);
   if (status) {
     ss_mover_destroy(m);

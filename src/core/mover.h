@@ -6,12 +6,15 @@
 #define SKIN_SIM_MOVER_H
 
 #include "skin_sim/ss_anchor.h"
+#include "bvh.h"
 #include "walk.h"
 
-/* Holds per-pose frames and the scratch of the chosen method. */
+/* Holds per-pose frames and the scratch of the chosen method. bvh_shape: a
+ * built BVH of topo whose tree a project mover borrows (ss_bvh_create_on; it
+ * must outlive the mover), or NULL to build its own. */
 typedef struct ss_mover ss_mover;
 int ss_mover_create(ss_mover **out, const ss_topo *topo, const ss_mover_settings *settings,
-                    char *err, int err_sz);
+                    const ss_bvh *bvh_shape, char *err, int err_sz);
 void ss_mover_destroy(ss_mover *mover);
 /* Sets the body pose for the following moves (frames, and the BVH refit for
  * project). Allocates nothing. */

@@ -78,10 +78,9 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
       }
     return SS_OK;
   }
-  ss_bvh *bvh = NULL;
-  int status = ss_bvh_create(&bvh, sim->m->btopo);
+  int status = ss_sim_model_bvh(sim->m, body_rest);
   if (status != SS_OK) return ss_fail(err, err_sz, status, "cannot build the body's BVH to bind the skin");
-  ss_bvh_refit(bvh, body_rest);
+  const ss_bvh *bvh = sim->m->bvh_rest;
   for (int a = 0; a < sim->m->nanchor; a++) {
     double p[3];
     if (a < nv) {
@@ -93,7 +92,6 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
     }
     ss_bvh_closest(bvh, body_rest, p, &sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a);
   }
-  ss_bvh_destroy(bvh);
   return SS_OK;
 }
 

@@ -139,6 +139,9 @@ struct ss_model {
   /* body */
   int nbvert, nbface;
   ss_topo *btopo;
+  ss_bvh *bvh_rest;           /* the body's BVH at rest, or NULL: kept when the skin was bound by
+                                 closest point or the model's method is project; every project
+                                 sim's mover borrows its tree (ss_bvh_create_on). Never refitted */
   /* skin */
   int nvert, nface;
   int ndof;                   /* free vertices: the unknowns */
@@ -206,6 +209,11 @@ struct ss_sim {
  * poisson, density, stiffness, barycenters, bending, orient): every sim on a
  * model has the model's (sim_model.c). */
 int ss_sim_in_model(size_t offset);
+
+/* ---- sim_model.c ---- */
+/* The model's bvh_rest on the body at rest, built if it is not yet (model
+ * building only: the model is read-only once built). */
+int ss_sim_model_bvh(ss_model *m, const double *body_rest);
 
 /* ---- sim_bind.c ---- */
 /* Anchors of the skin on the body at rest (copy of the body or closest point). */

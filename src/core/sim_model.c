@@ -116,6 +116,7 @@ static void model_release(ss_model *m) {
     cholmod_free_factor(&m->sym_newton, &m->cc);
     cholmod_finish(&m->cc);
   }
+  ss_bvh_destroy(m->bvh_rest);
   ss_topo_destroy(m->btopo);
   free(m->arena);
   free(m);
@@ -169,6 +170,13 @@ static int model_analyze(ss_model *m, char *err, int err_sz) {
                                            : ss_solver_qn_analyze(m, err, err_sz);
 }
 
+int ss_sim_model_bvh(ss_model *m, const double *body_rest) {
+  if (m->bvh_rest) return SS_OK;
+  int status = ss_bvh_create(&m->bvh_rest, m->btopo);
+  if (status == SS_OK) ss_bvh_refit(m->bvh_rest, body_rest);
+  return status;
+}
+
 /* The rest of the model, on the sim being created with it: anchors bound,
  * vertex kinds, masses, hinges, pattern, energy layout, symbolic analysis. */
 static int model_build(ss_sim *sim, const ss_sim_mesh *skin, char *err, int err_sz) {
@@ -178,6 +186,9 @@ static int model_build(ss_sim *sim, const ss_sim_mesh *skin, char *err, int err_
   if (status == SS_OK) status = ss_sim_energy_layout(sim, err, err_sz);
   if (status == SS_OK) ss_sim_diag_const(sim);
   if (status == SS_OK) status = model_analyze(sim->m, err, err_sz);
+  if (status == SS_OK && sim->set.mover.method == SS_METHOD_PROJECT &&
+      ss_sim_model_bvh(sim->m, sim->m->body_rest) != SS_OK)
+    status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the body's BVH");
   return status;
 }
 
@@ -207,7 +218,7 @@ static int model_settings_agree(const ss_model *m, const ss_sim_settings *set, c
 /* The data of sim on its model: mover, threads and walkers, the arena, the
  * state at rest. */
 static int sim_data(ss_sim *sim, char *err, int err_sz) {
-  int status = ss_mover_create(&sim->mover, sim->m->btopo, &sim->set.mover, err, err_sz);
+  int status = ss_mover_create(&sim->mover, sim->m->btopo, &sim->set.mover, sim->m->bvh_rest, err, err_sz);
   if (status != SS_OK) return status;
   /* one walker per thread; the team is started here, so that stepping
    * allocates nothing (the OpenMP runtime keeps its threads) */

@@ -78,7 +78,7 @@ int ss_track_run(const ss_scene *scene, const ss_track_settings *settings,
   int status = ss_topo_create(&topo, nvert, ss_scene_rest(scene), nface, ss_scene_faces(scene),
                               -1.0, err, err_sz);
   if (status) return status;
-  status = ss_mover_create(&mover, topo, &settings->mover, err, err_sz);
+  status = ss_mover_create(&mover, topo, &settings->mover, NULL, err, err_sz);
   if (!status) status = snag_judge_init(&judge, topo);
   const int nanchor = nvert + nface;
   double *pos = malloc(sizeof(double) * 3 * (size_t)nvert);

@@ -105,6 +105,23 @@ int main(void) {
   CHECK(positions_hash(on_null) == positions_hash(alone_a));
   CHECK(positions_hash(on_a) != positions_hash(on_b)); /* the two runs did differ */
   CHECK_MSG(model_hash(model) == before, "stepping wrote the shared model");
+  /* the body's BVH: kept by a model whose method is project (its sims' movers
+   * borrow its tree), not built for a walking one (on_b builds its own) */
+  CHECK(model->bvh_rest == NULL && ss_sim_model(alone_b)->bvh_rest != NULL);
+  {
+    ss_sim *p1 = NULL, *p2 = NULL;
+    CHECK_MSG(ss_sim_create_from_model(&p1, ss_sim_model(alone_b), &b, err, sizeof err) == SS_OK, "%s", err);
+    CHECK_MSG(ss_sim_create_from_model(&p2, ss_sim_model(alone_b), &b, err, sizeof err) == SS_OK, "%s", err);
+    if (p1 && p2) {
+      ss_sim *pair[2] = {p1, p2};
+      step_all(sc, pair, 2);
+      CHECK_MSG(positions_hash(p1) == positions_hash(alone_b) && positions_hash(p2) == positions_hash(alone_b),
+                "project sims on the tree of their model: %016llx %016llx, alone %016llx", positions_hash(p1),
+                positions_hash(p2), positions_hash(alone_b));
+    }
+    ss_sim_destroy(p1);
+    ss_sim_destroy(p2);
+  }
   printf("model arena %zu bytes, data arena %zu bytes (twist, %d triangles)\n", model->arena_bytes,
          on_a->arena_bytes, nf);
 

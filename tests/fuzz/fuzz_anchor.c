@@ -92,7 +92,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     ms.walk_max_steps = fz_int(&f, -1, 40);
     ms.nring_rings = fz_int(&f, -1, 5);
     ss_mover *mv = NULL;
-    if (ss_mover_create(&mv, t, &ms, err, sizeof err) != SS_OK) continue;
+    if (ss_mover_create(&mv, t, &ms, NULL, err, sizeof err) != SS_OK) continue;
     ss_mover_set_pose(mv, pose);
     double uv[2] = {1.0 / 3.0, 1.0 / 3.0}, target[3];
     for (int i = 0; i < 3; i++) target[i] = fz_double(&f, 1.0);
