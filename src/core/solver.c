@@ -59,7 +59,7 @@ static int after_line_search(ss_solve *s, int ls, double *best_res, int *roundof
 int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
   const ss_solver_ops *ops = solver_ops(sim);
   ss_sim_stats *st = sim->st;
-  ss_solve s = {.sim = sim, .xd = xd, .g = sim->gd, .dir = sim->dir, .xt = sim->xt, .gt = sim->gt, .e = 0.0, .skip_exact = 0, .backoff = 1};
+  ss_solve s = {.sim = sim, .xd = xd, .g = sim->gd, .dir = sim->dir, .xt = sim->xt, .gt = sim->gt, .e = 0.0, .step_memory = ops->step_memory, .alpha0 = 1.0, .skip_exact = 0, .backoff = 1};
   *converged = *stalled = *nonfinite = 0;
   int roundoff_steps = 0;
   double best_res = INFINITY;

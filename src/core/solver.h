@@ -22,6 +22,8 @@ typedef struct ss_solve {
   double *xt, *gt; /* (ndof x 3) the line search's trial point and its gradient; an
                       accepted trial swaps with xd and g (no copy) */
   double e;        /* E at xd */
+  int step_memory; /* the line search starts where the last one ended (ss_solver_ops) */
+  double alpha0;   /* with step_memory: the next search's first trial step, in (0, 1] */
   int skip_exact;  /* Newton: iterations left before the exact Hessian is tried again */
   int backoff;     /* Newton: the next wait after a failed exact step */
 } ss_solve;
@@ -35,6 +37,12 @@ typedef struct ss_solver_ops {
   /* Whether a substep above safety_residual after `iterations` goes on up to
    * iterations_max (quasi-Newton; Newton stops at its budget). */
   int safety_net;
+  /* Whether the line search remembers its step within a solve and
+   * interpolates when it backtracks (quasi-Newton: its constant A knows
+   * nothing of the stiff one-sided depth springs, so the full step is
+   * mostly 3-8 times too long; Newton's full step is its model's minimum:
+   * it halves from 1, which keeps the truth and references bit for bit). */
+  int step_memory;
   /* Before the first energy evaluation of a solve (factorisations for a new
    * h, history reset). SS_OK or an error code. */
   int (*begin)(ss_solve *s);

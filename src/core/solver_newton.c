@@ -176,4 +176,4 @@ static void newton_tried(ss_solve *s, int attempt, int ls) {
 }
 
 const ss_solver_ops ss_solver_newton_ops = {
-    .safety_net = 0, .begin = newton_begin, .direction = newton_dir, .tried = newton_tried, .accepted = NULL};
+    .safety_net = 0, .step_memory = 0, .begin = newton_begin, .direction = newton_dir, .tried = newton_tried, .accepted = NULL};

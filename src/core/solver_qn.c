@@ -278,4 +278,4 @@ static void qn_accepted(ss_solve *s) {
 }
 
 const ss_solver_ops ss_solver_qn_ops = {
-    .safety_net = 1, .begin = qn_begin, .direction = qn_dir, .tried = NULL, .accepted = qn_accepted};
+    .safety_net = 1, .step_memory = 1, .begin = qn_begin, .direction = qn_dir, .tried = NULL, .accepted = qn_accepted};
