@@ -284,10 +284,14 @@ def plot_options(rows, out):
              "skin is compared with the fine skin's reference through closest points at "
              "rest. bending: hinge k = 1e-3 N m; gravity: 9.81 m/s^2 along -z; region: only "
              "the faces whose rest centroid has x >= the median simulated, the rest follows "
-             "the body; coarse-skin: the same scene at a quarter of the triangles as skin.", "",
+             "the body; coarse-skin: the same scene at a quarter of the triangles as skin; "
+             "stiff-compression: compression 1, the Stable Neo-Hookean membrane, as stiff "
+             "pushed together as pulled apart (the default skin is 0.1 as stiff in "
+             "compression). hug rms: distance of the skin to the body (silhouette); inverted: "
+             "most skin faces turned against the body in a frame.", "",
              "| scene | option | skin triangles | ms/frame | x base | error | vs default "
-             "| snags | hug rms |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "| snags | hug rms | inverted |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for s in scenes:
         base = num(cell[(s, "base")], "ms_per_frame_median") if (s, "base") in cell else None
         for o in options:
@@ -297,10 +301,10 @@ def plot_options(rows, out):
             ms = num(r, "ms_per_frame_median") or 0.0
             e = num(r, "error_vs_reference")
             d = num(r, "error_vs_base_reference")
-            lines.append("| %s | %s | %s | %.2f | %s | %s | %s | %s | %.3f |" % (
+            lines.append("| %s | %s | %s | %.2f | %s | %s | %s | %s | %.3f | %s |" % (
                 s, o, r["skin_triangles"], ms, "%.2f" % (ms / base) if base else "-",
                 "%.3g" % e if e is not None else "-", "%.3g" % d if d is not None else "-",
-                r["snags"], num(r, "hug_rms") or 0.0))
+                r["snags"], num(r, "hug_rms") or 0.0, r.get("inverted_faces_max", "-")))
     with open(os.path.join(out, "options.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))

@@ -100,6 +100,12 @@ typedef struct ss_sim_settings {
                             -1 turned over) falls below 0.2 pays orient (0.2 - s)^2 / 2 per m^2;
                             without it a face can turn over at full area at no cost and a
                             crease folded flat locks (orient.c). 0 = off */
+  double compression;    /* in (0, 1]: the membrane's stiffness where it is compressed, as a
+                            share of its stiffness in tension (principal stretches and area
+                            below rest; membrane.c). Skin wrinkles far below an edge's scale;
+                            a mesh as stiff in compression as in tension buckles in folds one
+                            edge wide that turn over where the body under them is crushed.
+                            1 = the Stable Neo-Hookean membrane; default 0.1 */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   int threads;           /* threads for per-face energies and anchor walks (OpenMP), 0..64;
                             default 0: all cores for a skin of 4000 faces or more, else 1,

@@ -28,9 +28,11 @@ void ss_membrane_lame(double young, double poisson, double *mu, double *lam);
 int ss_membrane_rest(const double x0[3], const double x1[3], const double x2[3],
                      double dm_inv[4], double *area);
 
-/* x: 9 doubles (three vertices). grad: 9, hess: 81. */
+/* x: 9 doubles (three vertices). grad: 9, hess: 81 (PSD). compression >= 1:
+ * the Stable Neo-Hookean membrane; < 1: the compression-soft membrane
+ * (membrane.c), c times as stiff where it is compressed. */
 double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_area,
-                        double mu, double lam, double *grad, double *hess);
+                        double mu, double lam, double compression, double *grad, double *hess);
 
 /* ---- membrane, many faces at once (the stepping kernel) -------------------
  * Energy and gradient of the faces of `face` (n records, one 64-byte line
@@ -51,7 +53,8 @@ typedef struct ss_membrane_face {
 } ss_membrane_face;
 /* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. */
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
-                            double mu, double lam, double *energy, double *grad);
+                            double mu, double lam, double compression, double *energy,
+                            double *grad);
 
 /* ---- bending: dihedral hinge ------------------------------------------------
  * x: 12 doubles, vertices (e0, e1, o0, o1): the shared edge e0-e1 and the two
@@ -80,6 +83,6 @@ void ss_sym_eigen(const double *m, int n, double *evals, double *evecs);
  * demand) and the tests' reference. It needs a non-degenerate current
  * triangle (J > 0): the exact Hessian of J = |f0 x f1| grows like 1/J. */
 double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double rest_area,
-                            double mu, double lam, double *grad, double *hess);
+                            double mu, double lam, double compression, double *grad, double *hess);
 
 #endif

@@ -190,100 +190,227 @@ static void add_mode(const double d[3][2], const double df[2][3], double w, doub
   }
 }
 
-double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_area,
-                        double mu, double lam, double *grad, double *hess) {
-  membrane_state s;
-  double d[3][2];
-  membrane_state_init(x, dm_inv, &s);
-  shape_derivatives(dm_inv, d);
-  double energy = energy_and_gradient(&s, d, rest_area, mu, lam, grad);
-  if (!hess) return energy;
-
-  /* SVD of F through the eigen-decomposition of C = F^T F = [[p, q], [q, r]]:
-   * V = [v0, v1] a rotation, s0 >= s1 >= 0, and s1 = J / s0 so that s0 s1 = J
-   * exactly. */
-  double p = dot3(s.f[0], s.f[0]), r = dot3(s.f[1], s.f[1]), q = dot3(s.f[0], s.f[1]);
+/* The SVD of F through the eigen-decomposition of C = F^T F = [[p, q], [q, r]]:
+ * V = [v0, v1] a rotation, s0 >= s1 >= 0, s1 = J / s0 so that s0 s1 = J
+ * exactly, u0 = F v0 / s0 in the face's plane and u1 = n x u0. */
+static void membrane_svd(const membrane_state *s, double v0[2], double v1[2], double *s0_out,
+                         double *s1_out, double u0[3], double u1[3]) {
+  double p = dot3(s->f[0], s->f[0]), r = dot3(s->f[1], s->f[1]), q = dot3(s->f[0], s->f[1]);
   double phi = 0.5 * atan2(2.0 * q, p - r);
-  double v0[2] = {cos(phi), sin(phi)}, v1[2] = {-v0[1], v0[0]};
+  v0[0] = cos(phi), v0[1] = sin(phi);
+  v1[0] = -v0[1], v1[1] = v0[0];
   double half_diff = 0.5 * (p - r);
   double lambda0 = 0.5 * (p + r) + sqrt(half_diff * half_diff + q * q);
   double s0 = sqrt(lambda0);
-  double s1 = s0 > 1e-280 ? s.j / s0 : 0.0;
+  double s1 = s0 > 1e-280 ? s->j / s0 : 0.0;
   if (s1 > s0) s1 = s0; /* round-off only */
-  double u0[3], u1[3];
   if (s0 > 1e-280) {
-    for (int i = 0; i < 3; i++) u0[i] = (s.f[0][i] * v0[0] + s.f[1][i] * v0[1]) / s0;
+    for (int i = 0; i < 3; i++) u0[i] = (s->f[0][i] * v0[0] + s->f[1][i] * v0[1]) / s0;
     /* Remove the round-off component along n, renormalise. */
-    double along = dot3(u0, s.n);
-    for (int i = 0; i < 3; i++) u0[i] -= along * s.n[i];
+    double along = dot3(u0, s->n);
+    for (int i = 0; i < 3; i++) u0[i] -= along * s->n[i];
     double len = sqrt(dot3(u0, u0));
     if (len > 0.5) {
       for (int i = 0; i < 3; i++) u0[i] /= len;
     } else {
-      perpendicular_unit(s.n, u0);
+      perpendicular_unit(s->n, u0);
     }
   } else {
-    perpendicular_unit(s.n, u0);
+    perpendicular_unit(s->n, u0);
   }
-  cross3(s.n, u0, u1); /* u0 x u1 = n */
+  cross3(s->n, u0, u1); /* u0 x u1 = n */
+  *s0_out = s0;
+  *s1_out = s1;
+}
 
-  double alpha = alpha_of(mu, lam);
-  double k = lam * (s.j - alpha);
-
+/* The six eigenpairs of an isotropic Psi(s0, s1)'s Hessian in F-space, mapped
+ * to the 9x9 hess (zeroed here, symmetric on return): out-of-plane n v0^T
+ * (ev[0]) and n v1^T (ev[1]); twist (u1 v0^T - u0 v1^T)/sqrt2 (ev[2]) and flip
+ * (u1 v0^T + u0 v1^T)/sqrt2 (ev[3]); the two scaling modes on (u0 v0^T, u1
+ * v1^T) from the 2x2 [[ha, hb], [hb, hd]] (ev[4..6] = ha, hd, hb). project:
+ * modes of eigenvalue <= 0 are left out (PSD); else all are added (the exact
+ * Hessian). */
+static void membrane_modes(const double d[3][2], const double n[3], const double v0[2],
+                           const double v1[2], const double u0[3], const double u1[3],
+                           const double ev[7], double w, int project, double *hess) {
   memset(hess, 0, 81 * sizeof(double));
-  double w = rest_area;
   double df[2][3];
-  const double *n = s.n;
-
-  /* Out-of-plane f0z: mu + k s1/s0 (s1/s0 in [0, 1]; 1 in the limit F = 0). */
-  double ratio01 = s0 > 1e-280 ? s1 / s0 : 1.0;
-  double ev = mu + k * ratio01;
-  if (ev > 0.0) {
+  if (ev[0] > 0.0 || !project) {
     for (int i = 0; i < 3; i++) df[0][i] = v0[0] * n[i], df[1][i] = v0[1] * n[i];
-    add_mode(d, df, w * ev, hess);
+    add_mode(d, df, w * ev[0], hess);
   }
-  /* Out-of-plane f1z: mu + k s0/s1, evaluated as (mu s1 + k s0) / s1 so that
-   * s1 -> 0 (where k < 0) clamps without dividing by zero. */
-  double numer = mu * s1 + k * s0;
-  if (numer > 0.0 && s1 > 0.0) {
-    ev = numer / s1;
+  if (ev[1] > 0.0 || !project) {
     for (int i = 0; i < 3; i++) df[0][i] = v1[0] * n[i], df[1][i] = v1[1] * n[i];
-    add_mode(d, df, w * ev, hess);
+    add_mode(d, df, w * ev[1], hess);
   }
-  /* Twist and flip on (f0y, f1x). */
   const double inv_sqrt2 = 0.70710678118654752440;
-  ev = mu + k;
-  if (ev > 0.0) {
+  if (ev[2] > 0.0 || !project) {
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 2; j++) df[j][i] = inv_sqrt2 * (v0[j] * u1[i] - v1[j] * u0[i]);
-    add_mode(d, df, w * ev, hess);
+    add_mode(d, df, w * ev[2], hess);
   }
-  ev = mu - k;
-  if (ev > 0.0) {
+  if (ev[3] > 0.0 || !project) {
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 2; j++) df[j][i] = inv_sqrt2 * (v0[j] * u1[i] + v1[j] * u0[i]);
-    add_mode(d, df, w * ev, hess);
+    add_mode(d, df, w * ev[3], hess);
   }
   /* Scaling modes on (f0x, f1y). */
-  double ha = mu + lam * s1 * s1, hd = mu + lam * s0 * s0, hb = lam * (2.0 * s.j - alpha);
+  double ha = ev[4], hd = ev[5], hb = ev[6];
   double mean = 0.5 * (ha + hd), hdiff = 0.5 * (ha - hd);
   double radius = sqrt(hdiff * hdiff + hb * hb);
   double psi_angle = 0.5 * atan2(hb, hdiff);
   double cs = cos(psi_angle), sn = sin(psi_angle);
-  ev = mean + radius;
-  if (ev > 0.0) {
+  double e = mean + radius;
+  if (e > 0.0 || !project) {
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 2; j++) df[j][i] = cs * v0[j] * u0[i] + sn * v1[j] * u1[i];
-    add_mode(d, df, w * ev, hess);
+    add_mode(d, df, w * e, hess);
   }
-  ev = mean - radius;
-  if (ev > 0.0) {
+  e = mean - radius;
+  if (e > 0.0 || !project) {
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 2; j++) df[j][i] = -sn * v0[j] * u0[i] + cs * v1[j] * u1[i];
-    add_mode(d, df, w * ev, hess);
+    add_mode(d, df, w * e, hess);
   }
   for (int row = 0; row < 9; row++)
     for (int col = 0; col < row; col++) hess[9 * row + col] = hess[9 * col + row];
+}
+
+/* ---- compression-soft membrane (compression < 1) --------------------------
+ * Skin pushed together wrinkles at a scale far below a simulation edge: a
+ * mesh that resists compression as it resists stretch can only buckle in
+ * folds one edge wide, which stand up from the body and turn over where the
+ * body under them is crushed (linear blend skinning's inner elbow and knees).
+ * With compression c < 1 the membrane is, in its principal stretches s0, s1
+ * (the singular values of F) and J = s0 s1,
+ *   Psi = mu_0 (s0 - 1)^2 + mu_1 (s1 - 1)^2 + l_J/2 (J - 1)^2,
+ *   mu_i = mu where s_i >= 1, c mu where s_i < 1,
+ *   l_J = lam - mu where J >= 1, c (lam - mu) where J < 1,
+ * isotropic, zero and stress free at rest, positive elsewhere, and to first
+ * order the same linear membrane as the Stable Neo-Hookean one (shear
+ * modulus mu, plane-stress first Lame parameter lam - mu, see the Lame
+ * parameters above) in tension, c times it in compression. Continuous first
+ * derivatives (each term's slope is 0 where its modulus switches), piecewise
+ * constant second ones. Gradient P = Psi_0 u0 v0^T + Psi_1 u1 v1^T; Hessian
+ * from the eigensystem of an isotropic energy (Smith, de Goes, Kim 2019,
+ * "Analytic Eigensystems for Isotropic Distortion Energies", restricted to a
+ * surface): out-of-plane Psi_i / s_i, twist (Psi_0 + Psi_1) / (s0 + s1), flip
+ * (Psi_0 - Psi_1) / (s0 - s1) (Psi_00 - Psi_01 where s0 = s1), scaling the
+ * 2x2 Hessian in (s0, s1). c = 1 is the Stable Neo-Hookean membrane itself. */
+typedef struct comp_law {
+  double psi, p0, p1;   /* Psi, dPsi/ds0, dPsi/ds1 */
+  double h00, h11, h01; /* second derivatives */
+} comp_law;
+
+static void comp_eval_law(double s0, double s1, double j, double mu, double lam, double c,
+                          comp_law *o) {
+  const double lj = lam - mu;
+  const double m0 = s0 >= 1.0 ? mu : c * mu, m1 = s1 >= 1.0 ? mu : c * mu;
+  const double lJ = j >= 1.0 ? lj : c * lj;
+  o->psi = m0 * (s0 - 1.0) * (s0 - 1.0) + m1 * (s1 - 1.0) * (s1 - 1.0) + 0.5 * lJ * (j - 1.0) * (j - 1.0);
+  o->p0 = 2.0 * m0 * (s0 - 1.0) + lJ * (j - 1.0) * s1;
+  o->p1 = 2.0 * m1 * (s1 - 1.0) + lJ * (j - 1.0) * s0;
+  o->h00 = 2.0 * m0 + lJ * s1 * s1;
+  o->h11 = 2.0 * m1 + lJ * s0 * s0;
+  o->h01 = lJ * (2.0 * j - 1.0);
+}
+
+#if defined(__GNUC__)
+#define SS_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define SS_ALWAYS_INLINE
+#endif
+
+/* Psi and the stress P = dPsi/dF (columns P0 = P[0..2], P1 = P[3..5]) of the
+ * compression-soft membrane at F = [f0, f1] with unit normal n and J (> 0):
+ * one flat body without trigonometry, so that the stepping kernel vectorises
+ * it; the scalar evaluation calls the same code (the same bits). V from the
+ * eigenvector of C = F^T F = [[p, q], [q, r]] for s0^2 written from the
+ * larger diagonal side; u0 = F v0 / s0, u1 = n x u0. */
+static inline SS_ALWAYS_INLINE void comp_stress(double f0x, double f0y, double f0z, double f1x,
+                                                double f1y, double f1z, double nx, double ny,
+                                                double nz, double j, double mu, double lam,
+                                                double c, double *psi, double P[6]) {
+  const double p = f0x * f0x + f0y * f0y + f0z * f0z, r = f1x * f1x + f1y * f1y + f1z * f1z;
+  const double q = f0x * f1x + f0y * f1y + f0z * f1z;
+  const double hd = 0.5 * (p - r), rad = sqrt(hd * hd + q * q);
+  const double s0 = sqrt(0.5 * (p + r) + rad);
+  const double s1r = s0 > 1e-280 ? j / s0 : 0.0;
+  const double s1 = s1r > s0 ? s0 : s1r;
+  const double ea = p >= r ? hd + rad : q, eb = p >= r ? q : rad - hd;
+  const double el = sqrt(ea * ea + eb * eb);
+  const double v0x = el > 0.0 ? ea / el : 1.0, v0y = el > 0.0 ? eb / el : 0.0;
+  const double v1x = -v0y, v1y = v0x;
+  const double is0 = s0 > 1e-280 ? 1.0 / s0 : 0.0;
+  const double u0x = (f0x * v0x + f1x * v0y) * is0, u0y = (f0y * v0x + f1y * v0y) * is0,
+               u0z = (f0z * v0x + f1z * v0y) * is0;
+  const double u1x = ny * u0z - nz * u0y, u1y = nz * u0x - nx * u0z, u1z = nx * u0y - ny * u0x;
+  const double lj = lam - mu;
+  const double m0 = s0 >= 1.0 ? mu : c * mu, m1 = s1 >= 1.0 ? mu : c * mu;
+  const double lJ = j >= 1.0 ? lj : c * lj;
+  *psi = m0 * (s0 - 1.0) * (s0 - 1.0) + m1 * (s1 - 1.0) * (s1 - 1.0) + 0.5 * lJ * (j - 1.0) * (j - 1.0);
+  const double d0 = 2.0 * m0 * (s0 - 1.0) + lJ * (j - 1.0) * s1;
+  const double d1 = 2.0 * m1 * (s1 - 1.0) + lJ * (j - 1.0) * s0;
+  P[0] = d0 * u0x * v0x + d1 * u1x * v1x, P[1] = d0 * u0y * v0x + d1 * u1y * v1x;
+  P[2] = d0 * u0z * v0x + d1 * u1z * v1x;
+  P[3] = d0 * u0x * v0y + d1 * u1x * v1y, P[4] = d0 * u0y * v0y + d1 * u1y * v1y;
+  P[5] = d0 * u0z * v0y + d1 * u1z * v1y;
+}
+
+/* Energy, gradient and (projected, or exact if !project) Hessian of the
+ * compression-soft membrane on face state s: energy and gradient from
+ * comp_stress, the Hessian from the SVD and comp_eval_law. */
+static double comp_eval(const membrane_state *s, const double d[3][2], double rest_area, double mu,
+                        double lam, double c, double *grad, double *hess, int project) {
+  double psi, P[6];
+  comp_stress(s->f[0][0], s->f[0][1], s->f[0][2], s->f[1][0], s->f[1][1], s->f[1][2], s->n[0],
+              s->n[1], s->n[2], s->j, mu, lam, c, &psi, P);
+  if (grad)
+    for (int a = 0; a < 3; a++)
+      for (int i = 0; i < 3; i++) grad[3 * a + i] = rest_area * (d[a][0] * P[i] + d[a][1] * P[3 + i]);
+  if (hess) {
+    double v0[2], v1[2], s0, s1, u0[3], u1[3];
+    membrane_svd(s, v0, v1, &s0, &s1, u0, u1);
+    comp_law law;
+    comp_eval_law(s0, s1, s->j, mu, lam, c, &law);
+    double ev[7];
+    ev[0] = s0 > 1e-280 ? law.p0 / s0 : law.h00;
+    ev[1] = s1 > 0.0 ? law.p1 / s1 : (project ? 0.0 : -INFINITY);
+    ev[2] = s0 + s1 > 1e-280 ? (law.p0 + law.p1) / (s0 + s1) : law.h00;
+    ev[3] = s0 - s1 > 1e-8 * (s0 > 1.0 ? s0 : 1.0) ? (law.p0 - law.p1) / (s0 - s1) : law.h00 - law.h01;
+    ev[4] = law.h00, ev[5] = law.h11, ev[6] = law.h01;
+    membrane_modes(d, s->n, v0, v1, u0, u1, ev, rest_area, project, hess);
+  }
+  return rest_area * psi;
+}
+
+double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_area, double mu,
+                        double lam, double compression, double *grad, double *hess) {
+  membrane_state s;
+  double d[3][2];
+  membrane_state_init(x, dm_inv, &s);
+  shape_derivatives(dm_inv, d);
+  if (compression < 1.0) return comp_eval(&s, d, rest_area, mu, lam, compression, grad, hess, 1);
+  double energy = energy_and_gradient(&s, d, rest_area, mu, lam, grad);
+  if (!hess) return energy;
+  double v0[2], v1[2], s0, s1, u0[3], u1[3];
+  membrane_svd(&s, v0, v1, &s0, &s1, u0, u1);
+  double alpha = alpha_of(mu, lam);
+  double k = lam * (s.j - alpha);
+  double ev[7];
+  /* Out-of-plane f0z: mu + k s1/s0 (s1/s0 in [0, 1]; 1 in the limit F = 0). */
+  double ratio01 = s0 > 1e-280 ? s1 / s0 : 1.0;
+  ev[0] = mu + k * ratio01;
+  /* Out-of-plane f1z: mu + k s0/s1, evaluated as (mu s1 + k s0) / s1 so that
+   * s1 -> 0 (where k < 0) clamps without dividing by zero. */
+  double numer = mu * s1 + k * s0;
+  ev[1] = numer > 0.0 && s1 > 0.0 ? numer / s1 : 0.0;
+  /* Twist and flip on (f0y, f1x). */
+  ev[2] = mu + k;
+  ev[3] = mu - k;
+  /* Scaling modes on (f0x, f1y). */
+  ev[4] = mu + lam * s1 * s1, ev[5] = mu + lam * s0 * s0, ev[6] = lam * (2.0 * s.j - alpha);
+  membrane_modes(d, s.n, v0, v1, u0, u1, ev, rest_area, 1, hess);
   return energy;
 }
 
@@ -292,11 +419,12 @@ double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_a
  *   d2J/dF2 = A^T (I - n n^T) A / J + [[0, -[n]x], [[n]x, 0]],
  * A = [-[f1]x, [f0]x] (dc/dF for c = f0 x f1), gJ = [f1 x n; n x f0]. */
 double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double rest_area,
-                            double mu, double lam, double *grad, double *hess) {
+                            double mu, double lam, double compression, double *grad, double *hess) {
   membrane_state s;
   double d[3][2];
   membrane_state_init(x, dm_inv, &s);
   shape_derivatives(dm_inv, d);
+  if (compression < 1.0) return comp_eval(&s, d, rest_area, mu, lam, compression, grad, hess, 0);
   double energy = energy_and_gradient(&s, d, rest_area, mu, lam, grad);
   if (!hess) return energy;
 
@@ -348,8 +476,13 @@ double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double re
  * written per lane. The normal n = c / J of a collapsed face (J <= 1e-280)
  * needs the fallback of membrane_state_init: such lanes are recomputed by
  * ss_membrane_eval. */
-void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
-                            double mu, double lam, double *energy, double *grad) {
+/* The kernel, specialised by the constant `soft` (compression-soft when 1;
+ * then compression is c): the Stable Neo-Hookean body as it was, or
+ * comp_stress. */
+static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, int q0, int q1,
+                                                 const double *x, double mu, double lam,
+                                                 double compression, double *energy,
+                                                 double *grad, const int soft) {
   enum { L = SS_MEMBRANE_LANES };
   const double alpha = alpha_of(mu, lam);
   const double rest_offset = lam > 0.0 ? 0.5 * mu * mu / lam : 0.0;
@@ -379,13 +512,20 @@ void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const 
       const double j = sqrt(cx * cx + cy * cy + cz * cz);
       jl[l] = j;
       const double nx = cx / j, ny = cy / j, nz = cz / j;
-      const double psi = 0.5 * mu * (ic - 2.0) + 0.5 * lam * (j - alpha) * (j - alpha) - rest_offset;
-      /* dJ/df0 = f1 x n, dJ/df1 = n x f0 */
-      const double a0x = f1y * nz - f1z * ny, a0y = f1z * nx - f1x * nz, a0z = f1x * ny - f1y * nx;
-      const double a1x = ny * f0z - nz * f0y, a1y = nz * f0x - nx * f0z, a1z = nx * f0y - ny * f0x;
-      const double k = lam * (j - alpha);
-      const double p0x = mu * f0x + k * a0x, p0y = mu * f0y + k * a0y, p0z = mu * f0z + k * a0z;
-      const double p1x = mu * f1x + k * a1x, p1y = mu * f1y + k * a1y, p1z = mu * f1z + k * a1z;
+      double psi, p0x, p0y, p0z, p1x, p1y, p1z;
+      if (soft) {
+        double P[6];
+        comp_stress(f0x, f0y, f0z, f1x, f1y, f1z, nx, ny, nz, j, mu, lam, compression, &psi, P);
+        p0x = P[0], p0y = P[1], p0z = P[2], p1x = P[3], p1y = P[4], p1z = P[5];
+      } else {
+        psi = 0.5 * mu * (ic - 2.0) + 0.5 * lam * (j - alpha) * (j - alpha) - rest_offset;
+        /* dJ/df0 = f1 x n, dJ/df1 = n x f0 */
+        const double a0x = f1y * nz - f1z * ny, a0y = f1z * nx - f1x * nz, a0z = f1x * ny - f1y * nx;
+        const double a1x = ny * f0z - nz * f0y, a1y = nz * f0x - nx * f0z, a1z = nx * f0y - ny * f0x;
+        const double k = lam * (j - alpha);
+        p0x = mu * f0x + k * a0x, p0y = mu * f0y + k * a0y, p0z = mu * f0z + k * a0z;
+        p1x = mu * f1x + k * a1x, p1y = mu * f1y + k * a1y, p1z = mu * f1z + k * a1z;
+      }
       const double d00 = -d10 - d20, d01 = -d11 - d21;
       const double ar = area[l];
       gr[0][l] = ar * (d00 * p0x + d01 * p1x);
@@ -405,7 +545,7 @@ void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const 
         double x9[9], g9[9];
         for (int c = 0; c < 3; c++)
           for (int i = 0; i < 3; i++) x9[3 * c + i] = x[fc->xo[c] + i];
-        en[l] = ss_membrane_eval(x9, fc->dm_inv, fc->area, mu, lam, g9, NULL);
+        en[l] = ss_membrane_eval(x9, fc->dm_inv, fc->area, mu, lam, soft ? compression : 1.0, g9, NULL);
         for (int r = 0; r < 9; r++) gr[r][l] = g9[r];
       }
       energy[qb + l] = en[l];
@@ -414,4 +554,13 @@ void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const 
     for (int l = 0; l < m; l++)
       for (int r = 0; r < 9; r++) gb[9 * l + r] = gr[r][l];
   }
+}
+
+void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
+                            double mu, double lam, double compression, double *energy,
+                            double *grad) {
+  if (compression < 1.0)
+    batch_kernel(face, q0, q1, x, mu, lam, compression, energy, grad, 1);
+  else
+    batch_kernel(face, q0, q1, x, mu, lam, 1.0, energy, grad, 0);
 }

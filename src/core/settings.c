@@ -80,6 +80,10 @@ static const ss_setting table[] = {
      SS_APPLY_REFACTOR, 1, NULL,
      "skin faces resist turning over against the body and vertices resist going under it "
      "(energy per m^2 of skin, as young); 0 off, the paper's skin"},
+    {"compression", NULL, SS_SETTING_DOUBLE, OFF(compression), 0.1, 0, 1, 1, 0, "",
+     SS_APPLY_REFACTOR, 1, NULL,
+     "membrane stiffness under compression, as a share of that in tension (skin wrinkles "
+     "below an edge's scale); 1 the Stable Neo-Hookean membrane"},
     {"threads", NULL, SS_SETTING_INT, OFF(threads), 0, 0, 64, 0, 0, "", SS_APPLY_RECREATE, 0,
      NULL, "threads for energies and anchor walks; 0: all cores where they pay (the same bits "
      "for any count)"},

@@ -169,11 +169,12 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
       ss_membrane_eval_batch(sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull, sim->m->mu,
-                             sim->m->lam, fe, fg);
+                             sim->m->lam, sim->m->set.compression, fe, fg);
   } else
 #endif
   {
-    ss_membrane_eval_batch(sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam, fe, fg);
+    ss_membrane_eval_batch(sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam, sim->m->set.compression,
+                           fe, fg);
   }
   for (int q = 0; q < nsim; q++) e += fe[q];
   if (g) {
@@ -327,9 +328,11 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
     for (int c = 0; c < 3; c++) memcpy(x9 + 3 * c, xfull + 3 * fv[c], 3 * sizeof(double));
     /* The exact Hessian grows like 1/J: nearly collapsed faces stay projected. */
     if (exact && area_ratio(sim, x9, f) > 1e-3)
-      ss_membrane_eval_raw(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam, NULL, h81);
+      ss_membrane_eval_raw(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam,
+                           sim->m->set.compression, NULL, h81);
     else
-      ss_membrane_eval(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam, NULL, h81);
+      ss_membrane_eval(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam,
+                       sim->m->set.compression, NULL, h81);
     scatter_element(sim, fv, 3, sim->m->face_rank + 9 * f, h81, vals);
   }
   for (int q = 0; q < sim->m->nhinge; q++) {

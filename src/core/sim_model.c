@@ -103,7 +103,7 @@ int ss_sim_in_model(size_t offset) {
       offsetof(ss_sim_settings, young),   offsetof(ss_sim_settings, poisson),
       offsetof(ss_sim_settings, density), offsetof(ss_sim_settings, anchor_stiffness),
       offsetof(ss_sim_settings, bending), offsetof(ss_sim_settings, barycenter_anchors),
-      offsetof(ss_sim_settings, orient)};
+      offsetof(ss_sim_settings, orient),  offsetof(ss_sim_settings, compression)};
   for (size_t i = 0; i < sizeof model_settings / sizeof model_settings[0]; i++)
     if (model_settings[i] == offset) return 1;
   return 0;

@@ -12,6 +12,10 @@
 
 static const double MU = 3.0, LAM = 7.0;
 
+/* The membrane the generic checks run on: 1 the Stable Neo-Hookean one, then
+ * the compression-soft one (main runs them for both). */
+static double COMP = 1.0;
+
 static double randu(unsigned long long *rng) { return 2.0 * ss_test_rand(rng) - 1.0; }
 
 static double norm_inf(const double *a, int n) {
@@ -123,26 +127,26 @@ static void test_rest_state(unsigned long long *rng) {
     double rest[9], dm[4], area, g[9], h[81];
     random_rest(rng, rest);
     CHECK_EQ_INT(ss_membrane_rest(rest, rest + 3, rest + 6, dm, &area), 0);
-    double e = ss_membrane_eval(rest, dm, area, MU, LAM, g, h);
+    double e = ss_membrane_eval(rest, dm, area, MU, LAM, COMP, g, h);
     CHECK_NEAR(e, 0.0, 1e-13);
     CHECK_MSG(norm_inf(g, 9) < 1e-12, "trial %d: |grad| at rest = %g", trial, norm_inf(g, 9));
     /* Rest Hessian is PSD already: projected equals raw. */
     double hr[81];
-    ss_membrane_eval_raw(rest, dm, area, MU, LAM, NULL, hr);
+    ss_membrane_eval_raw(rest, dm, area, MU, LAM, COMP, NULL, hr);
     double diff = 0.0;
     for (int i = 0; i < 81; i++) diff = fmax(diff, fabs(h[i] - hr[i]));
     CHECK_MSG(diff < 1e-10 * norm_inf(hr, 81), "rest Hessian projected vs raw %g", diff);
   }
   /* F = [I; 0] exactly: unit right triangle in the xy-plane, dm_inv = I. */
   double x[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, id[4] = {1, 0, 0, 1}, g[9];
-  double e = ss_membrane_eval(x, id, 1.0, MU, LAM, g, NULL);
+  double e = ss_membrane_eval(x, id, 1.0, MU, LAM, COMP, g, NULL);
   CHECK_NEAR(e, 0.0, 0.0);
   for (int i = 0; i < 9; i++) CHECK_NEAR(g[i], 0.0, 1e-15);
   /* Without alpha = 1 + mu/lam (i.e. alpha = 1) the rest would be stressed:
    * the check above is not vacuous. The stress then is mu F: gradient -mu
    * at x0 along x. Reproduce it through lam -> infinity limit of alpha. */
   double g_big[9];
-  ss_membrane_eval(x, id, 1.0, MU, 1e12, g_big, NULL);
+  ss_membrane_eval(x, id, 1.0, MU, 1e12, 1.0, g_big, NULL);
   CHECK_NEAR(g_big[0], 0.0, 1e-3);
 }
 
@@ -161,8 +165,13 @@ static void test_uniform_scaling(unsigned long long *rng) {
       rotate_points(r, t, scaled, x, 3);
       double psi = MU / 2 * (2 * s * s - 2) + LAM / 2 * (s * s - alpha) * (s * s - alpha) -
                    MU * MU / (2 * LAM); /* minus the rest offset, see membrane.c */
-      double e = ss_membrane_eval(x, dm, area, MU, LAM, NULL, NULL);
+      double e = ss_membrane_eval(x, dm, area, MU, LAM, 1.0, NULL, NULL);
       CHECK_NEAR(e, area * psi, 1e-11 * (1.0 + fabs(area * psi)));
+      /* the compression-soft membrane: 2 mu_s (s - 1)^2 + l_J/2 (s^2 - 1)^2 */
+      const double c = 0.1, ms = s >= 1.0 ? MU : c * MU, lj = s * s >= 1.0 ? LAM - MU : c * (LAM - MU);
+      const double psi_c = 2.0 * ms * (s - 1) * (s - 1) + 0.5 * lj * (s * s - 1) * (s * s - 1);
+      double ec = ss_membrane_eval(x, dm, area, MU, LAM, c, NULL, NULL);
+      CHECK_NEAR(ec, area * psi_c, 1e-11 * (1.0 + fabs(area * psi_c)));
     }
   }
 }
@@ -177,11 +186,11 @@ static void test_plane_stress_moduli(void) {
   double sy = 1.0;
   for (int it = 0; it < 30; it++) { /* Newton on the y-coordinate of vertex 2 */
     double x[9] = {0, 0, 0, 1 + eps, 0, 0, 0, sy, 0}, g[9], h[81];
-    ss_membrane_eval(x, id, 0.5, mu, lam, g, h);
+    ss_membrane_eval(x, id, 0.5, mu, lam, 1.0, g, h);
     sy -= g[7] / h[7 * 9 + 7];
   }
   double x[9] = {0, 0, 0, 1 + eps, 0, 0, 0, sy, 0};
-  double e = ss_membrane_eval(x, id, 0.5, mu, lam, NULL, NULL);
+  double e = ss_membrane_eval(x, id, 0.5, mu, lam, 1.0, NULL, NULL);
   CHECK_NEAR(-(sy - 1.0) / eps, nu, 1e-3);
   CHECK_NEAR(e / 0.5 / (0.5 * eps * eps), young, 1e-2 * young);
 }
@@ -190,15 +199,15 @@ static void test_plane_stress_moduli(void) {
 static void fd_check(const double x0[9], const double dm[4], double area, double h_step,
                      double grad_tol, double hess_tol, const char *what) {
   double g[9], hraw[81], x[9];
-  ss_membrane_eval_raw(x0, dm, area, MU, LAM, g, hraw);
+  ss_membrane_eval_raw(x0, dm, area, MU, LAM, COMP, g, hraw);
   double fd_g[9], fd_h[81];
   for (int k = 0; k < 9; k++) {
     double gp[9], gm[9];
     memcpy(x, x0, sizeof x);
     x[k] += h_step;
-    double ep = ss_membrane_eval(x, dm, area, MU, LAM, gp, NULL);
+    double ep = ss_membrane_eval(x, dm, area, MU, LAM, COMP, gp, NULL);
     x[k] = x0[k] - h_step;
-    double em = ss_membrane_eval(x, dm, area, MU, LAM, gm, NULL);
+    double em = ss_membrane_eval(x, dm, area, MU, LAM, COMP, gm, NULL);
     fd_g[k] = (ep - em) / (2 * h_step);
     for (int i = 0; i < 9; i++) fd_h[9 * i + k] = (gp[i] - gm[i]) / (2 * h_step);
   }
@@ -264,8 +273,8 @@ static void test_derivatives(unsigned long long *rng) {
       fd_check(x, dm, area, h_step, gtol, htol, what);
 
       double g[9], h[81], g2[9], hraw[81], href[81];
-      double e = ss_membrane_eval(x, dm, area, MU, LAM, g, h);
-      double e2 = ss_membrane_eval(x, dm, area, MU, LAM, g2, NULL);
+      double e = ss_membrane_eval(x, dm, area, MU, LAM, COMP, g, h);
+      double e2 = ss_membrane_eval(x, dm, area, MU, LAM, COMP, g2, NULL);
       CHECK(e == e2 && memcmp(g, g2, sizeof g) == 0); /* the fast path agrees bit for bit */
       CHECK(all_finite(h, 81));
       double hs = norm_inf(h, 81);
@@ -273,7 +282,7 @@ static void test_derivatives(unsigned long long *rng) {
                 min_eigenvalue(h, 9));
       for (int i = 0; i < 9; i++)
         for (int j = 0; j < 9; j++) CHECK(h[9 * i + j] == h[9 * j + i]);
-      ss_membrane_eval_raw(x, dm, area, MU, LAM, NULL, hraw);
+      ss_membrane_eval_raw(x, dm, area, MU, LAM, COMP, NULL, hraw);
       reference_projection(hraw, dm, href);
       double diff = 0.0;
       for (int i = 0; i < 81; i++) diff = fmax(diff, fabs(h[i] - href[i]));
@@ -298,8 +307,8 @@ static void test_projection_identity_when_psd(unsigned long long *rng) {
     random_rotation(rng, r);
     rotate_points(r, t, scaled, x, 3);
     double h[81], hraw[81];
-    ss_membrane_eval(x, dm, area, MU, LAM, NULL, h);
-    ss_membrane_eval_raw(x, dm, area, MU, LAM, NULL, hraw);
+    ss_membrane_eval(x, dm, area, MU, LAM, COMP, NULL, h);
+    ss_membrane_eval_raw(x, dm, area, MU, LAM, COMP, NULL, hraw);
     double hs = norm_inf(hraw, 81);
     CHECK(min_eigenvalue(hraw, 9) >= -1e-12 * hs);
     double diff = 0.0;
@@ -310,7 +319,7 @@ static void test_projection_identity_when_psd(unsigned long long *rng) {
   CHECK_EQ_INT(compared, 20);
   /* And in compression the exact Hessian is indefinite (the projection does work). */
   double x[9] = {0, 0, 0, 0.5, 0, 0, 0, 0.5, 0}, id[4] = {1, 0, 0, 1}, hraw[81];
-  ss_membrane_eval_raw(x, id, 0.5, MU, LAM, NULL, hraw);
+  ss_membrane_eval_raw(x, id, 0.5, MU, LAM, COMP, NULL, hraw);
   CHECK(min_eigenvalue(hraw, 9) < -1e-3);
 }
 
@@ -327,8 +336,8 @@ static void test_rigid_invariance(unsigned long long *rng) {
       for (int j = 0; j < 3; j++) r[j] = -r[j]; /* a reflection */
     rotate_points(r, t, x, y, 3);
     double gx[9], gy[9], hx[81], hy[81];
-    double ex = ss_membrane_eval(x, dm, area, MU, LAM, gx, hx);
-    double ey = ss_membrane_eval(y, dm, area, MU, LAM, gy, hy);
+    double ex = ss_membrane_eval(x, dm, area, MU, LAM, COMP, gx, hx);
+    double ey = ss_membrane_eval(y, dm, area, MU, LAM, COMP, gy, hy);
     CHECK_NEAR(ex, ey, 1e-10 * (1.0 + fabs(ex)));
     double zero[3] = {0, 0, 0}, rg[9];
     rotate_points(r, zero, gx, rg, 3);
@@ -362,7 +371,7 @@ static void test_degenerate(unsigned long long *rng) {
       {0, 0, 0, 0, 0, 0, 0, 1e-300, 0}}; /* almost all equal */
   for (int c = 0; c < 4; c++) {
     double g[9], h[81];
-    double e = ss_membrane_eval(cases[c], dm, area, MU, LAM, g, h);
+    double e = ss_membrane_eval(cases[c], dm, area, MU, LAM, COMP, g, h);
     CHECK_MSG(isfinite(e) && all_finite(g, 9) && all_finite(h, 81), "degenerate case %d", c);
     CHECK(min_eigenvalue(h, 9) >= -1e-9 * norm_inf(h, 81));
     /* A collapsed triangle holds energy (it resists losing its area). */
@@ -372,9 +381,9 @@ static void test_degenerate(unsigned long long *rng) {
    * a small step against it lowers the energy. */
   {
     double x[9] = {0, 0, 0, 1, 0, 0, 0.5, 1e-9, 0}, g[9], y[9];
-    double e = ss_membrane_eval(x, dm, area, MU, LAM, g, NULL);
+    double e = ss_membrane_eval(x, dm, area, MU, LAM, COMP, g, NULL);
     for (int i = 0; i < 9; i++) y[i] = x[i] - 1e-4 * g[i];
-    CHECK(ss_membrane_eval(y, dm, area, MU, LAM, NULL, NULL) < e);
+    CHECK(ss_membrane_eval(y, dm, area, MU, LAM, COMP, NULL, NULL) < e);
   }
   /* Degenerate rest triangles. */
   double line[9] = {0, 0, 0, 1, 1, 0, 2, 2, 0}, point[9] = {1, 1, 1, 1, 1, 1, 1, 1, 1};
@@ -385,7 +394,7 @@ static void test_degenerate(unsigned long long *rng) {
     CHECK(d[0] == 1.0 && d[1] == 0.0 && d[2] == 0.0 && d[3] == 1.0 && a == 0.0);
     double x[9], g[9], h[81];
     for (int i = 0; i < 9; i++) x[i] = randu(rng);
-    CHECK_NEAR(ss_membrane_eval(x, d, a, MU, LAM, g, h), 0.0, 0.0);
+    CHECK_NEAR(ss_membrane_eval(x, d, a, MU, LAM, COMP, g, h), 0.0, 0.0);
     CHECK(norm_inf(g, 9) == 0.0 && norm_inf(h, 81) == 0.0);
   }
 }
@@ -416,15 +425,34 @@ static void test_batch_bits(unsigned long long *rng) {
   for (int start = 0; start <= SS_MEMBRANE_LANES; start += SS_MEMBRANE_LANES) {
     memset(en, 0, sizeof en);
     memset(gr, 0, sizeof gr);
-    ss_membrane_eval_batch(rec, start, NF, x, MU, LAM, en, gr);
+    ss_membrane_eval_batch(rec, start, NF, x, MU, LAM, COMP, en, gr);
     for (int q = start; q < NF; q++) {
       double g9[9];
-      double e = ss_membrane_eval(x + 9 * q, rec[q].dm_inv, rec[q].area, MU, LAM, g9, NULL);
+      double e = ss_membrane_eval(x + 9 * q, rec[q].dm_inv, rec[q].area, MU, LAM, COMP, g9, NULL);
       CHECK_MSG(memcmp(&e, &en[q], sizeof e) == 0, "batch energy of face %d differs (%.17g vs %.17g)", q,
                 en[q], e);
       CHECK_MSG(memcmp(g9, gr + 9 * q, sizeof g9) == 0, "batch gradient of face %d differs", q);
     }
   }
+}
+
+/* The compression-soft membrane is the linear membrane of the same mu, lam in
+ * tension and c times it in compression: equibiaxial strain of 1e-4 either
+ * way against the Stable Neo-Hookean membrane. */
+static void test_compression_moduli(void) {
+  double id[4] = {1, 0, 0, 1};
+  const double c = 0.1, eps = 1e-4;
+  for (int sign = -1; sign <= 1; sign += 2) {
+    const double s = 1.0 + sign * eps;
+    double x[9] = {0, 0, 0, s, 0, 0, 0, s, 0};
+    double snh = ss_membrane_eval(x, id, 0.5, MU, LAM, 1.0, NULL, NULL);
+    double soft = ss_membrane_eval(x, id, 0.5, MU, LAM, c, NULL, NULL);
+    CHECK_MSG(fabs(soft / snh - (sign > 0 ? 1.0 : c)) < 1e-3 * (sign > 0 ? 1.0 : c) + 2e-3 * c,
+              "equibiaxial %+g: compression-soft / Stable Neo-Hookean energy %g", sign * eps, soft / snh);
+  }
+  /* the value 1 is the Stable Neo-Hookean membrane itself, bit for bit */
+  double x[9] = {0.1, -0.2, 0.05, 1.3, 0.1, -0.1, 0.2, 0.7, 0.3}, g1[9], g2[9];
+  CHECK(ss_membrane_eval(x, id, 0.5, MU, LAM, 1.0, g1, NULL) == ss_membrane_eval(x, id, 0.5, MU, LAM, 2.0, g2, NULL));
 }
 
 int main(void) {
@@ -433,6 +461,15 @@ int main(void) {
   test_rest_state(&rng);
   test_uniform_scaling(&rng);
   test_plane_stress_moduli();
+  test_derivatives(&rng);
+  test_projection_identity_when_psd(&rng);
+  test_rigid_invariance(&rng);
+  test_degenerate(&rng);
+  test_batch_bits(&rng);
+  test_compression_moduli();
+  /* the generic checks again on the compression-soft membrane */
+  COMP = 0.1;
+  test_rest_state(&rng);
   test_derivatives(&rng);
   test_projection_identity_when_psd(&rng);
   test_rigid_invariance(&rng);

@@ -38,9 +38,9 @@
 
 #define BCN_ASSET "/usr/share/assimp/models/X/BCN_Epileptic.X"
 
-enum { OPT_NONE, OPT_NO_BARY, OPT_BENDING, OPT_GRAVITY, OPT_REGION, OPT_COARSE };
+enum { OPT_NONE, OPT_NO_BARY, OPT_BENDING, OPT_GRAVITY, OPT_REGION, OPT_COARSE, OPT_STIFF };
 static const char *const option_names[] = {"base", "no-barycenters", "bending", "gravity",
-                                           "region", "coarse-skin"};
+                                           "region", "coarse-skin", "stiff-compression"};
 
 /* One run of the sweep. */
 typedef struct bench_case {
@@ -156,7 +156,7 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
   static const char *const opt_scenes_quick[] = {"elbow"};
   const char *const *os = quick ? opt_scenes_quick : opt_scenes_full;
   for (int i = 0; i < (quick ? 1 : 3); i++) {
-    for (int o = OPT_NONE; o <= OPT_COARSE; o++) {
+    for (int o = OPT_NONE; o <= OPT_STIFF; o++) {
       bench_case c = base_case("options", os[i], 0, scene_tris, frames);
       c.option = o;
       c.variant = option_names[o];
@@ -282,6 +282,7 @@ static int run_case(bench_ctx *ctx, const bench_case *c, int index, int count, d
       case OPT_NO_BARY: s.sim.barycenter_anchors = 0; break;
       case OPT_BENDING: s.sim.bending = 1e-3; break;
       case OPT_GRAVITY: s.sim.gravity[2] = -9.81; break;
+      case OPT_STIFF: s.sim.compression = 1.0; break; /* the Stable Neo-Hookean membrane */
       case OPT_REGION:
         mask = half_mask(&body);
         if (!mask) status = SS_E_NOMEM;

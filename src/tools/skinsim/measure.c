@@ -168,6 +168,7 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "slide", s->sim.slide);
   json_num(j, "tether", s->sim.tether);
   json_num(j, "orient", s->sim.orient);
+  json_num(j, "compression", s->sim.compression);
   json_hex(j, "final_hash", st->final_hash);
   if (r->has_reference) {
     json_num(j, "error_vs_reference", r->error_vs_reference);
