@@ -321,40 +321,49 @@ static void comp_eval_law(double s0, double s1, double j, double mu, double lam,
 #define SS_ALWAYS_INLINE
 #endif
 
-/* Psi and the stress P = dPsi/dF (columns P0 = P[0..2], P1 = P[3..5]) of the
- * compression-soft membrane at F = [f0, f1] with unit normal n and J (> 0):
- * one flat body without trigonometry, so that the stepping kernel vectorises
- * it; the scalar evaluation calls the same code (the same bits). V from the
- * eigenvector of C = F^T F = [[p, q], [q, r]] for s0^2 written from the
- * larger diagonal side; u0 = F v0 / s0, u1 = n x u0. */
-static inline SS_ALWAYS_INLINE void comp_stress(double f0x, double f0y, double f0z, double f1x,
-                                                double f1y, double f1z, double nx, double ny,
-                                                double nz, double j, double mu, double lam,
-                                                double c, double *psi, double P[6]) {
+/* Psi and the stress P = dPsi/dF (its columns P0, P1) of the compression-soft
+ * membrane at F = [f0, f1] with J = |f0 x f1| > 0: one flat body, so that the
+ * stepping kernel vectorises it; the scalar evaluation calls the same code
+ * (the same bits). s0^2 is the larger eigenvalue of C = F^T F = [[p, q], [q,
+ * r]], s1 = J / s0, v0 its unit eigenvector; P = F M with M = (Psi_1/s1) I +
+ * (Psi_0/s0 - Psi_1/s1) v0 v0^T (= Psi_0 u0 v0^T + Psi_1 u1 v1^T). */
+typedef struct comp_out {
+  double psi;
+  double p0x, p0y, p0z, p1x, p1y, p1z; /* the columns P0, P1 of P */
+} comp_out;
+
+static inline SS_ALWAYS_INLINE comp_out comp_stress(double f0x, double f0y, double f0z, double f1x,
+                                                    double f1y, double f1z, double j, double mu,
+                                                    double lam, double c) {
+  /* No branch and no selection (the vectoriser gives up on several): the
+   * moduli by 0/1 factors, V from the sum of the eigenvector's two
+   * expressions (parallel, never opposite; zero only where C is isotropic,
+   * where any V is one and the v0 term below has a zero weight). Needs J >
+   * 0 (so s0 > 0); comp_eval handles collapsed faces. */
   const double p = f0x * f0x + f0y * f0y + f0z * f0z, r = f1x * f1x + f1y * f1y + f1z * f1z;
   const double q = f0x * f1x + f0y * f1y + f0z * f1z;
   const double hd = 0.5 * (p - r), rad = sqrt(hd * hd + q * q);
   const double s0 = sqrt(0.5 * (p + r) + rad);
-  const double s1r = s0 > 1e-280 ? j / s0 : 0.0;
-  const double s1 = s1r > s0 ? s0 : s1r;
-  const double ea = p >= r ? hd + rad : q, eb = p >= r ? q : rad - hd;
-  const double el = sqrt(ea * ea + eb * eb);
-  const double v0x = el > 0.0 ? ea / el : 1.0, v0y = el > 0.0 ? eb / el : 0.0;
-  const double v1x = -v0y, v1y = v0x;
-  const double is0 = s0 > 1e-280 ? 1.0 / s0 : 0.0;
-  const double u0x = (f0x * v0x + f1x * v0y) * is0, u0y = (f0y * v0x + f1y * v0y) * is0,
-               u0z = (f0z * v0x + f1z * v0y) * is0;
-  const double u1x = ny * u0z - nz * u0y, u1y = nz * u0x - nx * u0z, u1z = nx * u0y - ny * u0x;
-  const double lj = lam - mu;
-  const double m0 = s0 >= 1.0 ? mu : c * mu, m1 = s1 >= 1.0 ? mu : c * mu;
-  const double lJ = j >= 1.0 ? lj : c * lj;
-  *psi = m0 * (s0 - 1.0) * (s0 - 1.0) + m1 * (s1 - 1.0) * (s1 - 1.0) + 0.5 * lJ * (j - 1.0) * (j - 1.0);
+  const double is0 = 1.0 / s0;
+  const double s1 = j * is0, is1 = s0 / j;
+  const double ea = hd + rad + q, eb = q + rad - hd;
+  const double iel = 1.0 / sqrt(ea * ea + eb * eb + 1e-300);
+  const double v0x = ea * iel, v0y = eb * iel;
+  const double lj = lam - mu, cm = c * mu, cl = c * lj;
+  /* 1 where stretched (x - 1 >= 0, +0 included), else 0 */
+  const double t0 = 0.5 + copysign(0.5, s0 - 1.0), t1 = 0.5 + copysign(0.5, s1 - 1.0),
+               tj = 0.5 + copysign(0.5, j - 1.0);
+  const double m0 = cm + (mu - cm) * t0, m1 = cm + (mu - cm) * t1, lJ = cl + (lj - cl) * tj;
+  comp_out o;
+  o.psi = m0 * (s0 - 1.0) * (s0 - 1.0) + m1 * (s1 - 1.0) * (s1 - 1.0) + 0.5 * lJ * (j - 1.0) * (j - 1.0);
   const double d0 = 2.0 * m0 * (s0 - 1.0) + lJ * (j - 1.0) * s1;
   const double d1 = 2.0 * m1 * (s1 - 1.0) + lJ * (j - 1.0) * s0;
-  P[0] = d0 * u0x * v0x + d1 * u1x * v1x, P[1] = d0 * u0y * v0x + d1 * u1y * v1x;
-  P[2] = d0 * u0z * v0x + d1 * u1z * v1x;
-  P[3] = d0 * u0x * v0y + d1 * u1x * v1y, P[4] = d0 * u0y * v0y + d1 * u1y * v1y;
-  P[5] = d0 * u0z * v0y + d1 * u1z * v1y;
+  /* P = F M, M = (d1/s1) I + (d0/s0 - d1/s1) v0 v0^T */
+  const double a = d1 * is1, b = d0 * is0 - a;
+  const double m00 = a + b * v0x * v0x, m01 = b * v0x * v0y, m11 = a + b * v0y * v0y;
+  o.p0x = f0x * m00 + f1x * m01, o.p0y = f0y * m00 + f1y * m01, o.p0z = f0z * m00 + f1z * m01;
+  o.p1x = f0x * m01 + f1x * m11, o.p1y = f0y * m01 + f1y * m11, o.p1z = f0z * m01 + f1z * m11;
+  return o;
 }
 
 /* Energy, gradient and (projected, or exact if !project) Hessian of the
@@ -362,17 +371,27 @@ static inline SS_ALWAYS_INLINE void comp_stress(double f0x, double f0y, double f
  * comp_stress, the Hessian from the SVD and comp_eval_law. */
 static double comp_eval(const membrane_state *s, const double d[3][2], double rest_area, double mu,
                         double lam, double c, double *grad, double *hess, int project) {
+  double v0[2], v1[2], s0, s1, u0[3], u1[3];
+  membrane_svd(s, v0, v1, &s0, &s1, u0, u1);
+  comp_law law;
+  comp_eval_law(s0, s1, s->j, mu, lam, c, &law);
   double psi, P[6];
-  comp_stress(s->f[0][0], s->f[0][1], s->f[0][2], s->f[1][0], s->f[1][1], s->f[1][2], s->n[0],
-              s->n[1], s->n[2], s->j, mu, lam, c, &psi, P);
+  if (s->j > 1e-280) { /* the stepping kernel's arithmetic (the same bits) */
+    const comp_out o = comp_stress(s->f[0][0], s->f[0][1], s->f[0][2], s->f[1][0], s->f[1][1],
+                                   s->f[1][2], s->j, mu, lam, c);
+    psi = o.psi;
+    P[0] = o.p0x, P[1] = o.p0y, P[2] = o.p0z, P[3] = o.p1x, P[4] = o.p1y, P[5] = o.p1z;
+  } else { /* collapsed: P = Psi_0 u0 v0^T + Psi_1 u1 v1^T, u1 = n x u0 (no 1/s1) */
+    psi = law.psi;
+    for (int i = 0; i < 3; i++) {
+      P[i] = law.p0 * u0[i] * v0[0] + law.p1 * u1[i] * v1[0];
+      P[3 + i] = law.p0 * u0[i] * v0[1] + law.p1 * u1[i] * v1[1];
+    }
+  }
   if (grad)
     for (int a = 0; a < 3; a++)
       for (int i = 0; i < 3; i++) grad[3 * a + i] = rest_area * (d[a][0] * P[i] + d[a][1] * P[3 + i]);
   if (hess) {
-    double v0[2], v1[2], s0, s1, u0[3], u1[3];
-    membrane_svd(s, v0, v1, &s0, &s1, u0, u1);
-    comp_law law;
-    comp_eval_law(s0, s1, s->j, mu, lam, c, &law);
     double ev[7];
     ev[0] = s0 > 1e-280 ? law.p0 / s0 : law.h00;
     ev[1] = s1 > 0.0 ? law.p1 / s1 : (project ? 0.0 : -INFINITY);
@@ -514,9 +533,8 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
       const double nx = cx / j, ny = cy / j, nz = cz / j;
       double psi, p0x, p0y, p0z, p1x, p1y, p1z;
       if (soft) {
-        double P[6];
-        comp_stress(f0x, f0y, f0z, f1x, f1y, f1z, nx, ny, nz, j, mu, lam, compression, &psi, P);
-        p0x = P[0], p0y = P[1], p0z = P[2], p1x = P[3], p1y = P[4], p1z = P[5];
+        const comp_out o = comp_stress(f0x, f0y, f0z, f1x, f1y, f1z, j, mu, lam, compression);
+        psi = o.psi, p0x = o.p0x, p0y = o.p0y, p0z = o.p0z, p1x = o.p1x, p1y = o.p1y, p1z = o.p1z;
       } else {
         psi = 0.5 * mu * (ic - 2.0) + 0.5 * lam * (j - alpha) * (j - alpha) - rest_offset;
         /* dJ/df0 = f1 x n, dJ/df1 = n x f0 */
