@@ -371,12 +371,17 @@ static inline SS_ALWAYS_INLINE comp_out comp_stress(double f0x, double f0y, doub
  * comp_stress, the Hessian from the SVD and comp_eval_law. */
 static double comp_eval(const membrane_state *s, const double d[3][2], double rest_area, double mu,
                         double lam, double c, double *grad, double *hess, int project) {
-  double v0[2], v1[2], s0, s1, u0[3], u1[3];
-  membrane_svd(s, v0, v1, &s0, &s1, u0, u1);
-  comp_law law;
-  comp_eval_law(s0, s1, s->j, mu, lam, c, &law);
+  /* the SVD (trigonometry) and the law's second derivatives only where they
+   * are used: the Hessian, and the stress of a collapsed face */
+  const int collapsed = !(s->j > 1e-280);
+  double v0[2], v1[2], s0 = 0.0, s1 = 0.0, u0[3], u1[3];
+  comp_law law = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (hess || collapsed) {
+    membrane_svd(s, v0, v1, &s0, &s1, u0, u1);
+    comp_eval_law(s0, s1, s->j, mu, lam, c, &law);
+  }
   double psi, P[6];
-  if (s->j > 1e-280) { /* the stepping kernel's arithmetic (the same bits) */
+  if (!collapsed) { /* the stepping kernel's arithmetic (the same bits) */
     const comp_out o = comp_stress(s->f[0][0], s->f[0][1], s->f[0][2], s->f[1][0], s->f[1][1],
                                    s->f[1][2], s->j, mu, lam, c);
     psi = o.psi;
