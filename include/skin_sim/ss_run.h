@@ -22,9 +22,14 @@
  *    anchored (its barycenter anchor's body face, else the sum over its
  *    vertices' anchor faces) and that of the body face it was bound to; not
  *    judged where those two differ by more than 120 degrees (a skin of its
- *    own wound the other way at rest is judged against its rest orientation):
- *    the most in one frame. A face can turn over at full area, which the
- *    area ratios do not see;
+ *    own wound the other way at rest is judged against its rest orientation),
+ *    nor where one of those body faces is folded over by the pose (turned
+ *    more than 90 degrees against a neighbour it faced the same way as at
+ *    rest: a crease crushed by linear blend skinning, a body passing through
+ *    itself), where the body has no one "out": those are counted apart
+ *    (inverted_over_folds_max), beside the folded body faces themselves
+ *    (body_folds_max); the most in one frame. A face can turn over at full
+ *    area, which the area ratios do not see;
  *  - inside: how deep a skin vertex goes under the body surface (behind the
  *    plane of the closest body face), the deepest over all frames, in mean
  *    edge lengths;
@@ -87,7 +92,13 @@ typedef struct ss_run_stats {
   double hug_rms, hug_max;         /* mean edge lengths */
   double mean_edge_length;         /* body at rest, metres */
   int inverted_faces_max;          /* most simulated skin faces turned against the body in a frame
-                                      (slivers, SS_SLIVER_AREA, not judged) */
+                                      (slivers, SS_SLIVER_AREA, and faces over a body fold not
+                                      judged) */
+  int inverted_over_folds_max;     /* most skin faces turned against a body face that the pose has
+                                      folded over, in a frame (not in inverted_faces_max) */
+  int body_folds_max;              /* most body faces folded over by the pose in a frame: turned
+                                      more than 90 degrees against a neighbour they faced the same
+                                      way as at rest (the rig's crease artefacts, the skin's input) */
   double inside_max;               /* deepest skin vertex under the body surface, mean edge lengths */
   double slide_max, slide_max_m;   /* farthest anchor from where it was bound during the motion:
                                       mean edge lengths, metres */

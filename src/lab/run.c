@@ -81,6 +81,8 @@ typedef struct run_meas {
   int nanchor, skin_nvert, skin_nface;
   const int *skin_faces;
   double *rest_area;        /* (skin_nface) */
+  double *rest_dot;         /* (body nface x 3) n_f . n_g at rest across edge k (2: no neighbour) */
+  unsigned char *folded;    /* (body nface) this frame: the body turned over at the face */
   signed char *face_sign;   /* (skin_nface) orientation of the skin face against the body at
                                rest: +1, -1 (a skin of its own wound the other way), 0 not judged */
   int *old_face, *face0;    /* (nanchor) before this frame; bound at create */
@@ -107,6 +109,43 @@ static void normal_under(const run_meas *m, const ss_sim *sim, const int *af, in
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (len > 0.0)
     for (int k = 0; k < 3; k++) n[k] /= len;
+}
+
+/* Body faces the pose has folded over: a face turned more than 90 degrees
+ * against a neighbour it faced the same way as at rest (n_f . n_g < 0 now,
+ * > 0 at rest). Linear blend skinning does this where it crushes a crease
+ * (the demo's wrist at frame 14: faces at 0.7-5% of their area, their
+ * neighbours' normals at -0.96 to theirs), and a body that passes through
+ * itself by design (elbow's inner crease) does it too. A thin part's rim,
+ * whose sides face apart at rest, is not a fold. Returns the count. */
+static int mark_folds(run_meas *m) {
+  const ss_topo *t = m->topo;
+  const double *n = m->fr->normal;
+  int folds = 0;
+  for (int f = 0; f < t->nface; f++) {
+    unsigned char fo = 0;
+    for (int k = 0; k < 3 && !fo; k++) {
+      const int g = t->face_adj[3 * f + k];
+      if (g < 0 || !(m->rest_dot[3 * f + k] > 0.0)) continue;
+      fo = n[3 * f] * n[3 * g] + n[3 * f + 1] * n[3 * g + 1] + n[3 * f + 2] * n[3 * g + 2] < 0.0;
+    }
+    m->folded[f] = fo;
+    folds += fo;
+  }
+  return folds;
+}
+
+/* 1 if a body face under skin face f - where its barycenter or one of its
+ * corners is anchored, now or as bound - is folded over in this pose: within
+ * the face's reach the body has no one "out" for it to point along. */
+static int over_fold(const run_meas *m, const ss_sim *sim, int f) {
+  const int nv = m->skin_nvert, *now = ss_sim_anchor_faces(sim);
+  int a[4] = {m->skin_faces[3 * f], m->skin_faces[3 * f + 1], m->skin_faces[3 * f + 2], -1};
+  if (ss_sim_nanchors(sim) > nv) a[3] = nv + f;
+  for (int c = 0; c < 4 && a[c] >= 0; c++)
+    if ((now[a[c]] >= 0 && m->folded[now[a[c]]]) || (m->face0[a[c]] >= 0 && m->folded[m->face0[a[c]]]))
+      return 1;
+  return 0;
 }
 
 /* The body normal skin face f is judged against: halfway between the normal
@@ -144,7 +183,9 @@ static int measure_frame(run_meas *m, const ss_sim *sim, const double *pos,
   ss_frames_update(m->fr, topo, pos);
   ss_bvh_refit(m->bvh, pos);
   const double *x = ss_sim_skin_positions(sim);
-  int inverted = 0;
+  const int folds = mark_folds(m);
+  if (folds > stats->body_folds_max) stats->body_folds_max = folds;
+  int inverted = 0, over_folds = 0;
   for (int f = 0; f < m->skin_nface; f++) {
     /* faces outside the simulated region are the body's own: not judged */
     if (!(m->rest_area[f] > 0.0) || (settings->sim.face_mask && !settings->sim.face_mask[f]))
@@ -156,9 +197,15 @@ static int measure_frame(run_meas *m, const ss_sim *sim, const double *pos,
     if (ratio > stats->max_area_ratio) stats->max_area_ratio = ratio;
     if (!(ratio >= AREA_RATIO_MIN && ratio <= AREA_RATIO_MAX)) frame_failed = 1;
     anchored_normal(m, sim, f, nb);
-    if (m->face_sign[f] * (n[0] * nb[0] + n[1] * nb[1] + n[2] * nb[2]) < 0.0) inverted++;
+    if (m->face_sign[f] * (n[0] * nb[0] + n[1] * nb[1] + n[2] * nb[2]) < 0.0) {
+      if (folds > 0 && over_fold(m, sim, f))
+        over_folds++;
+      else
+        inverted++;
+    }
   }
   if (inverted > stats->inverted_faces_max) stats->inverted_faces_max = inverted;
+  if (over_folds > stats->inverted_over_folds_max) stats->inverted_over_folds_max = over_folds;
   for (int v = 0; v < m->skin_nvert; v++) {
     int face;
     double uv[2], c[3];
@@ -291,10 +338,12 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   m.face0 = malloc(sizeof(int) * (size_t)nanchor);
   m.uv0 = malloc(sizeof(double) * 2 * (size_t)nanchor);
   m.rest_area = malloc(sizeof(double) * (size_t)skin_nface);
+  m.rest_dot = malloc(sizeof(double) * 3 * (size_t)nface);
+  m.folded = malloc((size_t)nface);
   m.face_sign = malloc((size_t)skin_nface + 1);
   double *ms = malloc(sizeof(double) * 5 * (size_t)(frames > 0 ? frames : 1));
   if (!status && !(pos && m.old_face && m.old_uv && m.face0 && m.uv0 && m.rest_area &&
-                   m.face_sign && ms && (last || !blend_frames)))
+                   m.rest_dot && m.folded && m.face_sign && ms && (last || !blend_frames)))
     status = SS_E_NOMEM;
   if (status) {
     ss_fail(err, err_sz, status, "run: out of memory for %d anchors", nanchor);
@@ -321,6 +370,12 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   memcpy(m.face0, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)nanchor);
   memcpy(m.uv0, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)nanchor);
   ss_frames_update(m.fr, topo, body->rest);
+  for (int f = 0; f < nface; f++)
+    for (int k = 0; k < 3; k++) {
+      const int g = topo->face_adj[3 * f + k];
+      const double *nf = m.fr->normal + 3 * f, *ng = m.fr->normal + 3 * (g < 0 ? f : g);
+      m.rest_dot[3 * f + k] = g < 0 ? 2.0 : nf[0] * ng[0] + nf[1] * ng[1] + nf[2] * ng[2];
+    }
   for (int f = 0; f < skin_nface; f++) {
     double n[3], nb[3];
     m.rest_area[f] = 1.0;
@@ -449,6 +504,8 @@ done:
   free(m.face0);
   free(m.uv0);
   free(m.rest_area);
+  free(m.rest_dot);
+  free(m.folded);
   free(m.face_sign);
   free(ms);
   snag_judge_free(&m.judge);

@@ -230,8 +230,10 @@ int cmd_run(int argc, char **argv) {
            100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
            st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
   if (!json_path || strcmp(json_path, "-") != 0)
-    printf("inverted faces max %d, inside max %.3f edges, slide max %.3f edges (%.4g m)\n",
-           st.inverted_faces_max, st.inside_max, st.slide_max, st.slide_max_m);
+    printf("inverted faces max %d (%d more over body folds; body faces folded max %d), inside "
+           "max %.3f edges, slide max %.3f edges (%.4g m)\n",
+           st.inverted_faces_max, st.inverted_over_folds_max, st.body_folds_max, st.inside_max,
+           st.slide_max, st.slide_max_m);
   if (s.settle > 0.0 && (!json_path || strcmp(json_path, "-") != 0))
     printf("rest return after %.3g s settle (%d frames): rms %.4f max %.4f edges (%.4g m), "
            "anchors at most %.4f edges from home\n",

@@ -141,6 +141,8 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "hug_max", st->hug_max);
   json_num(j, "mean_edge_length", st->mean_edge_length);
   json_int(j, "inverted_faces_max", st->inverted_faces_max);
+  json_int(j, "inverted_over_folds_max", st->inverted_over_folds_max);
+  json_int(j, "body_folds_max", st->body_folds_max);
   json_num(j, "inside_max", st->inside_max);
   json_num(j, "slide_max", st->slide_max);
   json_num(j, "slide_max_m", st->slide_max_m);
