@@ -202,7 +202,27 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     sim->anchor_path[a] += res.length;
     c->steps += res.steps;
   }
-  if (sim->tether_frac > 0.0 && sim->m->anchor_face0[a] >= 0) {
+  if (sim->tether_frac > 0.0 && res.face == sim->m->anchor_face0[a]) {
+    /* The tether of an anchor in its home face (most anchors, most of the
+     * time): tether_frac of the way home in the face's own (u, v), which is
+     * affine in space. It is the step below in exact arithmetic (the chord
+     * lies in the face's plane, so turning it into the tangent plane keeps
+     * it; the target lies inside the face, so it is its own closest point),
+     * without two positions, the normal, two square roots and a closest-point
+     * search: 28% fewer instructions in the anchor stage (callgrind, 19k
+     * quadruped, 4 substeps x 2 iterations). */
+    const double *uv0 = sim->m->anchor_uv0 + 2 * a;
+    const double du = sim->tether_frac * (uv0[0] - res.uv[0]);
+    const double dv = sim->tether_frac * (uv0[1] - res.uv[1]);
+    if (du != 0.0 || dv != 0.0) {
+      const double *e = ss_frames_edges(ss_mover_frames(sim->mover), res.face);
+      const double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
+      res.uv[0] += du;
+      res.uv[1] += dv;
+      sim->anchor_pull[a] += sqrt(x * x + y * y + z * z);
+      moved = 1;
+    }
+  } else if (sim->tether_frac > 0.0 && sim->m->anchor_face0[a] >= 0) {
     /* the tether: walk back along the surface towards where the anchor was
      * bound (always the walk, whatever the method: it cannot jump a gap) */
     const ss_frames *fr = ss_mover_frames(sim->mover);
