@@ -33,6 +33,14 @@ def num(row, key):
         return None
 
 
+def inverted_cell(r):
+    """inverted faces, + those over body folds / folded body faces (older CSVs: the count)."""
+    inv = r.get("inverted_faces_max", "-")
+    if r.get("inverted_over_folds_max") in (None, ""):
+        return inv
+    return "%s (+%s / %s)" % (inv, r["inverted_over_folds_max"], r.get("body_folds_max", "-"))
+
+
 def method_label(row):
     m = row["method"]
     return "nring" + row["nring_rings"] if m == "nring" else m
@@ -124,7 +132,9 @@ def plot_stability(rows, out):
              "(anchor jumps across a gap), failures (frames with NaN/Inf, an area ratio "
              "outside [0.05, 20] or a failed step), hug RMS / max (skin to body distance, "
              "mean edge lengths), inverted faces (the most skin faces in one frame turned "
-             "against the body where anchored), inside (deepest skin vertex under the body, "
+             "against the body where anchored; + those over a body fold, where the pose turned "
+             "a body face against a neighbour it faced the same way as at rest, counted apart; "
+             "/ the body faces so folded), inside (deepest skin vertex under the body, "
              "mean edge lengths), error vs truth (one truth for every method: walk, Newton "
              "to 1e-6, 16 substeps) and vs the method's own reference (mean edge lengths).", "",
              "| scene | triangles | frames | method | snags | failures | hug rms | hug max "
@@ -141,7 +151,7 @@ def plot_stability(rows, out):
                          "| %.2f |" % (
                 s, r["triangles"], r["frames"], m, r["snags"], r["failures"],
                 num(r, "hug_rms") or 0.0, num(r, "hug_max") or 0.0,
-                r.get("inverted_faces_max", "-"), num(r, "inside_max") or 0.0,
+                inverted_cell(r), num(r, "inside_max") or 0.0,
                 "%.3g" % t if t is not None else "-",
                 "%.3g" % e if e is not None else "-", num(r, "ms_per_frame_median") or 0.0))
     with open(os.path.join(out, "stability.md"), "w") as f:
@@ -304,7 +314,7 @@ def plot_options(rows, out):
             lines.append("| %s | %s | %s | %.2f | %s | %s | %s | %s | %.3f | %s |" % (
                 s, o, r["skin_triangles"], ms, "%.2f" % (ms / base) if base else "-",
                 "%.3g" % e if e is not None else "-", "%.3g" % d if d is not None else "-",
-                r["snags"], num(r, "hug_rms") or 0.0, r.get("inverted_faces_max", "-")))
+                r["snags"], num(r, "hug_rms") or 0.0, inverted_cell(r)))
     with open(os.path.join(out, "options.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
@@ -434,7 +444,7 @@ def plot_accuracy(rows, out):
                 os.path.basename(b), m, "%.4g" % t if t is not None else "-",
                 "%.2f" % (t / w) if t is not None and w else "-",
                 "%.3g" % u if u is not None else "-",
-                "%.4g" % e if e is not None else "-", r["snags"], r.get("inverted_faces_max", "-"),
+                "%.4g" % e if e is not None else "-", r["snags"], inverted_cell(r),
                 num(r, "ms_per_frame_median") or 0.0, cmd))
     with open(os.path.join(out, "accuracy.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
