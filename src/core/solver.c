@@ -7,7 +7,8 @@
  * (line_search.c) until one takes a step; the gradient of the accepted point
  * is the next iteration's. It stops when the residual is within tol, when
  * the budget `iterations` is spent (a quasi-Newton substep still above
- * safety_residual goes on up to iterations_max), when no direction decreases
+ * safety_residual, or with a face squeezed below SS_SAFETY_AREA of its rest
+ * area, goes on up to iterations_max), when no direction decreases
  * E (stalled, or converged if within tol), or when E is flat to round-off
  * and the residual has not improved over SS_ROUNDOFF_STEPS accepted steps. */
 #include <math.h>
@@ -56,6 +57,25 @@ static int after_line_search(ss_solve *s, int ls, double *best_res, int *roundof
   return 1;
 }
 
+/* 1 if a simulated face at xfull (the iterate: the last evaluation's point)
+ * has less than SS_SAFETY_AREA of its rest area. */
+static int squeezed(const ss_sim *sim, const double *xfull) {
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    const int f = sim->m->simface[q];
+    const double rest = sim->m->rest_area[f];
+    if (!(rest > 0.0)) continue;
+    const int *fv = sim->m->faces + 3 * f;
+    const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
+    const double a0 = p1[0] - p0[0], a1 = p1[1] - p0[1], a2 = p1[2] - p0[2];
+    const double b0 = p2[0] - p0[0], b1 = p2[1] - p0[1], b2 = p2[2] - p0[2];
+    const double c0 = a1 * b2 - a2 * b1, c1 = a2 * b0 - a0 * b2, c2 = a0 * b1 - a1 * b0;
+    /* (2 A)^2 < (2 SS_SAFETY_AREA rest)^2, no square root */
+    const double lim = 2.0 * SS_SAFETY_AREA * rest;
+    if (c0 * c0 + c1 * c1 + c2 * c2 < lim * lim) return 1;
+  }
+  return 0;
+}
+
 int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
   const ss_solver_ops *ops = solver_ops(sim);
   ss_sim_stats *st = sim->st;
@@ -86,7 +106,8 @@ int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *
       /* far from converged along the skin, where the membrane is crushed or
        * torn, not merely across it (ss_sim_residual_along <= res) */
       if (!ops->safety_net || !(sim->set.safety_residual > 0.0) || it >= hard ||
-          !(ss_sim_residual_along(sim, s.g) > sim->set.safety_residual))
+          !(ss_sim_residual_along(sim, s.g) > sim->set.safety_residual ||
+            squeezed(sim, sim->xfull_t)))
         break;
     }
     st->iterations++;
