@@ -33,6 +33,16 @@ def num(row, key):
         return None
 
 
+def base_config(rows):
+    """The sweep's base configuration as its methods rows ran it (the defaults)."""
+    for r in rows:
+        if r.get("sweep") == "methods" and r.get("method") == "walk":
+            return "%s, %s substep%s x %s iterations" % (
+                r.get("solver", "quasi-newton"), r["substeps"], "" if r["substeps"] == "1" else "s",
+                r["iterations"])
+    return "the defaults"
+
+
 def inverted_cell(r):
     """inverted faces, + those over body folds / folded body faces (older CSVs: the count)."""
     inv = r.get("inverted_faces_max", "-")
@@ -128,7 +138,7 @@ def plot_stability(rows, out):
             scenes.append(r["scene"])
     cell = {(r["scene"], method_label(r)): r for r in mrows}
     lines = ["# Stability: where each method breaks", "",
-             "Per scene and anchor method (quasi-Newton, 8 iterations, 1 substep): snags "
+             "Per scene and anchor method (" + base_config(rows) + "): snags "
              "(anchor jumps across a gap), failures (frames with NaN/Inf, an area ratio "
              "outside [0.05, 20] or a failed step), hug RMS / max (skin to body distance, "
              "mean edge lengths), inverted faces (the most skin faces in one frame turned "
@@ -222,7 +232,7 @@ def plot_scaling(rows, out):
     ax.set_yscale("log")
     ax.set_xlabel("body triangles (quadruped)")
     ax.set_ylabel("ms per frame (median)")
-    ax.set_title("Scaling: quasi-Newton, 8 iterations, 1 substep", fontsize=10)
+    ax.set_title("Scaling: " + base_config(rows), fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     save(fig, out, "scaling.png")
@@ -286,7 +296,7 @@ def plot_options(rows, out):
             options.append(r["option"])
     cell = {(r["scene"], r["option"]): r for r in orows}
     lines = ["# What each optional part costs and buys", "",
-             "Per scene (walk, quasi-Newton, 8 iterations, 1 substep): ms per frame; "
+             "Per scene (walk, " + base_config(rows) + "): ms per frame; "
              "error = RMS distance to the reference of the same model (what the fast "
              "solve costs); vs default = RMS distance to the reference of the default model "
              "(what the option changes: for a simplification its cost in accuracy, for an "
@@ -417,7 +427,7 @@ def plot_accuracy(rows, out):
                 unc[r["body"]] = num(r, "diff_16_32")
     lines = ["# Every method against one truth", "",
              "Per body: the error of each anchor method at the default solver settings "
-             "(quasi-Newton, 8 iterations, 1 substep) against the TRUTH (walk, Newton to 1e-6, "
+             "(" + base_config(rows) + ") against the TRUTH (walk, Newton to 1e-6, "
              "16 substeps: one run per body, motion and physical settings), and against the "
              "method's OWN reference (the same method, Newton to 1e-6, 16 substeps), both as RMS "
              "over frames and skin vertices in mean rest edge lengths; x walk = error vs truth "
@@ -489,7 +499,7 @@ def plot_accuracy(rows, out):
         ax.set_ylabel("error / walk's error vs truth")
         ax.grid(True, axis="y", alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("Where each method stands (quasi-Newton, 8 iterations, 1 substep); under each body "
+    fig.suptitle("Where each method stands (" + base_config(rows) + "); under each body "
                  "walk's error vs truth in mean edge lengths", fontsize=10)
     save(fig, out, "accuracy.png")
 

@@ -52,16 +52,20 @@ typedef struct ss_sim_settings {
   int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */
   double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0; default 1/30 */
   int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
-                            linearly in between); default 1 */
-  int iterations;        /* max solver iterations per substep; default 8, the real-time
-                            budget of quasi-Newton (an iteration costs 2-4 ms at 19k
-                            triangles on a 2-core machine); raise it (e.g. 50-500) for
-                            Newton or tight tolerances */
+                            linearly in between); default 2: at one substep the error is
+                            the step's (Newton converged there is as far from the truth
+                            as quasi-Newton), so the budget goes into a second substep */
+  int iterations;        /* max solver iterations per substep; default 3, the real-time
+                            budget of quasi-Newton (2 x 3 costs what 1 x 8 did: ~23 ms at
+                            19k triangles on one core of a 2-core machine, 0.74 of its
+                            error against the truth); raise it (e.g. 50-500) for Newton or
+                            tight tolerances */
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
                             lengths; default 1e-4 */
   double safety_residual; /* quasi-Newton: a substep whose residual (same measure as tol) is
-                            still above this after `iterations` keeps iterating, up to
+                            still above this after `iterations`, or that ends with a face
+                            squeezed below a tenth of its rest area, keeps iterating, up to
                             iterations_max: a hard frame costs more instead of tangling the
                             skin; default 0.05 (5% of an edge length); 0 turns it off */
   int iterations_max;    /* the hard cap for that; default 32 */

@@ -4,11 +4,13 @@
  * every field of `skinsim run --json` after the sweep's own columns) and draws
  * the charts with scripts/plot_bench.py (matplotlib).
  *
- * The sweep is a base configuration (quasi-Newton, 8 iterations, 1 substep,
- * walk: the defaults) varied one axis at a time, not the cartesian product:
+ * The sweep is a base configuration (the defaults: quasi-Newton, 2 substeps of 3
+ * iterations, walk) varied one axis at a time, not the cartesian product:
  *  - methods:  every body x {walk, project, nring 1, 2, 4}          (stability, Pareto)
- *  - solvers:  a few scenes x {newton, quasi-newton} x iterations {1, 2, 4, 8, converged}
- *  - substeps: the same scenes x substeps {2, 4} (slide is a rate: the same physics)
+ *  - solvers:  a few scenes x {newton, quasi-newton} x iterations {1, 2, 4, 8, converged},
+ *              at one substep
+ *  - substeps: the same scenes x substeps {2, 4} at 8 iterations (slide is a rate: the
+ *              same physics)
  *  - scaling:  the quadruped at growing sizes, walk and project (no reference)
  *  - options:  a few scenes: barycenter anchors off, bending on, gravity on, a region
  *              mask, a coarser skin than the body
@@ -79,7 +81,7 @@ static bench_case base_case(const char *sweep, const char *body, int avatar, int
                             int frames) {
   ss_sim_settings d = ss_sim_default_settings();
   bench_case c = {sweep, body, avatar, tris, frames, SS_METHOD_WALK, d.mover.nring_rings,
-                  d.solver, d.iterations, 1, d.tol, OPT_NONE, 1, "base", d.tether, 0.0};
+                  d.solver, d.iterations, d.substeps, d.tol, OPT_NONE, 1, "base", d.tether, 0.0};
   return c;
 }
 
@@ -124,6 +126,7 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
         if (quick && (k == 1 || k == 2)) continue;
         bench_case c = base_case("solvers", ss[i], 0, scene_tris, frames);
         c.solver = solver;
+        c.substeps = 1;
         c.iterations = iters[k] ? iters[k] : 500;
         if (!iters[k]) c.tol = 1e-6;
         c.variant = iter_labels[k];
@@ -133,6 +136,7 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
     for (int sub = 2; sub <= 4; sub *= 2) {
       bench_case c = base_case("substeps", ss[i], 0, scene_tris, frames);
       c.substeps = sub;
+      c.iterations = 8;
       c.variant = sub == 2 ? "2" : "4";
       bad |= add_case(l, c);
     }
