@@ -5,7 +5,8 @@ growing triangle counts, one process per size, recording per-frame medians
 least squares in log-log over all sizes and prints a table (and with --png
 FILE a chart: ms per frame and peak RSS per triangle against triangles).
 
-  /usr/bin/python3 bench/scaling.py BENCH_SIM [--sizes 2000,5000,...] [--frames N] [--threads T] [--png FILE]
+  /usr/bin/python3 bench/scaling.py BENCH_SIM [--sizes 2000,5000,...] [--frames N] [--threads T]
+                  [--substeps S] [--iterations I] [--png FILE]
 
 Read "cpu" (CPU time of the process per step) at one thread on a shared
 machine: wall-clock there mostly measures the other jobs.
@@ -18,10 +19,11 @@ import subprocess
 import sys
 
 
-def run(bench, tris, frames, threads):
+def run(bench, tris, frames, threads, substeps, iterations):
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-    out = subprocess.run([bench, "quadruped", str(tris), str(frames), "quasi-newton", "1", "8", "1e-4",
-                          "walk", str(threads)], check=True, capture_output=True, text=True).stdout
+    out = subprocess.run([bench, "quadruped", str(tris), str(frames), "quasi-newton", str(substeps),
+                          str(iterations), "1e-4", "walk", str(threads)],
+                         check=True, capture_output=True, text=True).stdout
     # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: sizes run in
     # increasing order, so each run's peak is the new maximum
     rss_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
@@ -47,11 +49,13 @@ def main():
     ap.add_argument("--sizes", default="2000,5000,10000,19000,38000,80000")
     ap.add_argument("--frames", type=int, default=20)
     ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--substeps", type=int, default=2, help="per frame (default: the sim's default, 2)")
+    ap.add_argument("--iterations", type=int, default=3, help="per substep (default: the sim's default, 3)")
     ap.add_argument("--png")
     a = ap.parse_args()
     rows = []
     for tris in sorted(int(s) for s in a.sizes.split(",")):
-        r = run(a.bench, tris, a.frames, a.threads)
+        r = run(a.bench, tris, a.frames, a.threads, a.substeps, a.iterations)
         rows.append(r)
         print("%7d tris: total %.2f cpu %.2f walk %.2f assemble %.2f solve %.2f ms/frame, %.2f iterations, "
               "peak RSS %.1f MB (%.2f kB per triangle)" % (r["tris"], r["total"], r["cpu"], r["walk"], r["assemble"],
@@ -75,7 +79,8 @@ def main():
         ax2.semilogx(t, [1024.0 * r["rss_mb"] / r["tris"] for r in rows], "o-")
         ax2.set_xlabel("triangles")
         ax2.set_ylabel("peak RSS per triangle (kB)")
-        fig.suptitle("quadruped, quasi-Newton 8 iterations, 1 substep, %d thread(s)" % a.threads)
+        fig.suptitle("quadruped, quasi-Newton, %d substep(s) x %d iterations, %d thread(s)" %
+                     (a.substeps, a.iterations, a.threads))
         fig.tight_layout()
         fig.savefig(a.png, dpi=90)
 
