@@ -32,6 +32,7 @@
 
 #include "sim_internal.h"
 #include "ss_err.h"
+#include "ss_vec.h"
 #include "closest.h" /* the tether's home stretch */
 #include "skin_sim/ss_settings.h"
 
@@ -328,12 +329,8 @@ static void area_ratios(const ss_sim *sim, ss_sim_stats *st) {
   for (int q = 0; q < sim->m->nsimface; q++) {
     int f = sim->m->simface[q];
     const int *fv = sim->m->faces + 3 * f;
-    const double *p0 = sim->x + 3 * fv[0], *p1 = sim->x + 3 * fv[1], *p2 = sim->x + 3 * fv[2];
-    double e1[3], e2[3];
-    for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
-    double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2],
-           c2 = e1[0] * e2[1] - e1[1] * e2[0];
-    double r = 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->m->rest_area[f];
+    const double *x = sim->x;
+    double r = 0.5 * sqrt(tri_cross2(x + 3 * fv[0], x + 3 * fv[1], x + 3 * fv[2])) / sim->m->rest_area[f];
     lo = fmin(lo, r);
     hi = fmax(hi, r);
   }

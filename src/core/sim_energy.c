@@ -24,6 +24,7 @@
 #include "energy.h"
 #include "sim_internal.h"
 #include "ss_err.h"
+#include "ss_vec.h"
 
 void ss_sim_energy_begin(ss_sim *sim, double h) {
   double c = sim->set.damping;
@@ -314,10 +315,7 @@ static void scatter_element(const ss_sim *sim, const int *verts, int n, const in
 
 /* Current area over rest area of face f. */
 static double area_ratio(const ss_sim *sim, const double *x9, int f) {
-  double e1[3], e2[3];
-  for (int i = 0; i < 3; i++) e1[i] = x9[3 + i] - x9[i], e2[i] = x9[6 + i] - x9[i];
-  double c0 = e1[1] * e2[2] - e1[2] * e2[1], c1 = e1[2] * e2[0] - e1[0] * e2[2], c2 = e1[0] * e2[1] - e1[1] * e2[0];
-  return 0.5 * sqrt(c0 * c0 + c1 * c1 + c2 * c2) / sim->m->rest_area[f];
+  return 0.5 * sqrt(tri_cross2(x9, x9 + 3, x9 + 6)) / sim->m->rest_area[f];
 }
 
 void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *vals, int exact) {

@@ -16,6 +16,7 @@
 
 #include "solver.h"
 #include "ss_err.h"
+#include "ss_vec.h"
 
 static const ss_solver_ops *solver_ops(const ss_sim *sim) {
   return sim->set.solver == SS_SOLVER_NEWTON ? &ss_solver_newton_ops : &ss_solver_qn_ops;
@@ -65,13 +66,9 @@ static int squeezed(const ss_sim *sim, const double *xfull) {
     const double rest = sim->m->rest_area[f];
     if (!(rest > 0.0)) continue;
     const int *fv = sim->m->faces + 3 * f;
-    const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
-    const double a0 = p1[0] - p0[0], a1 = p1[1] - p0[1], a2 = p1[2] - p0[2];
-    const double b0 = p2[0] - p0[0], b1 = p2[1] - p0[1], b2 = p2[2] - p0[2];
-    const double c0 = a1 * b2 - a2 * b1, c1 = a2 * b0 - a0 * b2, c2 = a0 * b1 - a1 * b0;
     /* (2 A)^2 < (2 SS_SAFETY_AREA rest)^2, no square root */
     const double lim = 2.0 * SS_SAFETY_AREA * rest;
-    if (c0 * c0 + c1 * c1 + c2 * c2 < lim * lim) return 1;
+    if (tri_cross2(xfull + 3 * fv[0], xfull + 3 * fv[1], xfull + 3 * fv[2]) < lim * lim) return 1;
   }
   return 0;
 }
