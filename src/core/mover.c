@@ -61,9 +61,11 @@ void ss_mover_destroy(ss_mover *m) {
   free(m);
 }
 
-void ss_mover_set_pose(ss_mover *m, const double *pos) {
+void ss_mover_set_pose(ss_mover *m, const double *pos) { ss_mover_set_pose_threads(m, pos, 1); }
+
+void ss_mover_set_pose_threads(ss_mover *m, const double *pos, int nthread) {
   m->pos = pos;
-  ss_frames_update(m->frames, m->topo, pos);
+  ss_frames_update_threads(m->frames, m->topo, pos, nthread);
   if (m->bvh) ss_bvh_refit(m->bvh, pos);
 }
 

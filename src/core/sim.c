@@ -53,14 +53,24 @@ int ss_solver_parse(const char *name) {
 /* Anchor positions in the body pose `pose`, which the mover holds. An anchor
  * without a face (a vertex in no face of a skin copied from the body) follows
  * its body vertex. */
+static inline void anchor_position(ss_sim *sim, const ss_frames *fr, const double *pose, int a) {
+  if (sim->anchor_face[a] >= 0)
+    ss_anchor_position(fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, sim->anchor_pos + 3 * a);
+  else if (a < sim->m->nvert)
+    memcpy(sim->anchor_pos + 3 * a, pose + 3 * a, 3 * sizeof(double));
+}
+
 static void update_anchor_positions(ss_sim *sim, const double *pose) {
   const ss_frames *fr = ss_mover_frames(sim->mover);
-  for (int a = 0; a < sim->m->nanchor; a++) {
-    if (sim->anchor_face[a] >= 0)
-      ss_anchor_position(fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, sim->anchor_pos + 3 * a);
-    else if (a < sim->m->nvert)
-      memcpy(sim->anchor_pos + 3 * a, pose + 3 * a, 3 * sizeof(double));
+  const int nanchor = sim->m->nanchor;
+#ifdef _OPENMP
+  if (sim->nthread > 1) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int a = 0; a < nanchor; a++) anchor_position(sim, fr, pose, a);
+    return;
   }
+#endif
+  for (int a = 0; a < nanchor; a++) anchor_position(sim, fr, pose, a);
 }
 
 void ss_sim_reset(ss_sim *sim) {
@@ -408,14 +418,19 @@ static void stage_pose(ss_sim *sim, substep *sub) {
   /* Where the free vertices' anchors were in the previous pose: the start
    * of the solve moves each vertex along with its anchor. */
   const ss_frames *fr_prev = ss_mover_frames(sim->mover);
-  for (int k = 0; k < sim->m->ndof; k++) {
+  const int ndof = sim->m->ndof, nthread = sim->nthread;
+  (void)nthread;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nthread) if (nthread > 1)
+#endif
+  for (int k = 0; k < ndof; k++) {
     int v = sim->m->dof_vert[k];
     if (sim->anchor_face[v] >= 0)
       ss_anchor_position(fr_prev, sim->anchor_face[v], sim->anchor_uv + 2 * v, sim->guess + 3 * k);
     else
       memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
   }
-  ss_mover_set_pose(sim->mover, sim->body_sub);
+  ss_mover_set_pose_threads(sim->mover, sim->body_sub, sim->nthread);
   update_anchor_positions(sim, sim->body_sub);
   st->pose_ms += ss_now_ms() - t0;
   memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));

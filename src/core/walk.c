@@ -125,36 +125,54 @@ static void build_crossings(ss_frames *fr, const ss_topo *topo) {
   fr->cross_topo = topo;
 }
 
-/* One pass over the faces, each written once: its walk record (origin,
- * edges, canonical map, degenerate flag), normal and area. */
+/* Face f's walk record (origin, edges, canonical map, degenerate flag),
+ * normal and area, each written once. */
+static inline void frame_update_face(ss_frames *fr, const int *fv, const double *pos, int f) {
+  const double *v0 = pos + 3 * fv[3 * f];
+  const double *v1 = pos + 3 * fv[3 * f + 1];
+  const double *v2 = pos + 3 * fv[3 * f + 2];
+  double *w = fr->walk + SS_FRAME_RECORD * (size_t)f, *n = fr->normal + 3 * f;
+  double *o = w, *e = w + 3;
+  for (int i = 0; i < 3; i++) {
+    o[i] = v0[i];
+    e[i] = v1[i] - v0[i];
+    e[3 + i] = v2[i] - v0[i];
+  }
+  n[0] = e[1] * e[5] - e[2] * e[4];
+  n[1] = e[2] * e[3] - e[0] * e[5];
+  n[2] = e[0] * e[4] - e[1] * e[3];
+  double len = sqrt(dot3(n, n));
+  fr->area[f] = 0.5 * len;
+  if (len > 0.0 && isfinite(len)) {
+    n[0] /= len, n[1] /= len, n[2] /= len;
+  } else {
+    n[0] = n[1] = n[2] = 0.0;
+  }
+  const int deg = canonical_map(e, e + 3, w + 9);
+  fr->degenerate[f] = (unsigned char)deg;
+  w[15] = deg ? 1.0 : 0.0;
+}
+
 void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
+  ss_frames_update_threads(fr, topo, pos, 1);
+}
+
+/* One pass over the faces; each face is its own (the same bits for any
+ * thread count). */
+void ss_frames_update_threads(ss_frames *fr, const ss_topo *topo, const double *pos, int nthread) {
   if (fr->cross_topo != topo) build_crossings(fr, topo);
   const int *fv = topo->face_vert;
-  for (int f = 0; f < topo->nface; f++) {
-    const double *v0 = pos + 3 * fv[3 * f];
-    const double *v1 = pos + 3 * fv[3 * f + 1];
-    const double *v2 = pos + 3 * fv[3 * f + 2];
-    double *w = fr->walk + SS_FRAME_RECORD * (size_t)f, *n = fr->normal + 3 * f;
-    double *o = w, *e = w + 3;
-    for (int i = 0; i < 3; i++) {
-      o[i] = v0[i];
-      e[i] = v1[i] - v0[i];
-      e[3 + i] = v2[i] - v0[i];
-    }
-    n[0] = e[1] * e[5] - e[2] * e[4];
-    n[1] = e[2] * e[3] - e[0] * e[5];
-    n[2] = e[0] * e[4] - e[1] * e[3];
-    double len = sqrt(dot3(n, n));
-    fr->area[f] = 0.5 * len;
-    if (len > 0.0 && isfinite(len)) {
-      n[0] /= len, n[1] /= len, n[2] /= len;
-    } else {
-      n[0] = n[1] = n[2] = 0.0;
-    }
-    const int deg = canonical_map(e, e + 3, w + 9);
-    fr->degenerate[f] = (unsigned char)deg;
-    w[15] = deg ? 1.0 : 0.0;
+  const int nface = topo->nface;
+#ifdef _OPENMP
+  if (nthread > 1) {
+#pragma omp parallel for schedule(static) num_threads(nthread)
+    for (int f = 0; f < nface; f++) frame_update_face(fr, fv, pos, f);
+    return;
   }
+#else
+  (void)nthread;
+#endif
+  for (int f = 0; f < nface; f++) frame_update_face(fr, fv, pos, f);
 }
 
 /* World point of canonical uv on face f (the walk's hot path: inlined). */

@@ -54,6 +54,9 @@ int ss_frames_create(ss_frames **out, int nface);
 void ss_frames_destroy(ss_frames *frames);
 /* Recomputes all per-face data for positions pos (nvert x 3). Allocates nothing. */
 void ss_frames_update(ss_frames *frames, const ss_topo *topo, const double *pos);
+/* The same with nthread threads (OpenMP; 1 or a build without it: one):
+ * the same bits for any count. */
+void ss_frames_update_threads(ss_frames *frames, const ss_topo *topo, const double *pos, int nthread);
 
 /* Asks the memory for face f's record (both lines) ahead of a walk from it:
  * callers walking many anchors call it a few anchors ahead, so that the
