@@ -200,18 +200,38 @@ static inline double dof_depth(const ss_sim *sim, int q, const double *xfull, co
   return d;
 }
 
+/* s of every judged face (S0 for the rest) into orient_s: each face its own,
+ * so on the sim's threads with the same bits. */
+static void face_ratios(const ss_sim *sim, const double *xfull, double *os) {
+  const double *on = sim->orient_n;
+  const int nsim = sim->m->nsimface;
+  const int nthread = sim->nthread;
+  (void)nthread;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nthread) if (nthread > 1 && nsim > 256)
+#endif
+  for (int q = 0; q < nsim; q++) {
+    const double *n = on + 4 * (size_t)q;
+    double gs[9];
+    os[q] = n[3] == 0.0 ? SS_ORIENT_S0 : face_ratio(sim, xfull, sim->m->simface[q], n, n[3], gs);
+  }
+}
+
 double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
   const double k = sim->set.orient;
   if (!(k > 0.0)) return 0.0;
   const double *on = sim->orient_n;
   double e = 0.0;
+  /* s of all faces first (on the threads), then, in face order on one
+   * thread, the few below S0: their energy and gradient (computed again
+   * with s, the same bits), summed as before */
+  face_ratios(sim, xfull, sim->orient_s);
   for (int q = 0; q < sim->m->nsimface; q++) {
+    if (!(sim->orient_s[q] < SS_ORIENT_S0)) continue;
     const double *n = on + 4 * (size_t)q;
-    if (n[3] == 0.0) continue;
     const int f = sim->m->simface[q];
     double gs[9];
     const double s = face_ratio(sim, xfull, f, n, n[3], gs);
-    if (!(s < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f], d = SS_ORIENT_S0 - s;
     e += 0.5 * w * d * d;
     if (!g) continue;

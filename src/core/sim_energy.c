@@ -147,7 +147,15 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   /* Barycenter springs: energy, and each face's gradient (the same for its
    * three corners) into face_grad. */
   if (sim->set.barycenter_anchors) {
-    for (int f = 0; f < sim->m->nface; f++) {
+    /* each face on its own (on the threads), its energy into face_energy
+     * (free until the membrane's), then summed in face order on one */
+    const int nface = sim->m->nface, nthread = sim->nthread;
+    double *be = sim->face_energy;
+    (void)nthread;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nthread) if (nthread > 1 && nface > 256)
+#endif
+    for (int f = 0; f < nface; f++) {
       double kf = sim->m->k_face[f];
       if (kf == 0.0) continue;
       const int *fv = sim->m->faces + 3 * f;
@@ -155,10 +163,12 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
       double d[3];
       for (int i = 0; i < 3; i++)
         d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
-      e += 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      be[f] = 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       double *gb = fg + sim->m->bary_base + 3 * f;
       for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
     }
+    for (int f = 0; f < nface; f++)
+      if (sim->m->k_face[f] != 0.0) e += be[f];
   }
   /* Membrane: blocks of faces on all threads, energies summed in face order
    * on one. */

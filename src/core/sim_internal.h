@@ -106,6 +106,7 @@ enum ss_vert_kind {
   X(anchor_path, double, (size_t)m->nanchor, "(nanchor) sum of the lengths walked (walk only)")  \
   X(walkers, ss_walker *, (size_t)sim->nthread_max, "(nthread_max) walk scratch, one per thread") \
   X(face_energy, double, (size_t)m->nface, "(nsimface) membrane energies of one evaluation")     \
+  X(orient_s, double, (size_t)m->nface, "(nsimface) orient.c: s of each judged face in one evaluation") \
   X(face_grad, double, (size_t)m->bary_base + (m->nanchor > m->nvert ? 3 * (size_t)m->nface : 0) + 1, \
     "their gradients (9 per simulated face), then the barycenter springs' (3 per face)")        \
   X(mi, double, (size_t)m->ndof, "(ndof) inertia weight: mass (1/h^2 + damping/h)")              \
