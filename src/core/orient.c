@@ -200,21 +200,24 @@ static inline double dof_depth(const ss_sim *sim, int q, const double *xfull, co
   return d;
 }
 
+static inline double judged_ratio(const ss_sim *sim, const double *xfull, const double *n, int q) {
+  double gs[9];
+  return n[3] == 0.0 ? SS_ORIENT_S0 : face_ratio(sim, xfull, sim->m->simface[q], n, n[3], gs);
+}
+
 /* s of every judged face (S0 for the rest) into orient_s: each face its own,
  * so on the sim's threads with the same bits. */
 static void face_ratios(const ss_sim *sim, const double *xfull, double *os) {
   const double *on = sim->orient_n;
   const int nsim = sim->m->nsimface;
-  const int nthread = sim->nthread;
-  (void)nthread;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nthread) if (nthread > 1 && nsim > 256)
-#endif
-  for (int q = 0; q < nsim; q++) {
-    const double *n = on + 4 * (size_t)q;
-    double gs[9];
-    os[q] = n[3] == 0.0 ? SS_ORIENT_S0 : face_ratio(sim, xfull, sim->m->simface[q], n, n[3], gs);
+  if (sim->nthread > 1 && nsim > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int q = 0; q < nsim; q++) os[q] = judged_ratio(sim, xfull, on + 4 * (size_t)q, q);
+    return;
   }
+#endif
+  for (int q = 0; q < nsim; q++) os[q] = judged_ratio(sim, xfull, on + 4 * (size_t)q, q);
 }
 
 double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {

@@ -407,6 +407,15 @@ static void warn(ss_sim *sim, ss_warning_kind kind, long long step, int info) {
   w->last_info = info;
 }
 
+/* Where free vertex k's anchor was in the previous pose (fr_prev). */
+static inline void guess_position(ss_sim *sim, const ss_frames *fr_prev, int k) {
+  const int v = sim->m->dof_vert[k];
+  if (sim->anchor_face[v] >= 0)
+    ss_anchor_position(fr_prev, sim->anchor_face[v], sim->anchor_uv + 2 * v, sim->guess + 3 * k);
+  else
+    memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
+}
+
 static void stage_pose(ss_sim *sim, substep *sub) {
   ss_sim_stats *st = sim->st;
   const size_t nv3 = 3 * (size_t)sim->m->nvert, nb3 = 3 * (size_t)sim->m->nbvert;
@@ -418,17 +427,15 @@ static void stage_pose(ss_sim *sim, substep *sub) {
   /* Where the free vertices' anchors were in the previous pose: the start
    * of the solve moves each vertex along with its anchor. */
   const ss_frames *fr_prev = ss_mover_frames(sim->mover);
-  const int ndof = sim->m->ndof, nthread = sim->nthread;
-  (void)nthread;
+  const int ndof = sim->m->ndof;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nthread) if (nthread > 1)
+  if (sim->nthread > 1) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int k = 0; k < ndof; k++) guess_position(sim, fr_prev, k);
+  } else
 #endif
-  for (int k = 0; k < ndof; k++) {
-    int v = sim->m->dof_vert[k];
-    if (sim->anchor_face[v] >= 0)
-      ss_anchor_position(fr_prev, sim->anchor_face[v], sim->anchor_uv + 2 * v, sim->guess + 3 * k);
-    else
-      memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
+  {
+    for (int k = 0; k < ndof; k++) guess_position(sim, fr_prev, k);
   }
   ss_mover_set_pose_threads(sim->mover, sim->body_sub, sim->nthread);
   update_anchor_positions(sim, sim->body_sub);

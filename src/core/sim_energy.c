@@ -124,6 +124,21 @@ static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, do
   g[3 * k] = g0, g[3 * k + 1] = g1, g[3 * k + 2] = g2;
 }
 
+/* Face f's barycenter spring: its energy into be[f] and its gradient (the
+ * same for its three corners) into face_grad (fg). */
+static inline void bary_spring(const ss_sim *sim, const double *xfull, int f, double *be, double *fg) {
+  const double kf = sim->m->k_face[f];
+  if (kf == 0.0) return;
+  const int *fv = sim->m->faces + 3 * f;
+  const double *a = sim->anchor_pos + 3 * ((size_t)sim->m->nvert + f);
+  double d[3];
+  for (int i = 0; i < 3; i++)
+    d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
+  be[f] = 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  double *gb = fg + sim->m->bary_base + 3 * f;
+  for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
+}
+
 /* Every term's energy is summed into one total in a fixed order (vertex
  * terms, barycenter springs, membrane, hinges: the place for a new term is
  * between the membrane and the hinges, or after them), and every dof's
@@ -149,23 +164,16 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   if (sim->set.barycenter_anchors) {
     /* each face on its own (on the threads), its energy into face_energy
      * (free until the membrane's), then summed in face order on one */
-    const int nface = sim->m->nface, nthread = sim->nthread;
+    const int nface = sim->m->nface;
     double *be = sim->face_energy;
-    (void)nthread;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nthread) if (nthread > 1 && nface > 256)
+    if (sim->nthread > 1 && nface > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+      for (int f = 0; f < nface; f++) bary_spring(sim, xfull, f, be, fg);
+    } else
 #endif
-    for (int f = 0; f < nface; f++) {
-      double kf = sim->m->k_face[f];
-      if (kf == 0.0) continue;
-      const int *fv = sim->m->faces + 3 * f;
-      const double *a = sim->anchor_pos + 3 * ((size_t)sim->m->nvert + f);
-      double d[3];
-      for (int i = 0; i < 3; i++)
-        d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
-      be[f] = 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      double *gb = fg + sim->m->bary_base + 3 * f;
-      for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
+    {
+      for (int f = 0; f < nface; f++) bary_spring(sim, xfull, f, be, fg);
     }
     for (int f = 0; f < nface; f++)
       if (sim->m->k_face[f] != 0.0) e += be[f];
