@@ -124,10 +124,11 @@ static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, do
   g[3 * k] = g0, g[3 * k + 1] = g1, g[3 * k + 2] = g2;
 }
 
-/* Face f's barycenter spring: its energy into be[f] and its gradient (the
- * same for its three corners) into face_grad (fg). */
+/* Face f's barycenter spring: its energy into be[f] (0 without a spring)
+ * and its gradient (the same for its three corners) into face_grad (fg). */
 static inline void bary_spring(const ss_sim *sim, const double *xfull, int f, double *be, double *fg) {
   const double kf = sim->m->k_face[f];
+  be[f] = 0.0;
   if (kf == 0.0) return;
   const int *fv = sim->m->faces + 3 * f;
   const double *a = sim->anchor_pos + 3 * ((size_t)sim->m->nvert + f);
@@ -175,8 +176,7 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     {
       for (int f = 0; f < nface; f++) bary_spring(sim, xfull, f, be, fg);
     }
-    for (int f = 0; f < nface; f++)
-      if (sim->m->k_face[f] != 0.0) e += be[f];
+    for (int f = 0; f < nface; f++) e += be[f];
   }
   /* Membrane: blocks of faces on all threads, energies summed in face order
    * on one. */

@@ -105,7 +105,7 @@ enum ss_vert_kind {
     "(nanchor) sum over the last step's substeps of |a* - a0|")                                  \
   X(anchor_path, double, (size_t)m->nanchor, "(nanchor) sum of the lengths walked (walk only)")  \
   X(walkers, ss_walker *, (size_t)sim->nthread_max, "(nthread_max) walk scratch, one per thread") \
-  X(face_energy, double, (size_t)m->nface, "(nsimface) membrane energies of one evaluation")     \
+  X(face_energy, double, (size_t)m->nface, "per face, in one evaluation: the barycenter springs' energies (nface), then the membrane's (nsimface)") \
   X(orient_s, double, (size_t)m->nface, "(nsimface) orient.c: s of each judged face in one evaluation") \
   X(face_grad, double, (size_t)m->bary_base + (m->nanchor > m->nvert ? 3 * (size_t)m->nface : 0) + 1, \
     "their gradients (9 per simulated face), then the barycenter springs' (3 per face)")        \
