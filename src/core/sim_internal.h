@@ -53,6 +53,7 @@ enum ss_vert_kind {
 /* name, type, count, shape */
 #define SS_MODEL_ARRAYS(X)                                                                       \
   X(body_rest, double, 3 * (size_t)m->nbvert, "(nbvert x 3)")                                    \
+  X(body_area0, double, (size_t)m->nbface, "(nbface) body face areas at rest (as ss_frames')")   \
   X(faces, int, 3 * (size_t)m->nface, "(nface x 3)")                                             \
   X(rest, double, 3 * (size_t)m->nvert, "(nvert x 3)")                                           \
   X(mask, unsigned char, (size_t)m->nface, "(nface) 1 = simulated face")                         \

@@ -6,6 +6,7 @@
  * pattern, energy layout, symbolic analysis, rest orientation) + the sim's data (mover, walkers,
  * arena, state at rest) + its solver. ss_sim_create_from_model skips the
  * model's two steps and takes a reference to it instead. */
+#include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +18,7 @@
 #include "energy.h"
 #include "sim_internal.h"
 #include "ss_err.h"
+#include "ss_vec.h"
 #include "skin_sim/ss_settings.h" /* ss_sim_default_settings() and every range check */
 
 #ifdef _OPENMP
@@ -151,6 +153,12 @@ static int model_new(ss_model **out, int body_nvert, const double *body_rest, in
   memcpy(m->faces, skin ? skin->faces : body_faces, 3 * (size_t)nf * sizeof(int));
   memcpy(m->rest, skin ? skin->pos : body_rest, 3 * (size_t)nv * sizeof(double));
   memcpy(m->body_rest, body_rest, 3 * (size_t)body_nvert * sizeof(double));
+  for (int f = 0; f < body_nface; f++) {
+    /* the formula of ss_frames' area, so that a body at rest has r = 1 exactly (orient.c) */
+    const double *v0 = body_rest + 3 * body_faces[3 * f], *v1 = body_rest + 3 * body_faces[3 * f + 1],
+                 *v2 = body_rest + 3 * body_faces[3 * f + 2];
+    m->body_area0[f] = 0.5 * sqrt(tri_cross2(v0, v1, v2));
+  }
   for (int f = 0; f < nf; f++) m->mask[f] = set->face_mask ? set->face_mask[f] != 0 : 1;
   m->set.face_mask = m->mask;
   *out = m;

@@ -12,6 +12,7 @@
 #include "snag.h"
 #include "ss_err.h"
 #include "ss_util.h"
+#include "ss_vec.h"
 
 #define AREA_RATIO_MIN 0.05
 #define AREA_RATIO_MAX 20.0
@@ -81,6 +82,7 @@ typedef struct run_meas {
   int nanchor, skin_nvert, skin_nface;
   const int *skin_faces;
   double *rest_area;        /* (skin_nface) */
+  double *body_area0;       /* (body nface) area at rest */
   double *rest_dot;         /* (body nface x 3) n_f . n_g at rest across edge k (2: no neighbour) */
   unsigned char *folded;    /* (body nface) this frame: the body turned over at the face */
   signed char *face_sign;   /* (skin_nface) orientation of the skin face against the body at
@@ -93,18 +95,24 @@ typedef struct run_meas {
 } run_meas;
 
 /* Unit sum of the body normals under skin face f for anchor faces af: the
- * barycenter anchor's face, else the normalised sum over its vertices'. */
+ * barycenter anchor's face, with its corners' anchors' faces added by the
+ * share of its rest area the barycenter's face has lost (a crushed body face's
+ * normal tells little: as the orient term, orient.c); without barycenter
+ * anchors the sum over its corners'. */
 static void normal_under(const run_meas *m, const ss_sim *sim, const int *af, int f, double n[3]) {
   const int nv = m->skin_nvert;
   n[0] = n[1] = n[2] = 0.0;
+  double w = 1.0;
   if (ss_sim_nanchors(sim) > nv && af[nv + f] >= 0) {
-    memcpy(n, m->fr->normal + 3 * af[nv + f], 3 * sizeof(double));
-    return;
+    const int b = af[nv + f];
+    memcpy(n, m->fr->normal + 3 * b, 3 * sizeof(double));
+    w = crush_share(m->fr->area[b], m->body_area0[b]);
   }
+  if (!(w > 0.0)) return; /* the barycenter's unit normal, as it is */
   for (int c = 0; c < 3; c++) {
     int b = af[m->skin_faces[3 * f + c]];
     if (b < 0) continue;
-    for (int k = 0; k < 3; k++) n[k] += m->fr->normal[3 * b + k];
+    for (int k = 0; k < 3; k++) n[k] += w * m->fr->normal[3 * b + k];
   }
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (len > 0.0)
@@ -339,11 +347,12 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   m.uv0 = malloc(sizeof(double) * 2 * (size_t)nanchor);
   m.rest_area = malloc(sizeof(double) * (size_t)skin_nface);
   m.rest_dot = malloc(sizeof(double) * 3 * (size_t)nface);
+  m.body_area0 = malloc(sizeof(double) * (size_t)nface);
   m.folded = malloc((size_t)nface);
   m.face_sign = malloc((size_t)skin_nface + 1);
   double *ms = malloc(sizeof(double) * 5 * (size_t)(frames > 0 ? frames : 1));
   if (!status && !(pos && m.old_face && m.old_uv && m.face0 && m.uv0 && m.rest_area &&
-                   m.rest_dot && m.folded && m.face_sign && ms && (last || !blend_frames)))
+                   m.rest_dot && m.body_area0 && m.folded && m.face_sign && ms && (last || !blend_frames)))
     status = SS_E_NOMEM;
   if (status) {
     ss_fail(err, err_sz, status, "run: out of memory for %d anchors", nanchor);
@@ -370,6 +379,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   memcpy(m.face0, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)nanchor);
   memcpy(m.uv0, ss_sim_anchor_uv(sim), sizeof(double) * 2 * (size_t)nanchor);
   ss_frames_update(m.fr, topo, body->rest);
+  memcpy(m.body_area0, m.fr->area, sizeof(double) * (size_t)nface);
   for (int f = 0; f < nface; f++)
     for (int k = 0; k < 3; k++) {
       const int g = topo->face_adj[3 * f + k];
@@ -505,6 +515,7 @@ done:
   free(m.uv0);
   free(m.rest_area);
   free(m.rest_dot);
+  free(m.body_area0);
   free(m.folded);
   free(m.face_sign);
   free(ms);

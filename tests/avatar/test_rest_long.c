@@ -77,6 +77,8 @@ int main(void) {
     CHECK_MSG(st.rest_error_max <= 0.1, "rest error max %g edge lengths", st.rest_error_max);
     CHECK_MSG(st.rest_error_rms <= 0.02, "rest error rms %g edge lengths", st.rest_error_rms);
     CHECK_MSG(st.failures == 0 && st.snags == 0, "%lld failures, %lld snags", st.failures, st.snags);
+    /* issue 11 point 5: no skin face turned over at the defaults */
+    CHECK_EQ_INT(st.inverted_faces_max, 0);
   }
   free(rest);
   free(d.q);
