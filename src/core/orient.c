@@ -250,6 +250,7 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
     const int f = sim->m->simface[q];
     double gs[9];
     const double s = face_ratio(sim, xfull, f, n, n[3], gs);
+    if (!(s < SS_ORIENT_S0)) continue; /* never (s is orient_s[q]): tells the compiler gs is set */
     const double w = k * sim->m->rest_area[f], d = SS_ORIENT_S0 - s;
     e += 0.5 * w * d * d;
     if (!g) continue;
