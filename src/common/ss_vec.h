@@ -23,15 +23,6 @@ static inline double tri_cross2(const double a[3], const double b[3], const doub
   return dot3(n, n);
 }
 
-/* The share of its rest area area0 that a face of area `area` has lost, in
- * [0, 1]: 0 where it keeps (or gains) area, 1 where it is crushed to nothing
- * or had none at rest (its normal tells nothing). */
-static inline double crush_share(double area, double area0) {
-  if (!(area0 > 0.0)) return 1.0;
-  const double r = area / area0;
-  return r >= 1.0 ? 0.0 : r > 0.0 ? 1.0 - r : 1.0;
-}
-
 /* |a - b| */
 static inline double dist3(const double a[3], const double b[3]) {
   double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];

@@ -50,40 +50,14 @@
 #include <string.h>
 
 #include "sim_internal.h"
-#include "ss_vec.h"
+#include "ss_body_normal.h"
 
-/* The body's normal under skin face f (unit, or zero), from `face` (the
- * anchors now, or as bound at rest): the normal of the body face its
- * barycenter is anchored on, with those of the faces its three corners are
- * anchored on added, each weighted by the share of its rest area that the
- * barycenter's body face has lost (1 - r, r = area now / at rest, in [0, 1]).
- * A body face that keeps its area speaks for the skin face alone, and the
- * term is the same bits as with the barycenter's normal alone; one the pose
- * has crushed does not: linear blend skinning crushes crease triangles to
- * 1-30% of their area, where a crushed triangle's normal swings with the
- * smallest move of its corners, and a skin face bridging the crease (its
- * corners anchored on both walls) stood on edge against it while lying
- * face up on the walls (elbow and the 19k quadruped, the eighth session's
- * note). Without barycenter anchors: the sum over the corners. */
+/* The body's normal under skin face f, from `face` (the anchors now, or as
+ * bound at rest): ss_body_normal.h. */
 static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face, int f,
                          double n[3]) {
-  const int nv = sim->m->nvert;
-  n[0] = n[1] = n[2] = 0.0;
-  double w = 1.0; /* the corners' weight */
-  if (sim->m->nanchor > nv && face[nv + f] >= 0) {
-    const int b = face[nv + f];
-    memcpy(n, fr->normal + 3 * b, 3 * sizeof(double));
-    w = crush_share(fr->area[b], sim->m->body_area0[b]);
-  }
-  if (!(w > 0.0)) return; /* the barycenter's unit normal, as it is */
-  for (int c = 0; c < 3; c++) {
-    int b = face[sim->m->faces[3 * f + c]];
-    if (b < 0) continue;
-    for (int k = 0; k < 3; k++) n[k] += w * fr->normal[3 * b + k];
-  }
-  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (len > 0.0)
-    for (int k = 0; k < 3; k++) n[k] /= len;
+  body_normal_under(fr->normal, fr->area, sim->m->body_area0, face, sim->m->faces, sim->m->nvert,
+                    sim->m->nanchor, f, n);
 }
 
 /* The body's "out" under skin face f: the normal where the face is anchored

@@ -12,7 +12,7 @@
 #include "snag.h"
 #include "ss_err.h"
 #include "ss_util.h"
-#include "ss_vec.h"
+#include "ss_body_normal.h"
 
 #define AREA_RATIO_MIN 0.05
 #define AREA_RATIO_MAX 20.0
@@ -94,29 +94,11 @@ typedef struct run_meas {
   long long hug_count;
 } run_meas;
 
-/* Unit sum of the body normals under skin face f for anchor faces af: the
- * barycenter anchor's face, with its corners' anchors' faces added by the
- * share of its rest area the barycenter's face has lost (a crushed body face's
- * normal tells little: as the orient term, orient.c); without barycenter
- * anchors the sum over its corners'. */
+/* The body's normal under skin face f for anchor faces af, as the orient
+ * term judges it (ss_body_normal.h). */
 static void normal_under(const run_meas *m, const ss_sim *sim, const int *af, int f, double n[3]) {
-  const int nv = m->skin_nvert;
-  n[0] = n[1] = n[2] = 0.0;
-  double w = 1.0;
-  if (ss_sim_nanchors(sim) > nv && af[nv + f] >= 0) {
-    const int b = af[nv + f];
-    memcpy(n, m->fr->normal + 3 * b, 3 * sizeof(double));
-    w = crush_share(m->fr->area[b], m->body_area0[b]);
-  }
-  if (!(w > 0.0)) return; /* the barycenter's unit normal, as it is */
-  for (int c = 0; c < 3; c++) {
-    int b = af[m->skin_faces[3 * f + c]];
-    if (b < 0) continue;
-    for (int k = 0; k < 3; k++) n[k] += w * m->fr->normal[3 * b + k];
-  }
-  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (len > 0.0)
-    for (int k = 0; k < 3; k++) n[k] /= len;
+  body_normal_under(m->fr->normal, m->fr->area, m->body_area0, af, m->skin_faces, m->skin_nvert,
+                    ss_sim_nanchors(sim), f, n);
 }
 
 /* Body faces the pose has folded over: a face turned more than 90 degrees
