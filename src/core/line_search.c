@@ -10,15 +10,19 @@
  * conditions (which use the slope, not E).
  *
  * With step_memory (quasi-Newton) a search starts at twice the step the last
- * one took in this solve (at most 1), and a rejected trial is followed by the
- * secant estimate of the minimum along dir, alpha s0 / (s0 - g_t.d) from the
- * slopes at 0 and at the trial point (both known), kept within [0.1, 0.5] of
- * the trial step. The quasi-Newton direction from the constant matrix A is
- * mostly 3-8 times too long where the depth springs of the orient term act
+ * one took in this solve (at most 1), or at the minimum of the orient term's
+ * depth springs along dir plus a quadratic model of the rest of E
+ * (ss_sim_orient_line_step) where that is shorter, and a rejected trial is
+ * followed by the secant estimate of the minimum along dir, alpha s0 / (s0 -
+ * g_t.d) from the slopes at 0 and at the trial point (both known), kept
+ * within [0.1, 0.5] of the trial step. The quasi-Newton direction from the
+ * constant matrix A is mostly 3-4 times too long where the depth springs act
  * (stiff, one-sided, not in A): halving from 1 took 3.15 evaluations per
  * iteration on the 19k quadruped (the full step accepted in 1 of 700
- * searches), this 1.71, and the frame 0.60 of the time for the same error
- * against the truth (bench_sim / skinsim run --truth, README "Speed"). */
+ * searches), the memory and the secant 1.97 (the first trial refused in 2
+ * of 3 searches), with the springs' model first 1.35 (refused in 1 of 20),
+ * for closer to the truth at every budget measured (bench_sim / skinsim run
+ * --truth, README "Speed"). */
 #include <math.h>
 
 #include "solver.h"
@@ -33,6 +37,10 @@ int ss_line_search(ss_solve *s) {
   for (int i = 0; i < n3; i++) slope += s->g[i] * dir[i];
   if (!(slope < 0.0)) return 0;
   double alpha = s->step_memory && s->alpha0 > 0.0 && s->alpha0 < 1.0 ? s->alpha0 : 1.0;
+  if (s->step_memory && s->depth_model) {
+    const double model = ss_sim_orient_line_step(sim, xd, dir, slope);
+    if (model < alpha) alpha = model;
+  }
   int any_finite = 0;
   for (int tries = 0; tries < 40; tries++) {
     for (int i = 0; i < n3; i++) xt[i] = xd[i] + alpha * dir[i];

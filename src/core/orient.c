@@ -287,3 +287,75 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
       for (int c2 = c1; c2 < 3; c2++) vals[ss_sim_slot3(sim, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
   }
 }
+
+/* The quasi-Newton line search's first trial (sim_internal.h). Why: the
+ * solver's constant matrix A (solver_qn.c) is isotropic and holds no depth
+ * spring, and the springs are one-sided and act on a third to a half of the
+ * free vertices at any time on the 19k quadruped (convex body, skin in
+ * tension: vertices sit a few hundredths to tenths of an edge under their
+ * anchors). Along the smooth modes that A holds only by inertia and the
+ * anchor springs (about 1.6 N/m against a depth spring's ~17 there), the
+ * direction is 3-4 times too long: the full step was refused in 2 of 3
+ * searches (accepted steps 0.27-0.42 of it), each refusal a whole energy
+ * evaluation. Without the depth springs every full step is accepted, so
+ * along dir the rest of E is modelled as the quadratic with E's slope at 0
+ * less the springs' and its minimum at the full step,
+ *   phi(a) = s_r a (1 - a / 2) + sum_v w_v / 2 max(0, d_v - a b_v)^2,
+ * d_v the depth at xd, b_v = dir . n_v its rate, s_r = slope - the springs'
+ * slope at 0. phi' is increasing (s_r < 0, each spring convex) and
+ * piecewise linear: safeguarded Newton from a = 1 finds its root in a few
+ * passes over the springs in reach (d_v > 0 or d_v - b_v > 0). */
+double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir, double slope) {
+  if (!(sim->set.orient > 0.0) || !(slope < 0.0)) return 1.0;
+  const double *nd = sim->orient_n + 4 * (size_t)sim->m->nface;
+  double *dl = sim->depth_line;
+  int nreach = 0;
+  double spring_slope = 0.0;
+  for (int q = 0; q < sim->m->ndof; q++) {
+    const double *n = nd + 4 * (size_t)q;
+    if (n[3] == 0.0) continue;
+    const double *x = xd + 3 * q, *a = sim->anchor_pos + 3 * (size_t)sim->m->dof_vert[q];
+    const double *d = dir + 3 * q;
+    const double depth = -((x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1] + (x[2] - a[2]) * n[2]);
+    const double rate = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (!(depth > 0.0) && !(depth - rate > 0.0)) continue; /* out of reach of a full step */
+    const double w = depth_weight(sim, q);
+    if (depth > 0.0) spring_slope -= w * rate * depth;
+    dl[3 * nreach] = depth, dl[3 * nreach + 1] = rate, dl[3 * nreach + 2] = w;
+    nreach++;
+  }
+  const double rest_slope = slope - spring_slope;
+  if (!(rest_slope < 0.0)) return 1.0; /* the springs alone drive the descent: no model */
+  /* phi'(a) = s_r (1 - a) - sum_v w_v b_v max(0, d_v - a b_v); the root in
+   * (0, 1) by Newton steps, each the root of the linear piece at a, kept
+   * inside the bracket (else bisection). A step after which no spring
+   * turned on or off landed on the root of its piece: that is the answer,
+   * exact to rounding (a fixed tolerance would make the step, and the skin
+   * with it, jump with the last bits of the input). */
+  double lo = 0.0, hi = 1.0, a = 1.0, prev = -1.0;
+  for (int it = 0; it < 64; it++) {
+    double d1 = rest_slope * (1.0 - a), d2 = -rest_slope; /* phi'(a), phi''(a) */
+    int turned = prev < 0.0;
+    for (int i = 0; i < nreach; i++) {
+      const double depth = dl[3 * i], rate = dl[3 * i + 1];
+      const int on = depth - a * rate > 0.0;
+      if (on) {
+        d1 -= dl[3 * i + 2] * rate * (depth - a * rate);
+        d2 += dl[3 * i + 2] * rate * rate;
+      }
+      turned |= on != (depth - prev * rate > 0.0);
+    }
+    if (!turned) break; /* the last Newton step was exact */
+    if (!(d1 > 0.0)) {
+      if (it == 0) return 1.0; /* still descending at the full step */
+      lo = a;
+    } else {
+      hi = a;
+    }
+    double next = a - d1 / d2;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi), prev = -1.0; /* bisection: no exact claim */
+    else prev = a;
+    a = next;
+  }
+  return a > 0.0 ? a : 1.0;
+}

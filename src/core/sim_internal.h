@@ -125,6 +125,9 @@ enum ss_vert_kind {
   X(lb_rho, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
   X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
   X(skin_n, double, 3 * (size_t)m->ndof, "(ndof x 3) unit skin normal at the start of the solve (0: none)") \
+  X(depth_line, double, 3 * (size_t)m->ndof,                                                    \
+    "(ndof x 3) orient.c: depth, its rate along the search direction and stiffness of each depth "   \
+    "spring a step can reach (ss_sim_orient_line_step)")                                         \
   X(orient_n, double, 4 * ((size_t)m->nface + m->nvert), "orient.c: per simface n, face_c (0: not judged); per dof at 4 nface n, judged")
 #define SS_SIM_QN_HISTORY(sim) \
   ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
@@ -242,6 +245,13 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
 void ss_sim_orient_begin(ss_sim *sim);
 /* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0. */
 double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g);
+/* The first trial step of a quasi-Newton line search along dir from the
+ * unknowns xd, where E's slope is `slope` (< 0): the minimum over (0, 1] of
+ * the depth springs along the line (exact: one-sided quadratics) plus a
+ * quadratic model of every other term whose minimum is the full step (what
+ * the constant preconditioner gets right). 1 where no depth spring is in
+ * reach or the model does not apply (see orient.c). Writes depth_line. */
+double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir, double slope);
 /* Adds its (Gauss-Newton, PSD) Hessian to the 3n x 3n upper-triangular values. */
 void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals);
 

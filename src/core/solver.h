@@ -24,6 +24,9 @@ typedef struct ss_solve {
   double e;        /* E at xd */
   int step_memory; /* the line search starts where the last one ended (ss_solver_ops) */
   double alpha0;   /* with step_memory: the next search's first trial step, in (0, 1] */
+  int depth_model; /* quasi-Newton: dir comes from the constant matrix and fewer curvature pairs
+                      than the history holds, which have not learned the depth springs: the
+                      search's first trial is at most their model's (line_search.c) */
   int skip_exact;  /* Newton: iterations left before the exact Hessian is tried again */
   int backoff;     /* Newton: the next wait after a failed exact step */
 } ss_solve;

@@ -151,6 +151,7 @@ static int preconditioned_gradient(ss_solve *s) {
   int n3 = 3 * s->sim->m->ndof;
   if (apply_inverse(s->sim, s->g, s->dir) != SS_OK) return SS_E_SOLVER;
   for (int i = 0; i < n3; i++) s->dir[i] = -s->dir[i];
+  s->depth_model = 1;
   return SS_DIR_OK;
 }
 
@@ -169,6 +170,7 @@ static int lbfgs_direction(ss_solve *s) {
    * same operations in the same order as two separate loops: same bits,
    * half the memory traffic). */
   int count = sim->lb_count;
+  s->depth_model = count < m;
   double next = 0.0;
   if (count > 0) {
     /* dir = g and the first dot in one pass */
