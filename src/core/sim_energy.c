@@ -256,24 +256,40 @@ static double dof_residual2(const ss_sim *sim, const double *g, int k) {
   return (ga2 / (along * along) + gn * gn / (across * across)) / (sim->m->edge_len * sim->m->edge_len);
 }
 
-double ss_sim_residual(const ss_sim *sim, const double *g) {
-  double worst = 0.0;
-  for (int k = 0; k < sim->m->ndof; k++) {
-    double r = sqrt(dof_residual2(sim, g, k));
-    if (!(r <= worst)) worst = r; /* NaN propagates */
-  }
-  return worst;
+static inline double dof_residual_along(const ss_sim *sim, const double *g, int k) {
+  double gn = sqrt(g[3 * k] * g[3 * k] + g[3 * k + 1] * g[3 * k + 1] + g[3 * k + 2] * g[3 * k + 2]);
+  return gn / ((sim->mi[k] + sim->m->diag_const[k]) * sim->m->edge_len);
 }
 
-double ss_sim_residual_along(const ss_sim *sim, const double *g) {
+/* The largest residual over the dofs (along: ss_sim_residual_along's
+ * measure), NaN if any is NaN. A maximum is exact in any order: on the
+ * sim's threads with the same bits. */
+static double worst_residual(const ss_sim *sim, const double *g, int along) {
+  const int ndof = sim->m->ndof;
   double worst = 0.0;
-  for (int k = 0; k < sim->m->ndof; k++) {
-    double gn = sqrt(g[3 * k] * g[3 * k] + g[3 * k + 1] * g[3 * k + 1] + g[3 * k + 2] * g[3 * k + 2]);
-    double r = gn / ((sim->mi[k] + sim->m->diag_const[k]) * sim->m->edge_len);
-    if (!(r <= worst)) worst = r; /* NaN propagates */
+  int nan = 0;
+#ifdef _OPENMP
+  if (sim->nthread > 1 && ndof > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread) reduction(max : worst) reduction(+ : nan)
+    for (int k = 0; k < ndof; k++) {
+      const double r = along ? dof_residual_along(sim, g, k) : sqrt(dof_residual2(sim, g, k));
+      if (r > worst) worst = r;
+      nan += r != r;
+    }
+    return nan ? NAN : worst;
   }
-  return worst;
+#endif
+  for (int k = 0; k < ndof; k++) {
+    const double r = along ? dof_residual_along(sim, g, k) : sqrt(dof_residual2(sim, g, k));
+    if (r > worst) worst = r;
+    nan += r != r;
+  }
+  return nan ? NAN : worst;
 }
+
+double ss_sim_residual(const ss_sim *sim, const double *g) { return worst_residual(sim, g, 0); }
+
+double ss_sim_residual_along(const ss_sim *sim, const double *g) { return worst_residual(sim, g, 1); }
 
 double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
   double sum = 0.0;
@@ -281,35 +297,46 @@ double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
   return sim->m->ndof ? sqrt(sum / sim->m->ndof) : 0.0;
 }
 
-void ss_sim_normals_begin(ss_sim *sim, const double *xfull) {
-  const int ndof = sim->m->ndof;
-  double *n = sim->skin_n;
-  memset(n, 0, 3 * (size_t)ndof * sizeof *n);
-  /* a sliver's normal swings with the smallest move of a corner: a vertex
-   * with only slivers around it is judged as along the skin */
-  const double min_area = SS_SLIVER_AREA * sim->m->edge_len * sim->m->edge_len;
-  for (int q = 0; q < sim->m->nsimface; q++) {
-    const int f = sim->m->simface[q];
-    if (!(sim->m->rest_area[f] >= min_area)) continue;
-    const int *fv = sim->m->faces + 3 * f;
+/* The skin normal of dof k: the sum of its simulated faces' area vectors,
+ * gathered through its membrane slots of grad_slot (simulated face order, so
+ * the same sum in the same order as a scatter over the faces), normalised. */
+static inline void dof_normal(const ss_sim *sim, const double *xfull, double min_area, int k) {
+  const ss_model *m = sim->m;
+  double s[3] = {0.0, 0.0, 0.0};
+  for (int e = m->grad_ptr[k]; e < m->grad_ptr[k + 1]; e++) {
+    const int slot = m->grad_slot[e];
+    if (slot >= m->bary_base) continue; /* a barycenter spring's */
+    const int f = m->simface[slot / 9];
+    /* a sliver's normal swings with the smallest move of a corner: a vertex
+     * with only slivers around it is judged as along the skin */
+    if (!(m->rest_area[f] >= min_area)) continue;
+    const int *fv = m->faces + 3 * f;
     const double *a = xfull + 3 * fv[0], *b = xfull + 3 * fv[1], *c = xfull + 3 * fv[2];
     double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    for (int j = 0; j < 3; j++) {
-      int k = sim->m->dof[fv[j]];
-      if (k < 0) continue;
-      for (int i = 0; i < 3; i++) n[3 * k + i] += fn[i]; /* area weighted */
-    }
+    for (int i = 0; i < 3; i++) s[i] += fn[i]; /* area weighted */
   }
-  for (int k = 0; k < ndof; k++) {
-    double *nk = n + 3 * k;
-    double len = sqrt(nk[0] * nk[0] + nk[1] * nk[1] + nk[2] * nk[2]);
-    if (!(len > 0.0) || !isfinite(len)) {
-      nk[0] = nk[1] = nk[2] = 0.0; /* judged as along the skin */
-      continue;
-    }
-    for (int i = 0; i < 3; i++) nk[i] /= len;
+  double *nk = sim->skin_n + 3 * k;
+  double len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  if (!(len > 0.0) || !isfinite(len)) {
+    nk[0] = nk[1] = nk[2] = 0.0; /* judged as along the skin */
+    return;
   }
+  for (int i = 0; i < 3; i++) nk[i] = s[i] / len;
+}
+
+/* Each dof its own: on the sim's threads with the same bits. */
+void ss_sim_normals_begin(ss_sim *sim, const double *xfull) {
+  const int ndof = sim->m->ndof;
+  const double min_area = SS_SLIVER_AREA * sim->m->edge_len * sim->m->edge_len;
+#ifdef _OPENMP
+  if (sim->nthread > 1 && ndof > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int k = 0; k < ndof; k++) dof_normal(sim, xfull, min_area, k);
+    return;
+  }
+#endif
+  for (int k = 0; k < ndof; k++) dof_normal(sim, xfull, min_area, k);
 }
 
 /* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
