@@ -200,6 +200,13 @@ struct ss_sim {
   cholmod_factor *LA;
   double a_h;                 /* h of the current factorisation of A (0: none) */
   cholmod_dense *qb, *qx, *qy, *qe; /* (n x 3) */
+  /* quasi-Newton on threads: the x and y columns of each solve on one thread
+   * (cc, qx_xy, qy_xy, qe_xy) while z is solved on another with its own
+   * cholmod_common (cc_z, qx_z, qy_z, qe_z); the factor is shared read-only.
+   * Made at create where the sim has threads (solver_qn.c) */
+  cholmod_common cc_z;
+  int cc_z_started;
+  cholmod_dense *qx_xy, *qy_xy, *qe_xy, *qx_z, *qy_z, *qe_z;
   int lb_m;                   /* L-BFGS history size */
   int lb_count, lb_head;
   /* per-step counters */

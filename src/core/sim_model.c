@@ -269,7 +269,16 @@ void ss_sim_destroy(ss_sim *sim) {
     cholmod_free_dense(&sim->qx, &sim->cc);
     cholmod_free_dense(&sim->qy, &sim->cc);
     cholmod_free_dense(&sim->qe, &sim->cc);
+    cholmod_free_dense(&sim->qx_xy, &sim->cc);
+    cholmod_free_dense(&sim->qy_xy, &sim->cc);
+    cholmod_free_dense(&sim->qe_xy, &sim->cc);
     cholmod_finish(&sim->cc);
+  }
+  if (sim->cc_z_started) {
+    cholmod_free_dense(&sim->qx_z, &sim->cc_z);
+    cholmod_free_dense(&sim->qy_z, &sim->cc_z);
+    cholmod_free_dense(&sim->qe_z, &sim->cc_z);
+    cholmod_finish(&sim->cc_z);
   }
   ss_mover_destroy(sim->mover);
   if (sim->walkers)

@@ -54,19 +54,53 @@ static int factor_scalar(ss_sim *sim) {
   return SS_OK;
 }
 
-/* z = A^-1 q for dof vectors (n x 3 interleaved). */
+/* cholmod_solve2 on ncol columns of qb from column c0 (a view of them),
+ * into *x with workspaces *y, *e and common cc. Its simplicial path asks for
+ * a workspace Y of 4 x n (4 columns at a time) and leaves it shaped ncol x n
+ * after ncol columns; the shape is restored first, or the call frees and
+ * reallocates it. */
+static int solve_columns(ss_sim *sim, int c0, int ncol, cholmod_dense **x, cholmod_dense **y,
+                         cholmod_dense **e, cholmod_common *cc) {
+  const size_t n = (size_t)sim->m->ndof;
+  cholmod_dense b = *sim->qb;
+  b.ncol = (size_t)ncol;
+  b.nzmax = (size_t)ncol * n;
+  b.x = (double *)sim->qb->x + (size_t)c0 * n;
+  if (*y && (*y)->nzmax >= 4 * n) (*y)->nrow = 4, (*y)->d = 4, (*y)->ncol = n;
+  return cholmod_solve2(CHOLMOD_A, sim->LA, &b, NULL, x, NULL, y, e, cc) ? SS_OK : SS_E_SOLVER;
+}
+
+/* z = A^-1 q for dof vectors (n x 3 interleaved). With threads (and the
+ * split made at create) the z column is solved on a second thread beside x
+ * and y: the simplicial solve treats each column on its own, with the same
+ * operations whatever columns it is given with, so the bits do not change
+ * (the solve was the largest part of a frame left on one core). */
 static int apply_inverse(ss_sim *sim, const double *q, double *z) {
   int n = sim->m->ndof;
   double *b = sim->qb->x;
   for (int k = 0; k < n; k++)
     for (int c = 0; c < 3; c++) b[k + (size_t)c * n] = q[3 * k + c];
-  /* cholmod_solve2's simplicial path asks for a workspace Y of 4 x n
-   * (4 columns at a time) and leaves it shaped 3 x n after three columns;
-   * restore the shape, or the next call frees and reallocates it. */
-  cholmod_dense *y = sim->qy;
-  if (y && y->nzmax >= 4 * (size_t)n) y->nrow = 4, y->d = 4, y->ncol = (size_t)n;
-  if (!cholmod_solve2(CHOLMOD_A, sim->LA, sim->qb, NULL, &sim->qx, NULL, &sim->qy, &sim->qe, &sim->cc))
-    return SS_E_SOLVER;
+#ifdef _OPENMP
+  if (sim->nthread > 1 && sim->cc_z_started) {
+    int st_xy = SS_OK, st_z = SS_OK;
+#pragma omp parallel sections num_threads(2)
+    {
+#pragma omp section
+      st_xy = solve_columns(sim, 0, 2, &sim->qx_xy, &sim->qy_xy, &sim->qe_xy, &sim->cc);
+#pragma omp section
+      st_z = solve_columns(sim, 2, 1, &sim->qx_z, &sim->qy_z, &sim->qe_z, &sim->cc_z);
+    }
+    if (st_xy != SS_OK || st_z != SS_OK) return SS_E_SOLVER;
+    const double *xy = sim->qx_xy->x, *xz = sim->qx_z->x;
+    for (int k = 0; k < n; k++) {
+      z[3 * k] = xy[k];
+      z[3 * k + 1] = xy[k + (size_t)n];
+      z[3 * k + 2] = xz[k];
+    }
+    return SS_OK;
+  }
+#endif
+  if (solve_columns(sim, 0, 3, &sim->qx, &sim->qy, &sim->qe, &sim->cc) != SS_OK) return SS_E_SOLVER;
   const double *xs = sim->qx->x;
   for (int k = 0; k < n; k++)
     for (int c = 0; c < 3; c++) z[3 * k + c] = xs[k + (size_t)c * n];
@@ -130,6 +164,19 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
       !cholmod_solve2(CHOLMOD_A, sim->LA, sim->qb, NULL, &sim->qx, NULL, &sim->qy, &sim->qe, cc))
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD factorisation of the quasi-Newton matrix failed (status %d)",
                    cc->status);
+#ifdef _OPENMP
+  if (sim->nthread_max > 1) {
+    /* the split solve's common and workspaces, allocated by one split solve now */
+    cholmod_start(&sim->cc_z);
+    sim->cc_z_started = 1;
+    sim->cc_z.print = 0;
+    scalar_common(&sim->cc_z);
+    if (solve_columns(sim, 0, 2, &sim->qx_xy, &sim->qy_xy, &sim->qe_xy, cc) != SS_OK ||
+        solve_columns(sim, 2, 1, &sim->qx_z, &sim->qy_z, &sim->qe_z, &sim->cc_z) != SS_OK)
+      return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD solve of the quasi-Newton matrix failed (status %d)",
+                     cc->status);
+  }
+#endif
   return SS_OK;
 }
 
