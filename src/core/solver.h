@@ -40,10 +40,11 @@ typedef struct ss_solver_ops {
   /* Whether a substep above safety_residual after `iterations` goes on up to
    * iterations_max (quasi-Newton; Newton stops at its budget). */
   int safety_net;
-  /* Whether the line search remembers its step within a solve and
-   * interpolates when it backtracks (quasi-Newton: its constant A knows
+  /* Whether the line search remembers its step within a solve, starts at
+   * the depth springs' model where the direction asks for it (depth_model)
+   * and interpolates when it backtracks (quasi-Newton: its constant A knows
    * nothing of the stiff one-sided depth springs, so the full step is
-   * mostly 3-8 times too long; Newton's full step is its model's minimum:
+   * mostly 3-4 times too long; Newton's full step is its model's minimum:
    * it halves from 1, which keeps the truth and references bit for bit). */
   int step_memory;
   /* Before the first energy evaluation of a solve (factorisations for a new
