@@ -33,8 +33,10 @@ int ss_line_search(ss_solve *s) {
   const double *dir = s->dir;
   const double *xd = s->xd;
   double *xt = s->xt, *gt = s->gt;
-  double slope = 0.0;
-  for (int i = 0; i < n3; i++) slope += s->g[i] * dir[i];
+  /* the vector passes on the sim's threads, their sums by blocks (par.h) */
+  const int nt = sim->nthread;
+  double *part = sim->par_part;
+  const double slope = ss_par_dot(nt, part, n3, s->g, dir);
   if (!(slope < 0.0)) return 0;
   double alpha = s->step_memory && s->alpha0 > 0.0 && s->alpha0 < 1.0 ? s->alpha0 : 1.0;
   if (s->step_memory && s->depth_model) {
@@ -43,14 +45,11 @@ int ss_line_search(ss_solve *s) {
   }
   int any_finite = 0;
   for (int tries = 0; tries < 40; tries++) {
-    for (int i = 0; i < n3; i++) xt[i] = xd[i] + alpha * dir[i];
+    ss_par_axpy(nt, part, n3, xt, xd, alpha, dir);
     double et = ss_sim_energy_at(sim, xt, gt);
     /* |g_t|^2 (finite?) and the slope g_t.d in one pass */
-    double gg = 0.0, st_slope = 0.0;
-    for (int i = 0; i < n3; i++) {
-      gg += gt[i] * gt[i];
-      st_slope += gt[i] * dir[i];
-    }
+    double gg, st_slope;
+    ss_par_norm2_dot(nt, part, n3, gt, dir, &gg, &st_slope);
     if (!isfinite(et) || !isfinite(gg)) {
       alpha *= 0.5;
       continue;

@@ -227,6 +227,31 @@ static void face_ratios(const ss_sim *sim, const double *xfull, double *os) {
   for (int q = 0; q < nsim; q++) os[q] = judged_ratio(sim, xfull, on + 4 * (size_t)q, q);
 }
 
+typedef struct depth_ctx {
+  const ss_sim *sim;
+  const double *xfull;
+  double *g;
+} depth_ctx;
+
+/* The depth springs of dofs [q0, q1): energy into sums[0], gradient into g. */
+static void depth_block(void *ctx, int q0, int q1, double *sums) {
+  const depth_ctx *c = ctx;
+  const ss_sim *sim = c->sim;
+  const double *nd = sim->orient_n + 4 * (size_t)sim->m->nface;
+  double e = 0.0;
+  for (int q = q0; q < q1; q++) {
+    const double *n = nd + 4 * (size_t)q;
+    if (n[3] == 0.0) continue;
+    const double depth = dof_depth(sim, q, c->xfull, n);
+    if (!(depth > 0.0)) continue;
+    const double w = depth_weight(sim, q);
+    e += 0.5 * w * depth * depth;
+    if (c->g)
+      for (int i = 0; i < 3; i++) c->g[3 * q + i] -= w * depth * n[i];
+  }
+  sums[0] = e;
+}
+
 double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
   const double k = sim->set.orient;
   if (!(k > 0.0)) return 0.0;
@@ -253,19 +278,12 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
       for (int i = 0; i < 3; i++) g[3 * j + i] -= w * d * gs[3 * c + i];
     }
   }
-  /* no free vertex below the body surface at its anchor */
-  const double *nd = on + 4 * (size_t)sim->m->nface;
-  for (int q = 0; q < sim->m->ndof; q++) {
-    const double *n = nd + 4 * (size_t)q;
-    if (n[3] == 0.0) continue;
-    const double depth = dof_depth(sim, q, xfull, n);
-    if (!(depth > 0.0)) continue;
-    const double w = depth_weight(sim, q);
-    e += 0.5 * w * depth * depth;
-    if (g)
-      for (int i = 0; i < 3; i++) g[3 * q + i] -= w * depth * n[i];
-  }
-  return e;
+  /* no free vertex below the body surface at its anchor: each dof its own,
+   * the energy summed by blocks (par.h) */
+  depth_ctx dc = {sim, xfull, g};
+  double depth_e;
+  ss_par_sum(sim->nthread, sim->m->ndof, 1, depth_block, &dc, sim->par_part, &depth_e);
+  return e + depth_e;
 }
 
 void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals) {
@@ -323,25 +341,67 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
  * slope at 0. phi' is increasing (s_r < 0, each spring convex) and
  * piecewise linear: safeguarded Newton from a = 1 finds its root in a few
  * passes over the springs in reach (d_v > 0 or d_v - b_v > 0). */
-double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir, double slope) {
-  if (!(sim->set.orient > 0.0) || !(slope < 0.0)) return 1.0;
+typedef struct line_ctx {
+  const ss_sim *sim;
+  const double *xd, *dir;
+  double a, prev; /* the step of this pass, of the last (prev < 0: none) */
+} line_ctx;
+
+/* Each dof's spring along the line into depth_line (depth, rate, stiffness;
+ * stiffness 0: not judged or out of reach of a full step, where d_v and
+ * d_v - b_v are both <= 0, so it stays off on all of [0, 1]); sums[0] the
+ * springs' slope at 0. */
+static void line_springs(void *ctx, int q0, int q1, double *sums) {
+  const line_ctx *c = ctx;
+  const ss_sim *sim = c->sim;
   const double *nd = sim->orient_n + 4 * (size_t)sim->m->nface;
   double *dl = sim->depth_line;
-  int nreach = 0;
-  double spring_slope = 0.0;
-  for (int q = 0; q < sim->m->ndof; q++) {
+  double slope = 0.0;
+  for (int q = q0; q < q1; q++) {
     const double *n = nd + 4 * (size_t)q;
+    dl[3 * q] = dl[3 * q + 1] = dl[3 * q + 2] = 0.0;
     if (n[3] == 0.0) continue;
-    const double *x = xd + 3 * q, *a = sim->anchor_pos + 3 * (size_t)sim->m->dof_vert[q];
-    const double *d = dir + 3 * q;
+    const double *x = c->xd + 3 * q, *a = sim->anchor_pos + 3 * (size_t)sim->m->dof_vert[q];
+    const double *d = c->dir + 3 * q;
     const double depth = -((x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1] + (x[2] - a[2]) * n[2]);
     const double rate = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    if (!(depth > 0.0) && !(depth - rate > 0.0)) continue; /* out of reach of a full step */
+    if (!(depth > 0.0) && !(depth - rate > 0.0)) continue;
     const double w = depth_weight(sim, q);
-    if (depth > 0.0) spring_slope -= w * rate * depth;
-    dl[3 * nreach] = depth, dl[3 * nreach + 1] = rate, dl[3 * nreach + 2] = w;
-    nreach++;
+    if (depth > 0.0) slope -= w * rate * depth;
+    dl[3 * q] = depth, dl[3 * q + 1] = rate, dl[3 * q + 2] = w;
   }
+  sums[0] = slope;
+}
+
+/* At step a: sums[0] the springs' part of phi'(a), sums[1] of phi''(a),
+ * sums[2] how many springs are on at a and were not at prev (or the other
+ * way). */
+static void line_slope(void *ctx, int q0, int q1, double *sums) {
+  const line_ctx *c = ctx;
+  const double *dl = c->sim->depth_line;
+  double d1 = 0.0, d2 = 0.0, turned = 0.0;
+  for (int q = q0; q < q1; q++) {
+    const double w = dl[3 * q + 2];
+    if (w == 0.0) continue;
+    const double depth = dl[3 * q], rate = dl[3 * q + 1];
+    const int on = depth - c->a * rate > 0.0;
+    if (on) {
+      d1 -= w * rate * (depth - c->a * rate);
+      d2 += w * rate * rate;
+    }
+    turned += on != (depth - c->prev * rate > 0.0);
+  }
+  sums[0] = d1, sums[1] = d2, sums[2] = turned;
+}
+
+double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir, double slope) {
+  if (!(sim->set.orient > 0.0) || !(slope < 0.0)) return 1.0;
+  const int ndof = sim->m->ndof;
+  /* each dof its own, the sums by blocks (par.h): the same bits for any
+   * thread count */
+  line_ctx lc = {sim, xd, dir, 1.0, -1.0};
+  double spring_slope;
+  ss_par_sum(sim->nthread, ndof, 1, line_springs, &lc, sim->par_part, &spring_slope);
   const double rest_slope = slope - spring_slope;
   if (!(rest_slope < 0.0)) return 1.0; /* the springs alone drive the descent: no model */
   /* phi'(a) = s_r (1 - a) - sum_v w_v b_v max(0, d_v - a b_v); the root in
@@ -352,18 +412,11 @@ double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir,
    * with it, jump with the last bits of the input). */
   double lo = 0.0, hi = 1.0, a = 1.0, prev = -1.0;
   for (int it = 0; it < 64; it++) {
-    double d1 = rest_slope * (1.0 - a), d2 = -rest_slope; /* phi'(a), phi''(a) */
-    int turned = prev < 0.0;
-    for (int i = 0; i < nreach; i++) {
-      const double depth = dl[3 * i], rate = dl[3 * i + 1];
-      const int on = depth - a * rate > 0.0;
-      if (on) {
-        d1 -= dl[3 * i + 2] * rate * (depth - a * rate);
-        d2 += dl[3 * i + 2] * rate * rate;
-      }
-      turned |= on != (depth - prev * rate > 0.0);
-    }
-    if (!turned) break; /* the last Newton step was exact */
+    double sums[3];
+    lc.a = a, lc.prev = prev;
+    ss_par_sum(sim->nthread, ndof, 3, line_slope, &lc, sim->par_part, sums);
+    const double d1 = rest_slope * (1.0 - a) + sums[0], d2 = -rest_slope + sums[1]; /* phi', phi'' */
+    if (prev >= 0.0 && sums[2] == 0.0) break; /* the last Newton step was exact */
     if (!(d1 > 0.0)) {
       if (it == 0) return 1.0; /* still descending at the full step */
       lo = a;

@@ -26,12 +26,12 @@
 #include "ss_err.h"
 #include "ss_vec.h"
 
-void ss_sim_energy_begin(ss_sim *sim, double h) {
-  double c = sim->set.damping;
-  double w = 1.0 / (h * h) + c / h;
+static void inertia_begin_block(void *ctx, int k0, int k1, double *sums) {
+  ss_sim *sim = ctx;
+  (void)sums;
+  const double h = sim->h, c = sim->set.damping, w = 1.0 / (h * h) + c / h;
   const double *g = sim->set.gravity;
-  sim->h = h;
-  for (int k = 0; k < sim->m->ndof; k++) {
+  for (int k = k0; k < k1; k++) {
     int v = sim->m->dof_vert[k];
     sim->mi[k] = sim->m->mass[v] * w;
     for (int i = 0; i < 3; i++) {
@@ -40,11 +40,29 @@ void ss_sim_energy_begin(ss_sim *sim, double h) {
       sim->target[3 * k + i] = (pred + c * h * xn) / (1.0 + c * h) + g[i] / w;
     }
   }
+}
+
+void ss_sim_energy_begin(ss_sim *sim, double h) {
+  sim->h = h;
+  ss_par_sum(sim->nthread, sim->m->ndof, 0, inertia_begin_block, sim, sim->par_part, NULL);
   ss_sim_orient_begin(sim); /* orient.c: its normals in this pose */
 }
 
+typedef struct scatter_ctx {
+  const ss_sim *sim;
+  const double *xd;
+  double *xfull;
+} scatter_ctx;
+
+static void scatter_block(void *ctx, int k0, int k1, double *sums) {
+  const scatter_ctx *c = ctx;
+  (void)sums;
+  for (int k = k0; k < k1; k++) memcpy(c->xfull + 3 * c->sim->m->dof_vert[k], c->xd + 3 * k, 3 * sizeof(double));
+}
+
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull) {
-  for (int k = 0; k < sim->m->ndof; k++) memcpy(xfull + 3 * sim->m->dof_vert[k], xd + 3 * k, 3 * sizeof(double));
+  scatter_ctx c = {sim, xd, xfull};
+  ss_par_sum(sim->nthread, sim->m->ndof, 0, scatter_block, &c, sim->par_part, NULL);
 }
 
 /* g[dof of v] += gv (3 values), if v is free. */
@@ -145,21 +163,45 @@ static inline void bary_spring(const ss_sim *sim, const double *xfull, int f, do
  * between the membrane and the hinges, or after them), and every dof's
  * gradient is summed in the same order of terms: bit-for-bit the same for
  * any thread count. */
-double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
-  enum { L = SS_MEMBRANE_LANES };
+typedef struct sum_ctx {
+  const ss_sim *sim;
+  const double *xfull;
+  const double *a; /* sum_block's terms */
+} sum_ctx;
+
+/* Inertia (with damping and gravity) and vertex springs: energy of dofs [k0, k1). */
+static void inertia_block(void *ctx, int k0, int k1, double *sums) {
+  const sum_ctx *c = ctx;
+  const ss_sim *sim = c->sim;
   double e = 0.0;
-  int n = sim->m->ndof;
-  double *fg = sim->face_grad;
-  /* Inertia (with damping and gravity) and vertex springs: energy. */
-  for (int k = 0; k < n; k++) {
+  for (int k = k0; k < k1; k++) {
     int v = sim->m->dof_vert[k];
-    const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
+    const double *x = c->xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
     double mi = sim->mi[k], kv = sim->m->k_vert[v];
     for (int i = 0; i < 3; i++) {
       double dt = x[i] - t[i], da = x[i] - a[i];
       e += 0.5 * (mi * dt * dt + kv * da * da);
     }
   }
+  sums[0] = e;
+}
+
+static void sum_block(void *ctx, int i0, int i1, double *sums) {
+  const sum_ctx *c = ctx;
+  double e = 0.0;
+  for (int i = i0; i < i1; i++) e += c->a[i];
+  sums[0] = e;
+}
+
+double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
+  enum { L = SS_MEMBRANE_LANES };
+  int n = sim->m->ndof;
+  double *fg = sim->face_grad;
+  /* sums by blocks (par.h): the same bits for any thread count */
+  sum_ctx sc = {sim, xfull, NULL};
+  double part_sum;
+  ss_par_sum(sim->nthread, n, 1, inertia_block, &sc, sim->par_part, &part_sum);
+  double e = part_sum;
   /* Barycenter springs: energy, and each face's gradient (the same for its
    * three corners) into face_grad. */
   if (sim->set.barycenter_anchors) {
@@ -176,7 +218,9 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     {
       for (int f = 0; f < nface; f++) bary_spring(sim, xfull, f, be, fg);
     }
-    for (int f = 0; f < nface; f++) e += be[f];
+    sc.a = be;
+    ss_par_sum(sim->nthread, nface, 1, sum_block, &sc, sim->par_part, &part_sum);
+    e += part_sum;
   }
   /* Membrane: blocks of faces on all threads, energies summed in face order
    * on one. */
@@ -195,7 +239,9 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     ss_membrane_eval_batch(sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam, sim->m->set.compression,
                            fe, fg);
   }
-  for (int q = 0; q < nsim; q++) e += fe[q];
+  sc.a = fe;
+  ss_par_sum(sim->nthread, nsim, 1, sum_block, &sc, sim->par_part, &part_sum);
+  e += part_sum;
   if (g) {
 #ifdef _OPENMP
     if (sim->nthread > 1 && n > 256) {

@@ -19,6 +19,7 @@
 #include <cholmod.h>
 
 #include "mover.h"
+#include "par.h"
 #include "skin_sim/ss_sim.h"
 
 enum ss_vert_kind {
@@ -125,6 +126,9 @@ enum ss_vert_kind {
   X(lb_rho, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
   X(lb_alpha, double, SS_SIM_QN_HISTORY(sim), "(m)")                                               \
   X(skin_n, double, 3 * (size_t)m->ndof, "(ndof x 3) unit skin normal at the start of the solve (0: none)") \
+  X(par_part, double,                                                                            \
+    SS_PAR_SUMS * (size_t)ss_par_nblocks(3 * m->nvert > m->nface ? 3 * m->nvert : m->nface) + 1,   \
+    "par.h: the blocks' partial sums of one pass")                                               \
   X(depth_line, double, 3 * (size_t)m->ndof,                                                    \
     "(ndof x 3) orient.c: depth, its rate along the search direction and stiffness of each depth "   \
     "spring a step can reach (ss_sim_orient_line_step)")                                         \

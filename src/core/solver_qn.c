@@ -35,12 +35,6 @@
 #include "solver.h"
 #include "ss_err.h"
 
-static double dot(const double *a, const double *b, int n) {
-  double s = 0.0;
-  for (int i = 0; i < n; i++) s += a[i] * b[i];
-  return s;
-}
-
 /* Factors L for the current h (sim->mi set by ss_sim_energy_begin). */
 static int factor_scalar(ss_sim *sim) {
   ss_sim_scalar_matrix(sim, sim->A->x);
@@ -70,6 +64,33 @@ static int solve_columns(ss_sim *sim, int c0, int ncol, cholmod_dense **x, cholm
   return cholmod_solve2(CHOLMOD_A, sim->LA, &b, NULL, x, NULL, y, e, cc) ? SS_OK : SS_E_SOLVER;
 }
 
+/* The copies between the interleaved dof vectors (n x 3) and CHOLMOD's
+ * columns, on the sim's threads (par.h, no sums). */
+typedef struct copy_ctx {
+  int n;
+  const double *q;
+  double *b;
+  const double *c0, *c1, *c2; /* the solution's three columns */
+  double *z;
+} copy_ctx;
+
+static void to_columns(void *ctx, int k0, int k1, double *sums) {
+  const copy_ctx *c = ctx;
+  (void)sums;
+  for (int k = k0; k < k1; k++)
+    for (int i = 0; i < 3; i++) c->b[k + (size_t)i * c->n] = c->q[3 * k + i];
+}
+
+static void from_columns(void *ctx, int k0, int k1, double *sums) {
+  const copy_ctx *c = ctx;
+  (void)sums;
+  for (int k = k0; k < k1; k++) {
+    c->z[3 * k] = c->c0[k];
+    c->z[3 * k + 1] = c->c1[k];
+    c->z[3 * k + 2] = c->c2[k];
+  }
+}
+
 /* z = A^-1 q for dof vectors (n x 3 interleaved). With threads (and the
  * split made at create) the z column is solved on a second thread beside x
  * and y: the simplicial solve treats each column on its own, with the same
@@ -77,9 +98,8 @@ static int solve_columns(ss_sim *sim, int c0, int ncol, cholmod_dense **x, cholm
  * (the solve was the largest part of a frame left on one core). */
 static int apply_inverse(ss_sim *sim, const double *q, double *z) {
   int n = sim->m->ndof;
-  double *b = sim->qb->x;
-  for (int k = 0; k < n; k++)
-    for (int c = 0; c < 3; c++) b[k + (size_t)c * n] = q[3 * k + c];
+  copy_ctx cp = {.n = n, .q = q, .b = sim->qb->x, .z = z};
+  ss_par_sum(sim->nthread, n, 0, to_columns, &cp, sim->par_part, NULL);
 #ifdef _OPENMP
   if (sim->nthread > 1 && sim->cc_z_started) {
     int st_xy = SS_OK, st_z = SS_OK;
@@ -91,19 +111,16 @@ static int apply_inverse(ss_sim *sim, const double *q, double *z) {
       st_z = solve_columns(sim, 2, 1, &sim->qx_z, &sim->qy_z, &sim->qe_z, &sim->cc_z);
     }
     if (st_xy != SS_OK || st_z != SS_OK) return SS_E_SOLVER;
-    const double *xy = sim->qx_xy->x, *xz = sim->qx_z->x;
-    for (int k = 0; k < n; k++) {
-      z[3 * k] = xy[k];
-      z[3 * k + 1] = xy[k + (size_t)n];
-      z[3 * k + 2] = xz[k];
-    }
+    const double *xy = sim->qx_xy->x;
+    cp.c0 = xy, cp.c1 = xy + (size_t)n, cp.c2 = sim->qx_z->x;
+    ss_par_sum(sim->nthread, n, 0, from_columns, &cp, sim->par_part, NULL);
     return SS_OK;
   }
 #endif
   if (solve_columns(sim, 0, 3, &sim->qx, &sim->qy, &sim->qe, &sim->cc) != SS_OK) return SS_E_SOLVER;
   const double *xs = sim->qx->x;
-  for (int k = 0; k < n; k++)
-    for (int c = 0; c < 3; c++) z[3 * k + c] = xs[k + (size_t)c * n];
+  cp.c0 = xs, cp.c1 = xs + (size_t)n, cp.c2 = xs + 2 * (size_t)n;
+  ss_par_sum(sim->nthread, n, 0, from_columns, &cp, sim->par_part, NULL);
   return SS_OK;
 }
 
@@ -219,16 +236,13 @@ static int lbfgs_direction(ss_solve *s) {
   int count = sim->lb_count;
   s->depth_model = count < m;
   double next = 0.0;
+  /* the passes on the sim's threads, their dots summed by blocks (par.h) */
+  const int nt = sim->nthread;
+  double *part = sim->par_part;
   if (count > 0) {
     /* dir = g and the first dot in one pass */
     int slot = (sim->lb_head - 1 + m) % m;
-    const double *s0 = sim->lb_s + (size_t)slot * n3;
-    double acc = 0.0;
-    for (int i = 0; i < n3; i++) {
-      dir[i] = g[i];
-      acc += s0[i] * dir[i];
-    }
-    next = sim->lb_rho[slot] * acc;
+    next = sim->lb_rho[slot] * ss_par_copy_dot(nt, part, n3, dir, g, sim->lb_s + (size_t)slot * n3);
   } else {
     memcpy(dir, g, (size_t)n3 * sizeof *dir);
   }
@@ -239,21 +253,15 @@ static int lbfgs_direction(ss_solve *s) {
     sim->lb_alpha[slot] = a;
     if (c + 1 < count) {
       int nslot = (sim->lb_head - 2 - c + m) % m;
-      const double *sn = sim->lb_s + (size_t)nslot * n3;
-      double acc = 0.0;
-      for (int i = 0; i < n3; i++) {
-        dir[i] -= a * y[i];
-        acc += sn[i] * dir[i];
-      }
-      next = sim->lb_rho[nslot] * acc;
+      next = sim->lb_rho[nslot] * ss_par_axpy_dot(nt, part, n3, dir, -a, y, sim->lb_s + (size_t)nslot * n3);
     } else {
-      for (int i = 0; i < n3; i++) dir[i] -= a * y[i];
+      ss_par_axpy_dot(nt, part, n3, dir, -a, y, NULL);
     }
   }
   if (apply_inverse(sim, dir, dir) != SS_OK) return SS_E_SOLVER;
   if (count > 0) {
     int slot = (sim->lb_head - count + m) % m;
-    next = sim->lb_rho[slot] * dot(sim->lb_y + (size_t)slot * n3, dir, n3);
+    next = sim->lb_rho[slot] * ss_par_dot(nt, part, n3, sim->lb_y + (size_t)slot * n3, dir);
   }
   /* The last pass also negates dir and forms the slope g.dir. */
   double slope = 0.0;
@@ -263,25 +271,12 @@ static int lbfgs_direction(ss_solve *s) {
     double coef = sim->lb_alpha[slot] - next;
     if (c > 0) {
       int nslot = (sim->lb_head - c + m) % m;
-      const double *yn = sim->lb_y + (size_t)nslot * n3;
-      double acc = 0.0;
-      for (int i = 0; i < n3; i++) {
-        dir[i] += coef * sv[i];
-        acc += yn[i] * dir[i];
-      }
-      next = sim->lb_rho[nslot] * acc;
+      next = sim->lb_rho[nslot] * ss_par_axpy_dot(nt, part, n3, dir, coef, sv, sim->lb_y + (size_t)nslot * n3);
     } else {
-      for (int i = 0; i < n3; i++) {
-        dir[i] = -(dir[i] + coef * sv[i]);
-        slope += dir[i] * g[i];
-      }
+      slope = ss_par_neg_axpy_dot(nt, part, n3, dir, coef, sv, g);
     }
   }
-  if (count == 0)
-    for (int i = 0; i < n3; i++) {
-      dir[i] = -dir[i];
-      slope += dir[i] * g[i];
-    }
+  if (count == 0) slope = ss_par_neg_axpy_dot(nt, part, n3, dir, 0.0, NULL, g);
   if (!(slope < 0.0) && sim->lb_count > 0) {
     /* Not a descent direction: drop the history, use -A^-1 g. */
     sim->lb_count = 0;
@@ -311,14 +306,9 @@ static void qn_accepted(ss_solve *s) {
   int n3 = 3 * sim->m->ndof, m = sim->lb_m;
   const double *xd = s->xd, *g = s->g;
   double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
-  double sy = 0.0, ss = 0.0, yy = 0.0;
-  for (int i = 0; i < n3; i++) {
-    s_new[i] = xd[i] - s_new[i];
-    y_new[i] = g[i] - y_new[i];
-    sy += s_new[i] * y_new[i];
-    ss += s_new[i] * s_new[i];
-    yy += y_new[i] * y_new[i];
-  }
+  double sums[3];
+  ss_par_pair(sim->nthread, sim->par_part, n3, s_new, xd, y_new, g, sums);
+  const double sy = sums[0], ss = sums[1], yy = sums[2];
   if (sy > 1e-12 * sqrt(ss * yy)) {
     sim->lb_rho[sim->lb_head] = 1.0 / sy;
     sim->lb_head = (sim->lb_head + 1) % m;

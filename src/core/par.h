@@ -1,0 +1,55 @@
+/* Internal: loops over fixed blocks, on the sim's threads, whose sums do not
+ * depend on the thread count (par.c).
+ *
+ * A sum over n terms is cut into blocks of SS_PAR_BLOCK terms, each block's
+ * partial sum is accumulated in index order (by whichever thread runs it),
+ * and the partial sums are added in block order on one thread: the blocks
+ * are the same for any thread count, so are the bits. The vector work of the
+ * solver (dots, updates) and the sums of the energy's per-element terms run
+ * this way: on one thread they were a third of the wall time of a frame at
+ * two threads on the 19k quadruped (4 substeps of 2 iterations). */
+#ifndef SKIN_SIM_PAR_H
+#define SKIN_SIM_PAR_H
+
+#define SS_PAR_BLOCK 2048 /* terms per block */
+#define SS_PAR_SUMS 3     /* the most sums one pass forms */
+
+/* Blocks of a pass over n terms. */
+static inline int ss_par_nblocks(int n) { return n > 0 ? (n + SS_PAR_BLOCK - 1) / SS_PAR_BLOCK : 0; }
+
+/* The work of one block, terms [i0, i1): writes its k partial sums into
+ * sums[0..k) (each accumulated from 0.0 in index order), or nothing if k is
+ * 0. ctx is the caller's. */
+typedef void (*ss_par_fn)(void *ctx, int i0, int i1, double *sums);
+
+/* Runs fn over the blocks of [0, n) (on nthread threads where nthread > 1
+ * and there are several blocks; without OpenMP or at one thread, plainly in
+ * order), then adds the blocks' k sums (k <= SS_PAR_SUMS) in block order into
+ * sums[0..k). part: scratch of ss_par_nblocks(n) * k doubles. */
+void ss_par_sum(int nthread, int n, int k, ss_par_fn fn, void *ctx, double *part, double *sums);
+
+
+/* Vector passes of the solver on ss_par_sum (n terms; part as there). Each
+ * does elementwise what its name says and returns the sums it names. */
+/* sum a[i] b[i] */
+double ss_par_dot(int nthread, double *part, int n, const double *a, const double *b);
+/* out = x + alpha y */
+void ss_par_axpy(int nthread, double *part, int n, double *out, const double *x, double alpha,
+                 const double *y);
+/* out = src; returns sum z[i] out[i] */
+double ss_par_copy_dot(int nthread, double *part, int n, double *out, const double *src,
+                       const double *z);
+/* out += alpha y; returns sum z[i] out[i] (z NULL: 0, no sum) */
+double ss_par_axpy_dot(int nthread, double *part, int n, double *out, double alpha, const double *y,
+                       const double *z);
+/* out = -(out + alpha y) (y NULL: out = -out); returns sum out[i] z[i] */
+double ss_par_neg_axpy_dot(int nthread, double *part, int n, double *out, double alpha,
+                           const double *y, const double *z);
+/* *aa = sum a[i]^2, *ab = sum a[i] b[i] */
+void ss_par_norm2_dot(int nthread, double *part, int n, const double *a, const double *b, double *aa,
+                      double *ab);
+/* s = x - s, y = g - y; sums[0..3) = s.y, s.s, y.y */
+void ss_par_pair(int nthread, double *part, int n, double *s, const double *x, double *y,
+                 const double *g, double sums[3]);
+
+#endif
