@@ -20,7 +20,7 @@
  * (stiff, one-sided, not in A): halving from 1 took 3.15 evaluations per
  * iteration on the 19k quadruped (the full step accepted in 1 of 700
  * searches), the memory and the secant 1.97 (the first trial refused in 2
- * of 3 searches), with the springs' model first 1.35 (refused in 1 of 20),
+ * of 3 searches), with the springs' model first 1.33 (refused in 16 of 417),
  * for closer to the truth at every budget measured (bench_sim / skinsim run
  * --truth, README "Speed"). */
 #include <math.h>

@@ -340,7 +340,8 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
  * d_v the depth at xd, b_v = dir . n_v its rate, s_r = slope - the springs'
  * slope at 0. phi' is increasing (s_r < 0, each spring convex) and
  * piecewise linear: safeguarded Newton from a = 1 finds its root in a few
- * passes over the springs in reach (d_v > 0 or d_v - b_v > 0). */
+ * passes over the dofs, those out of reach of a full step (d_v <= 0 and
+ * d_v - b_v <= 0: off on all of [0, 1]) skipped. */
 typedef struct line_ctx {
   const ss_sim *sim;
   const double *xd, *dir;

@@ -3,24 +3,24 @@
 
 #include "par.h"
 
+/* Block b of [0, n): terms [b B, min(n, (b + 1) B)), its sums at part + b k. */
+static inline void run_block(int n, int k, ss_par_fn fn, void *ctx, double *part, int b) {
+  const int i0 = b * SS_PAR_BLOCK, i1 = n - i0 < SS_PAR_BLOCK ? n : i0 + SS_PAR_BLOCK;
+  fn(ctx, i0, i1, part + (size_t)b * k);
+}
+
 void ss_par_sum(int nthread, int n, int k, ss_par_fn fn, void *ctx, double *part, double *sums) {
   const int nb = ss_par_nblocks(n);
 #ifdef _OPENMP
   if (nthread > 1 && nb > 1) {
 #pragma omp parallel for schedule(static) num_threads(nthread)
-    for (int b = 0; b < nb; b++) {
-      const int i0 = b * SS_PAR_BLOCK, i1 = n - i0 < SS_PAR_BLOCK ? n : i0 + SS_PAR_BLOCK;
-      fn(ctx, i0, i1, part + (size_t)b * k);
-    }
+    for (int b = 0; b < nb; b++) run_block(n, k, fn, ctx, part, b);
   } else
 #else
   (void)nthread;
 #endif
   {
-    for (int b = 0; b < nb; b++) {
-      const int i0 = b * SS_PAR_BLOCK, i1 = n - i0 < SS_PAR_BLOCK ? n : i0 + SS_PAR_BLOCK;
-      fn(ctx, i0, i1, part + (size_t)b * k);
-    }
+    for (int b = 0; b < nb; b++) run_block(n, k, fn, ctx, part, b);
   }
   for (int j = 0; j < k; j++) {
     double s = 0.0;
@@ -33,7 +33,7 @@ void ss_par_sum(int nthread, int n, int k, ss_par_fn fn, void *ctx, double *part
 
 typedef struct vec_ctx {
   double *out, *out2;
-  const double *a, *b, *c, *d;
+  const double *a, *b;
   double alpha;
 } vec_ctx;
 

@@ -6,8 +6,8 @@
  * and the partial sums are added in block order on one thread: the blocks
  * are the same for any thread count, so are the bits. The vector work of the
  * solver (dots, updates) and the sums of the energy's per-element terms run
- * this way: on one thread they were a third of the wall time of a frame at
- * two threads on the 19k quadruped (4 substeps of 2 iterations). */
+ * this way: on one thread they were ~8 ms of a 34 ms frame at two threads on
+ * the 19k quadruped (4 substeps of 2 iterations), the other core spinning. */
 #ifndef SKIN_SIM_PAR_H
 #define SKIN_SIM_PAR_H
 
@@ -27,7 +27,6 @@ typedef void (*ss_par_fn)(void *ctx, int i0, int i1, double *sums);
  * order), then adds the blocks' k sums (k <= SS_PAR_SUMS) in block order into
  * sums[0..k). part: scratch of ss_par_nblocks(n) * k doubles. */
 void ss_par_sum(int nthread, int n, int k, ss_par_fn fn, void *ctx, double *part, double *sums);
-
 
 /* Vector passes of the solver on ss_par_sum (n terms; part as there). Each
  * does elementwise what its name says and returns the sums it names. */

@@ -177,8 +177,7 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
   /* Factor and solve once now: the factor and the solve workspace are then
    * allocated before stepping. */
   ss_sim_energy_begin(sim, sim->set.dt / sim->set.substeps);
-  if (factor_scalar(sim) != SS_OK ||
-      !cholmod_solve2(CHOLMOD_A, sim->LA, sim->qb, NULL, &sim->qx, NULL, &sim->qy, &sim->qe, cc))
+  if (factor_scalar(sim) != SS_OK || solve_columns(sim, 0, 3, &sim->qx, &sim->qy, &sim->qe, cc) != SS_OK)
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD factorisation of the quasi-Newton matrix failed (status %d)",
                    cc->status);
 #ifdef _OPENMP
@@ -188,10 +187,12 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
     sim->cc_z_started = 1;
     sim->cc_z.print = 0;
     scalar_common(&sim->cc_z);
-    if (solve_columns(sim, 0, 2, &sim->qx_xy, &sim->qy_xy, &sim->qe_xy, cc) != SS_OK ||
-        solve_columns(sim, 2, 1, &sim->qx_z, &sim->qy_z, &sim->qe_z, &sim->cc_z) != SS_OK)
+    if (solve_columns(sim, 0, 2, &sim->qx_xy, &sim->qy_xy, &sim->qe_xy, cc) != SS_OK)
       return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD solve of the quasi-Newton matrix failed (status %d)",
                      cc->status);
+    if (solve_columns(sim, 2, 1, &sim->qx_z, &sim->qy_z, &sim->qe_z, &sim->cc_z) != SS_OK)
+      return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD solve of the quasi-Newton matrix failed (status %d)",
+                     sim->cc_z.status);
   }
 #endif
   return SS_OK;
