@@ -336,57 +336,68 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   res->stop = SS_STOP_INSIDE;
   res->steps = 0;
   res->length = 0.0;
-  if (!(isfinite(target[0]) && isfinite(target[1]) && isfinite(target[2]))) return;
+  const double ax = target[0], ay = target[1], az = target[2];
+  if (!(isfinite(ax) && isfinite(ay) && isfinite(az))) return;
 
+  /* Scalars, not arrays, for what every step computes: the compiler keeps
+   * them in registers (a point stored element by element and read back as
+   * one vector stalls the load on every step). The arithmetic and its order
+   * are those of dot3 and face_point. */
   int f = face;
   const int *cross = fr->cross;
+  double length = 0.0;
   int stamped = 0; /* this walk's stamp taken and its start face marked (at its first crossing) */
   for (;;) {
     /* direction towards a* in f's canonical space */
     const double *w = fr->walk + SS_FRAME_RECORD * (size_t)f; /* origin, e1, e2, to_canon */
-    double here[3], d[3];
-    for (int i = 0; i < 3; i++) here[i] = w[i] + p[0] * w[3 + i] + p[1] * w[6 + i];
-    for (int i = 0; i < 3; i++) d[i] = target[i] - here[i];
-    const double *t = w + 9;
-    const double du = dot3(t, d), dv = dot3(t + 3, d);
+    const double pu = p[0], pv = p[1];
+    const double dx = ax - (w[0] + pu * w[3] + pv * w[6]);
+    const double dy = ay - (w[1] + pu * w[4] + pv * w[7]);
+    const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
+    const double du = w[9] * dx + w[10] * dy + w[11] * dz;
+    const double dv = w[12] * dx + w[13] * dy + w[14] * dz;
     if (!(isfinite(du) && isfinite(dv))) break; /* stay where we are */
 
-    /* the smallest ray parameter at which the ray leaves the triangle */
-    double t_exit = 1.0;
-    int k_exit = -1;
     /* Most rays end inside their face. An edge's exit parameter te = a / b
      * (b > 0) is >= 1 when a >= b exactly (rounding is monotone), so where
      * all three compare so, no edge is crossed, as the divisions below would
      * find, without them. */
-    const double sum = du + dv, rest = 1.0 - p[0] - p[1];
-    if (!((dv >= 0.0 || p[1] >= -dv) && (!(sum > 0.0) || rest >= sum) &&
-          (du >= 0.0 || p[0] >= -du))) {
-      if (dv < 0.0) { /* edge 0: v = 0 */
-        double te = -p[1] / dv;
-        if (te < t_exit) t_exit = te, k_exit = 0;
-      }
-      if (sum > 0.0) { /* edge 1: u + v = 1 */
-        double te = rest / sum;
-        if (te < t_exit) t_exit = te, k_exit = 1;
-      }
-      if (du < 0.0) { /* edge 2: u = 0 */
-        double te = -p[0] / du;
-        if (te < t_exit) t_exit = te, k_exit = 2;
-      }
-    }
-    const double p0u = p[0], p0v = p[1];
-    if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
-      p[0] += du;
-      p[1] += dv;
+    const double sum = du + dv, rest = 1.0 - pu - pv;
+    if ((dv >= 0.0 || pv >= -dv) && (!(sum > 0.0) || rest >= sum) && (du >= 0.0 || pu >= -du)) {
+      /* ends inside f: the orthogonal projection of a* */
+      p[0] = pu + du;
+      p[1] = pv + dv;
       clamp_uv(p);
-      res->length += canonical_length(w + 3, p[0] - p0u, p[1] - p0v);
+      length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
+      break;
+    }
+    /* the smallest ray parameter at which the ray leaves the triangle */
+    double t_exit = 1.0;
+    int k_exit = -1;
+    if (dv < 0.0) { /* edge 0: v = 0 */
+      double te = -pv / dv;
+      if (te < t_exit) t_exit = te, k_exit = 0;
+    }
+    if (sum > 0.0) { /* edge 1: u + v = 1 */
+      double te = rest / sum;
+      if (te < t_exit) t_exit = te, k_exit = 1;
+    }
+    if (du < 0.0) { /* edge 2: u = 0 */
+      double te = -pu / du;
+      if (te < t_exit) t_exit = te, k_exit = 2;
+    }
+    if (k_exit < 0) { /* every exit at t >= 1 after all: ends inside f */
+      p[0] = pu + du;
+      p[1] = pv + dv;
+      clamp_uv(p);
+      length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
       break;
     }
     if (t_exit < 0.0) t_exit = 0.0;
-    double h[2] = {p[0] + t_exit * du, p[1] + t_exit * dv};
+    double h[2] = {pu + t_exit * du, pv + t_exit * dv};
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
-    res->length += canonical_length(w + 3, p[0] - p0u, p[1] - p0v);
+    length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
     if (!stamped) {
       if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
         memset(walker->visited, 0, sizeof(unsigned int) * (size_t)walker->nface);
@@ -416,7 +427,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       edge_dist2(fr, f, k_edge, target, &se);
       if (isfinite(se)) { /* NaN where the face's corners overflow: stay at h */
         edge_point(k_edge, se, p);
-        res->length += canonical_length(ss_frames_edges(fr, f), p[0] - hu, p[1] - hv);
+        length += canonical_length(ss_frames_edges(fr, f), p[0] - hu, p[1] - hv);
       }
     }
     if (stop != SS_STOP_INSIDE) {
@@ -427,4 +438,5 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   res->face = f;
   res->uv[0] = p[0];
   res->uv[1] = p[1];
+  res->length = length;
 }
