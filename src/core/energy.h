@@ -51,10 +51,15 @@ typedef struct ss_membrane_face {
   double area;    /* rest area */
   double pad2;
 } ss_membrane_face;
-/* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. */
+/* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. In the
+ * widest vectors this CPU has; _isa: in those of isa (isa.h; one the CPU
+ * runs): the same bits from every one. */
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
                             double mu, double lam, double compression, double *energy,
                             double *grad);
+void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
+                                const double *x, double mu, double lam, double compression,
+                                double *energy, double *grad);
 
 /* ---- bending: dihedral hinge ------------------------------------------------
  * x: 12 doubles, vertices (e0, e1, o0, o1): the shared edge e0-e1 and the two

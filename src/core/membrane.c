@@ -47,6 +47,7 @@
 #include <string.h>
 
 #include "energy.h"
+#include "isa.h"
 #include "ss_vec.h"
 
 void ss_membrane_lame(double young, double poisson, double *mu, double *lam) {
@@ -579,11 +580,51 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
   }
 }
 
+/* The kernel compiled for each vector width (isa.h): the same bits from
+ * each. */
+#define SS_BATCH_BODY                                                              \
+  if (compression < 1.0)                                                           \
+    batch_kernel(face, q0, q1, x, mu, lam, compression, energy, grad, 1);          \
+  else                                                                             \
+    batch_kernel(face, q0, q1, x, mu, lam, 1.0, energy, grad, 0);
+static void batch_base(const ss_membrane_face *face, int q0, int q1, const double *x, double mu,
+                       double lam, double compression, double *energy, double *grad) {
+  SS_BATCH_BODY
+}
+#ifdef SS_ISA_WIDE
+SS_TARGET_AVX2 static void batch_avx2(const ss_membrane_face *face, int q0, int q1,
+                                      const double *x, double mu, double lam, double compression,
+                                      double *energy, double *grad) {
+  SS_BATCH_BODY
+}
+SS_TARGET_AVX512 static void batch_avx512(const ss_membrane_face *face, int q0, int q1,
+                                          const double *x, double mu, double lam,
+                                          double compression, double *energy, double *grad) {
+  SS_BATCH_BODY
+}
+#endif
+#undef SS_BATCH_BODY
+
+void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
+                                const double *x, double mu, double lam, double compression,
+                                double *energy, double *grad) {
+#ifdef SS_ISA_WIDE
+  if (isa == SS_ISA_AVX512) {
+    batch_avx512(face, q0, q1, x, mu, lam, compression, energy, grad);
+    return;
+  }
+  if (isa == SS_ISA_AVX2) {
+    batch_avx2(face, q0, q1, x, mu, lam, compression, energy, grad);
+    return;
+  }
+#else
+  (void)isa;
+#endif
+  batch_base(face, q0, q1, x, mu, lam, compression, energy, grad);
+}
+
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
                             double mu, double lam, double compression, double *energy,
                             double *grad) {
-  if (compression < 1.0)
-    batch_kernel(face, q0, q1, x, mu, lam, compression, energy, grad, 1);
-  else
-    batch_kernel(face, q0, q1, x, mu, lam, 1.0, energy, grad, 0);
+  ss_membrane_eval_batch_isa(ss_isa_best(), face, q0, q1, x, mu, lam, compression, energy, grad);
 }

@@ -231,13 +231,13 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   if (sim->nthread > 1 && nsim > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
-      ss_membrane_eval_batch(sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull, sim->m->mu,
-                             sim->m->lam, sim->m->set.compression, fe, fg);
+      ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim,
+                                 xfull, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, fg);
   } else
 #endif
   {
-    ss_membrane_eval_batch(sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam, sim->m->set.compression,
-                           fe, fg);
+    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam,
+                               sim->m->set.compression, fe, fg);
   }
   sc.a = fe;
   ss_par_sum(sim->nthread, nsim, 1, sum_block, &sc, sim->par_part, &part_sum);

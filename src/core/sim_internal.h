@@ -186,6 +186,8 @@ struct ss_sim {
   ss_mover *mover;            /* body frames and BVH in the current pose */
   int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
   int nthread_max;            /* threads made at create (walkers, team) */
+  int isa;                    /* vector instruction set of the kernels (isa.h): the widest the
+                                 CPU runs, chosen at create; the same bits from any */
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
   double h;                   /* substep of the current system */

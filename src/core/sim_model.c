@@ -16,6 +16,7 @@
 #endif
 
 #include "energy.h"
+#include "isa.h"
 #include "sim_internal.h"
 #include "ss_err.h"
 #include "ss_vec.h"
@@ -238,6 +239,7 @@ static int sim_data(ss_sim *sim, char *err, int err_sz) {
   openmp_warm_up(sim->nthread);
 #endif
   sim->nthread_max = sim->nthread;
+  sim->isa = ss_isa_best();
   status = data_arena(sim);
   for (int t = 0; t < sim->nthread && !status; t++)
     status = ss_walker_create(&sim->walkers[t], sim->m->btopo->nface);

@@ -5,9 +5,11 @@
  * near-degenerate, flipped, stretched and compressed triangles, the closed-form
  * PSD projection checked against a numerical eigen-projection in F-space,
  * rigid-motion invariance, and finiteness on degenerate triangles. */
+#include <stdio.h>
 #include <string.h>
 
 #include "energy.h"
+#include "isa.h"
 #include "ss_test.h"
 
 static const double MU = 3.0, LAM = 7.0;
@@ -402,7 +404,8 @@ static void test_degenerate(unsigned long long *rng) {
 /* The stepping kernel (ss_membrane_eval_batch) computes exactly what
  * ss_membrane_eval computes, bit for bit, for every kind of face (collapsed
  * ones included: J = 0 takes the fallback normal), at any count (a last,
- * partial block of lanes) and from any starting block. */
+ * partial block of lanes), from any starting block, and in each vector width
+ * this CPU runs (isa.h). */
 static void test_batch_bits(unsigned long long *rng) {
   enum { NF = 3 * SS_MEMBRANE_LANES + 5 };
   double x[3 * 3 * NF];
@@ -422,16 +425,23 @@ static void test_batch_bits(unsigned long long *rng) {
     ss_membrane_rest(rest, rest + 3, rest + 6, rec[q].dm_inv, &area);
     rec[q].area = area;
   }
-  for (int start = 0; start <= SS_MEMBRANE_LANES; start += SS_MEMBRANE_LANES) {
-    memset(en, 0, sizeof en);
-    memset(gr, 0, sizeof gr);
-    ss_membrane_eval_batch(rec, start, NF, x, MU, LAM, COMP, en, gr);
-    for (int q = start; q < NF; q++) {
-      double g9[9];
-      double e = ss_membrane_eval(x + 9 * q, rec[q].dm_inv, rec[q].area, MU, LAM, COMP, g9, NULL);
-      CHECK_MSG(memcmp(&e, &en[q], sizeof e) == 0, "batch energy of face %d differs (%.17g vs %.17g)", q,
-                en[q], e);
-      CHECK_MSG(memcmp(g9, gr + 9 * q, sizeof g9) == 0, "batch gradient of face %d differs", q);
+  for (int isa = 0; isa < SS_ISA_COUNT; isa++) {
+    if (!ss_isa_supported(isa)) {
+      printf("test_energy_membrane: the kernel in %s not run (not on this CPU)\n", ss_isa_name(isa));
+      continue;
+    }
+    for (int start = 0; start <= SS_MEMBRANE_LANES; start += SS_MEMBRANE_LANES) {
+      memset(en, 0, sizeof en);
+      memset(gr, 0, sizeof gr);
+      ss_membrane_eval_batch_isa(isa, rec, start, NF, x, MU, LAM, COMP, en, gr);
+      for (int q = start; q < NF; q++) {
+        double g9[9];
+        double e = ss_membrane_eval(x + 9 * q, rec[q].dm_inv, rec[q].area, MU, LAM, COMP, g9, NULL);
+        CHECK_MSG(memcmp(&e, &en[q], sizeof e) == 0,
+                  "batch energy of face %d differs in %s (%.17g vs %.17g)", q, ss_isa_name(isa), en[q], e);
+        CHECK_MSG(memcmp(g9, gr + 9 * q, sizeof g9) == 0, "batch gradient of face %d differs in %s", q,
+                  ss_isa_name(isa));
+      }
     }
   }
 }
