@@ -37,11 +37,21 @@ typedef struct vec_ctx {
   double alpha;
 } vec_ctx;
 
+/* Each block's sum in SS_PAR_LANES interleaved partial sums (par.h): the
+ * lanes are independent chains that the compiler may keep in vectors of any
+ * width, and one add no longer waits for the one before. */
+enum { L = SS_PAR_LANES };
+
 static void dot_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
-  double s = 0.0;
-  for (int i = i0; i < i1; i++) s += v->a[i] * v->b[i];
-  sums[0] = s;
+  const double *restrict a = v->a, *restrict b = v->b;
+  double s[L] = {0};
+  int i = i0;
+  for (; i1 - i >= L; i += L)
+    SS_PAR_LANE_LOOP
+    for (int l = 0; l < L; l++) s[l] += a[i + l] * b[i + l];
+  for (int l = 0; i < i1; i++, l++) s[l] += a[i] * b[i];
+  sums[0] = ss_par_lanes_total(s);
 }
 
 double ss_par_dot(int nthread, double *part, int n, const double *a, const double *b) {
@@ -65,12 +75,21 @@ void ss_par_axpy(int nthread, double *part, int n, double *out, const double *x,
 
 static void copy_dot_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
-  double s = 0.0;
-  for (int i = i0; i < i1; i++) {
-    v->out[i] = v->a[i];
-    s += v->b[i] * v->out[i];
+  double *restrict out = v->out;
+  const double *restrict a = v->a, *restrict b = v->b;
+  double s[L] = {0};
+  int i = i0;
+  for (; i1 - i >= L; i += L)
+    SS_PAR_LANE_LOOP
+    for (int l = 0; l < L; l++) {
+      out[i + l] = a[i + l];
+      s[l] += b[i + l] * a[i + l];
+    }
+  for (int l = 0; i < i1; i++, l++) {
+    out[i] = a[i];
+    s[l] += b[i] * a[i];
   }
-  sums[0] = s;
+  sums[0] = ss_par_lanes_total(s);
 }
 
 double ss_par_copy_dot(int nthread, double *part, int n, double *out, const double *src,
@@ -83,15 +102,27 @@ double ss_par_copy_dot(int nthread, double *part, int n, double *out, const doub
 
 static void axpy_dot_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
-  double s = 0.0;
-  if (v->b) {
-    for (int i = i0; i < i1; i++) {
-      v->out[i] += v->alpha * v->a[i];
-      s += v->b[i] * v->out[i];
+  double *restrict out = v->out;
+  const double *restrict a = v->a, *restrict b = v->b;
+  const double alpha = v->alpha;
+  if (b) {
+    double s[L] = {0};
+    int i = i0;
+    for (; i1 - i >= L; i += L)
+      SS_PAR_LANE_LOOP
+      for (int l = 0; l < L; l++) {
+        const double o = out[i + l] + alpha * a[i + l];
+        out[i + l] = o;
+        s[l] += b[i + l] * o;
+      }
+    for (int l = 0; i < i1; i++, l++) {
+      const double o = out[i] + alpha * a[i];
+      out[i] = o;
+      s[l] += b[i] * o;
     }
-    sums[0] = s;
+    sums[0] = ss_par_lanes_total(s);
   } else {
-    for (int i = i0; i < i1; i++) v->out[i] += v->alpha * v->a[i];
+    for (int i = i0; i < i1; i++) out[i] += alpha * a[i];
   }
 }
 
@@ -105,19 +136,39 @@ double ss_par_axpy_dot(int nthread, double *part, int n, double *out, double alp
 
 static void neg_axpy_dot_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
-  double s = 0.0;
-  if (v->a) {
-    for (int i = i0; i < i1; i++) {
-      v->out[i] = -(v->out[i] + v->alpha * v->a[i]);
-      s += v->out[i] * v->b[i];
+  double *restrict out = v->out;
+  const double *restrict a = v->a, *restrict b = v->b;
+  const double alpha = v->alpha;
+  double s[L] = {0};
+  int i = i0;
+  if (a) {
+    for (; i1 - i >= L; i += L)
+      SS_PAR_LANE_LOOP
+      for (int l = 0; l < L; l++) {
+        const double o = -(out[i + l] + alpha * a[i + l]);
+        out[i + l] = o;
+        s[l] += o * b[i + l];
+      }
+    for (int l = 0; i < i1; i++, l++) {
+      const double o = -(out[i] + alpha * a[i]);
+      out[i] = o;
+      s[l] += o * b[i];
     }
   } else {
-    for (int i = i0; i < i1; i++) {
-      v->out[i] = -v->out[i];
-      s += v->out[i] * v->b[i];
+    for (; i1 - i >= L; i += L)
+      SS_PAR_LANE_LOOP
+      for (int l = 0; l < L; l++) {
+        const double o = -out[i + l];
+        out[i + l] = o;
+        s[l] += o * b[i + l];
+      }
+    for (int l = 0; i < i1; i++, l++) {
+      const double o = -out[i];
+      out[i] = o;
+      s[l] += o * b[i];
     }
   }
-  sums[0] = s;
+  sums[0] = ss_par_lanes_total(s);
 }
 
 double ss_par_neg_axpy_dot(int nthread, double *part, int n, double *out, double alpha,
@@ -130,12 +181,20 @@ double ss_par_neg_axpy_dot(int nthread, double *part, int n, double *out, double
 
 static void norm2_dot_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
-  double aa = 0.0, ab = 0.0;
-  for (int i = i0; i < i1; i++) {
-    aa += v->a[i] * v->a[i];
-    ab += v->a[i] * v->b[i];
+  const double *restrict a = v->a, *restrict b = v->b;
+  double aa[L] = {0}, ab[L] = {0};
+  int i = i0;
+  for (; i1 - i >= L; i += L)
+    SS_PAR_LANE_LOOP
+    for (int l = 0; l < L; l++) {
+      aa[l] += a[i + l] * a[i + l];
+      ab[l] += a[i + l] * b[i + l];
+    }
+  for (int l = 0; i < i1; i++, l++) {
+    aa[l] += a[i] * a[i];
+    ab[l] += a[i] * b[i];
   }
-  sums[0] = aa, sums[1] = ab;
+  sums[0] = ss_par_lanes_total(aa), sums[1] = ss_par_lanes_total(ab);
 }
 
 void ss_par_norm2_dot(int nthread, double *part, int n, const double *a, const double *b, double *aa,
@@ -148,15 +207,27 @@ void ss_par_norm2_dot(int nthread, double *part, int n, const double *a, const d
 
 static void pair_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
-  double sy = 0.0, ss = 0.0, yy = 0.0;
-  for (int i = i0; i < i1; i++) {
-    v->out[i] = v->a[i] - v->out[i];
-    v->out2[i] = v->b[i] - v->out2[i];
-    sy += v->out[i] * v->out2[i];
-    ss += v->out[i] * v->out[i];
-    yy += v->out2[i] * v->out2[i];
+  double *restrict s_out = v->out, *restrict y_out = v->out2;
+  const double *restrict x = v->a, *restrict g = v->b;
+  double sy[L] = {0}, ss[L] = {0}, yy[L] = {0};
+  int i = i0;
+  for (; i1 - i >= L; i += L)
+    SS_PAR_LANE_LOOP
+    for (int l = 0; l < L; l++) {
+      const double si = x[i + l] - s_out[i + l], yi = g[i + l] - y_out[i + l];
+      s_out[i + l] = si, y_out[i + l] = yi;
+      sy[l] += si * yi;
+      ss[l] += si * si;
+      yy[l] += yi * yi;
+    }
+  for (int l = 0; i < i1; i++, l++) {
+    const double si = x[i] - s_out[i], yi = g[i] - y_out[i];
+    s_out[i] = si, y_out[i] = yi;
+    sy[l] += si * yi;
+    ss[l] += si * si;
+    yy[l] += yi * yi;
   }
-  sums[0] = sy, sums[1] = ss, sums[2] = yy;
+  sums[0] = ss_par_lanes_total(sy), sums[1] = ss_par_lanes_total(ss), sums[2] = ss_par_lanes_total(yy);
 }
 
 void ss_par_pair(int nthread, double *part, int n, double *s, const double *x, double *y,

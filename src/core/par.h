@@ -2,7 +2,7 @@
  * depend on the thread count (par.c).
  *
  * A sum over n terms is cut into blocks of SS_PAR_BLOCK terms, each block's
- * partial sum is accumulated in index order (by whichever thread runs it),
+ * partial sum is accumulated in a fixed order (by whichever thread runs it),
  * and the partial sums are added in block order on one thread: the blocks
  * are the same for any thread count, so are the bits. The vector work of the
  * solver (dots, updates) and the sums of the energy's per-element terms run
@@ -12,6 +12,20 @@
 #define SKIN_SIM_PAR_H
 
 #define SS_PAR_BLOCK 2048 /* terms per block */
+/* Within a block, term i0 + j is accumulated into partial sum j % SS_PAR_LANES
+ * (each in index order), and the block's sum is ss_par_lanes_total of them:
+ * independent chains, vectorised at any width with the same bits. */
+#define SS_PAR_LANES 8
+/* Before a loop over the lanes: each lane its own (no reduction across
+ * them), so vectorising it changes no bit. */
+#ifdef _OPENMP
+#define SS_PAR_LANE_LOOP _Pragma("omp simd")
+#else
+#define SS_PAR_LANE_LOOP
+#endif
+static inline double ss_par_lanes_total(const double s[SS_PAR_LANES]) {
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
 #define SS_PAR_SUMS 3     /* the most sums one pass forms */
 
 /* Blocks of a pass over n terms. */

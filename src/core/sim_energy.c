@@ -169,28 +169,36 @@ typedef struct sum_ctx {
   const double *a; /* sum_block's terms */
 } sum_ctx;
 
-/* Inertia (with damping and gravity) and vertex springs: energy of dofs [k0, k1). */
+/* Inertia (with damping and gravity) and vertex springs: energy of dofs
+ * [k0, k1), dof k0 + j's into lane j % SS_PAR_LANES (par.h). */
 static void inertia_block(void *ctx, int k0, int k1, double *sums) {
   const sum_ctx *c = ctx;
   const ss_sim *sim = c->sim;
-  double e = 0.0;
-  for (int k = k0; k < k1; k++) {
+  double e[SS_PAR_LANES] = {0};
+  for (int k = k0, l = 0; k < k1; k++, l = (l + 1) % SS_PAR_LANES) {
     int v = sim->m->dof_vert[k];
     const double *x = c->xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
     double mi = sim->mi[k], kv = sim->m->k_vert[v];
+    double ek = 0.0;
     for (int i = 0; i < 3; i++) {
       double dt = x[i] - t[i], da = x[i] - a[i];
-      e += 0.5 * (mi * dt * dt + kv * da * da);
+      ek += 0.5 * (mi * dt * dt + kv * da * da);
     }
+    e[l] += ek;
   }
-  sums[0] = e;
+  sums[0] = ss_par_lanes_total(e);
 }
 
 static void sum_block(void *ctx, int i0, int i1, double *sums) {
   const sum_ctx *c = ctx;
-  double e = 0.0;
-  for (int i = i0; i < i1; i++) e += c->a[i];
-  sums[0] = e;
+  const double *restrict a = c->a;
+  double e[SS_PAR_LANES] = {0};
+  int i = i0;
+  for (; i1 - i >= SS_PAR_LANES; i += SS_PAR_LANES)
+    SS_PAR_LANE_LOOP
+    for (int l = 0; l < SS_PAR_LANES; l++) e[l] += a[i + l];
+  for (int l = 0; i < i1; i++, l++) e[l] += a[i];
+  sums[0] = ss_par_lanes_total(e);
 }
 
 double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
