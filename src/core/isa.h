@@ -24,6 +24,14 @@ enum ss_isa {
 #define SS_TARGET_AVX512 __attribute__((target("avx512f")))
 #endif
 
+/* On a kernel's body shared by the variants: inlined into each, so that
+ * each is compiled for its own instruction set. */
+#if defined(__GNUC__)
+#define SS_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define SS_ALWAYS_INLINE
+#endif
+
 /* 1 if this CPU runs kernels compiled for isa (and they were compiled). */
 int ss_isa_supported(int isa);
 /* The widest supported. */

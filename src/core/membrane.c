@@ -316,12 +316,6 @@ static void comp_eval_law(double s0, double s1, double j, double mu, double lam,
   o->h01 = lJ * (2.0 * j - 1.0);
 }
 
-#if defined(__GNUC__)
-#define SS_ALWAYS_INLINE __attribute__((always_inline))
-#else
-#define SS_ALWAYS_INLINE
-#endif
-
 /* Psi and the stress P = dPsi/dF (its columns P0, P1) of the compression-soft
  * membrane at F = [f0, f1] with J = |f0 x f1| > 0: one flat body, so that the
  * stepping kernel vectorises it; the scalar evaluation calls the same code

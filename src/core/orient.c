@@ -177,8 +177,11 @@ static inline void dof_normal_begin(const ss_sim *sim, const ss_frames *fr, int 
 
 /* Each face and dof its own: on the sim's threads with the same bits (once
  * per substep: 6% of a frame at 4 substeps on the 19k quadruped, which ran
- * on one core). */
+ * on one core). Nothing with orient 0. */
 void ss_sim_orient_begin(ss_sim *sim) {
+  /* without the term nothing reads them (its energy and line model return
+   * first); a new orient takes effect at the next substep, which calls this */
+  if (!(sim->set.orient > 0.0)) return;
   const ss_frames *fr = ss_mover_frames(sim->mover);
   const int nsim = sim->m->nsimface, ndof = sim->m->ndof;
 #ifdef _OPENMP
