@@ -71,6 +71,8 @@ void ss_mover_set_pose_threads(ss_mover *m, const double *pos, int nthread) {
 
 const ss_frames *ss_mover_frames(const ss_mover *m) { return m->frames; }
 
+void ss_mover_set_isa(ss_mover *m, int isa) { m->frames->isa = isa; }
+
 void ss_mover_move(ss_mover *m, int face, const double uv[2], const double target[3],
                    ss_walk_result *res) {
   if (m->settings.method == SS_METHOD_NRING && m->pos &&

@@ -21,6 +21,8 @@ void ss_mover_destroy(ss_mover *mover);
 void ss_mover_set_pose(ss_mover *mover, const double *pos);
 /* The same, the frames computed by nthread threads (the same bits). */
 void ss_mover_set_pose_threads(ss_mover *mover, const double *pos, int nthread);
+/* The vector instruction set of its frame update (ss_frames.isa). */
+void ss_mover_set_isa(ss_mover *mover, int isa);
 const ss_frames *ss_mover_frames(const ss_mover *mover);
 /* Moves anchor (face, uv) towards target with the mover's method. For project
  * and nring, stop is SS_STOP_INSIDE and steps 0. */

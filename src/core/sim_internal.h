@@ -187,7 +187,8 @@ struct ss_sim {
   int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
   int nthread_max;            /* threads made at create (walkers, team) */
   int isa;                    /* vector instruction set of the kernels (isa.h): the widest the
-                                 CPU runs, chosen at create; the same bits from any */
+                                 CPU runs, chosen at create (ss_sim_set_isa); the same bits
+                                 from any */
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
   double h;                   /* substep of the current system */
@@ -227,6 +228,9 @@ struct ss_sim {
  * poisson, density, stiffness, barycenters, bending, orient): every sim on a
  * model has the model's (sim_model.c). */
 int ss_sim_in_model(size_t offset);
+/* Sets the vector instruction set of the sim's kernels (isa.h; one the CPU
+ * runs): the same bits from any. Chosen at create: the widest. */
+void ss_sim_set_isa(ss_sim *sim, int isa);
 
 /* ---- sim_model.c ---- */
 /* The model's bvh_rest on the body at rest, built if it is not yet (model

@@ -33,11 +33,13 @@
  * one line, so the entry point also lies on one of its other edges: the walk
  * passes straight through onto the neighbour across that edge (a crossing
  * like any other, counted and bounded), and traces on from there. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "walk.h"
+#include "isa.h"
 #include "ss_vec.h"
 
 /* ---- frames ------------------------------------------------------------- */
@@ -48,6 +50,7 @@ int ss_frames_create(ss_frames **out, int nface) {
   ss_frames *fr = calloc(1, sizeof *fr);
   if (!fr) return SS_E_NOMEM;
   fr->nface = nface;
+  fr->isa = ss_isa_best();
   fr->normal = malloc(sizeof(double) * 3 * (size_t)nface);
   fr->area = malloc(sizeof(double) * (size_t)nface);
   fr->degenerate = malloc((size_t)nface);
@@ -153,26 +156,125 @@ static inline void frame_update_face(ss_frames *fr, const int *fv, const double 
   w[15] = deg ? 1.0 : 0.0;
 }
 
+/* Faces [f0, f1) as frame_update_face computes them, SS_FRAME_LANES at a
+ * time: corners gathered into lanes, one elementwise loop (the same
+ * operations in the same order, so the same bits at any vector width), and
+ * the faces whose normal or QR needs a branch of frame_update_face (zero
+ * area, degenerate, non-finite) done again by it. One face at a time its 12
+ * divisions and 3 square roots were most of the pose stage. */
+#define SS_FRAME_LANES 8
+static inline SS_ALWAYS_INLINE void frames_kernel(ss_frames *fr, const int *fv, const double *pos,
+                                                  int f0, int f1) {
+  enum { L = SS_FRAME_LANES };
+  for (int fb = f0; fb < f1; fb += L) {
+    const int m = f1 - fb < L ? f1 - fb : L;
+    double vs[9][L], rec[15][L], nl[3][L], al[L], ok[L];
+    for (int l = 0; l < L; l++) {
+      const int *c = fv + 3 * (fb + (l < m ? l : 0));
+      for (int k = 0; k < 3; k++)
+        for (int i = 0; i < 3; i++) vs[3 * k + i][l] = pos[3 * c[k] + i];
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      const double ox = vs[0][l], oy = vs[1][l], oz = vs[2][l];
+      const double e0 = vs[3][l] - ox, e1 = vs[4][l] - oy, e2 = vs[5][l] - oz;
+      const double e3 = vs[6][l] - ox, e4 = vs[7][l] - oy, e5 = vs[8][l] - oz;
+      const double n0 = e1 * e5 - e2 * e4, n1 = e2 * e3 - e0 * e5, n2 = e0 * e4 - e1 * e3;
+      const double len = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+      al[l] = 0.5 * len;
+      nl[0][l] = n0 / len, nl[1][l] = n1 / len, nl[2][l] = n2 / len;
+      /* canonical_map's regular branch */
+      const double r11 = sqrt(e0 * e0 + e1 * e1 + e2 * e2);
+      const double q0 = e0 / r11, q1 = e1 / r11, q2 = e2 / r11;
+      const double r12 = q0 * e3 + q1 * e4 + q2 * e5;
+      const double w0 = e3 - r12 * q0, w1 = e4 - r12 * q1, w2 = e5 - r12 * q2;
+      const double r22 = sqrt(w0 * w0 + w1 * w1 + w2 * w2);
+      const double a = 1.0 / r11, b = -r12 / (r11 * r22), c = 1.0 / r22;
+      const double u0 = w0 / r22, u1 = w1 / r22, u2 = w2 / r22;
+      rec[0][l] = ox, rec[1][l] = oy, rec[2][l] = oz;
+      rec[3][l] = e0, rec[4][l] = e1, rec[5][l] = e2;
+      rec[6][l] = e3, rec[7][l] = e4, rec[8][l] = e5;
+      rec[9][l] = a * q0 + b * u0, rec[10][l] = a * q1 + b * u1, rec[11][l] = a * q2 + b * u2;
+      rec[12][l] = c * u0, rec[13][l] = c * u1, rec[14][l] = c * u2;
+      /* len > 0 and finite, r11 > 0 and finite, r22 > 1e-10 r11: else
+       * frame_update_face's other branches */
+      ok[l] = (len > 0.0 && len <= DBL_MAX && r11 > 0.0 && r11 <= DBL_MAX && r22 > 1e-10 * r11) ? 1.0 : 0.0;
+    }
+    for (int l = 0; l < m; l++) {
+      const int f = fb + l;
+      if (ok[l] == 0.0) {
+        frame_update_face(fr, fv, pos, f);
+        continue;
+      }
+      double *w = fr->walk + SS_FRAME_RECORD * (size_t)f, *n = fr->normal + 3 * (size_t)f;
+      for (int i = 0; i < 15; i++) w[i] = rec[i][l];
+      w[15] = 0.0;
+      n[0] = nl[0][l], n[1] = nl[1][l], n[2] = nl[2][l];
+      fr->area[f] = al[l];
+      fr->degenerate[f] = 0;
+    }
+  }
+}
+
+static void frames_base(ss_frames *fr, const int *fv, const double *pos, int f0, int f1) {
+  frames_kernel(fr, fv, pos, f0, f1);
+}
+#ifdef SS_ISA_WIDE
+SS_TARGET_AVX2 static void frames_avx2(ss_frames *fr, const int *fv, const double *pos, int f0, int f1) {
+  frames_kernel(fr, fv, pos, f0, f1);
+}
+SS_TARGET_AVX512 static void frames_avx512(ss_frames *fr, const int *fv, const double *pos, int f0,
+                                           int f1) {
+  frames_kernel(fr, fv, pos, f0, f1);
+}
+#endif
+
+/* Faces [f0, f1) in fr->isa's vectors (isa < 0: one face at a time, the
+ * reference the kernels are tested against). */
+static void frames_range(ss_frames *fr, const int *fv, const double *pos, int f0, int f1) {
+  if (fr->isa < 0) {
+    for (int f = f0; f < f1; f++) frame_update_face(fr, fv, pos, f);
+    return;
+  }
+#ifdef SS_ISA_WIDE
+  if (fr->isa == SS_ISA_AVX512) {
+    frames_avx512(fr, fv, pos, f0, f1);
+    return;
+  }
+  if (fr->isa == SS_ISA_AVX2) {
+    frames_avx2(fr, fv, pos, f0, f1);
+    return;
+  }
+#endif
+  frames_base(fr, fv, pos, f0, f1);
+}
+
 void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
   ss_frames_update_threads(fr, topo, pos, 1);
 }
 
-/* One pass over the faces; each face is its own (the same bits for any
- * thread count). */
+/* One pass over the faces in blocks of SS_FRAME_LANES; each face is its own
+ * (the same bits for any thread count). */
 void ss_frames_update_threads(ss_frames *fr, const ss_topo *topo, const double *pos, int nthread) {
   if (fr->cross_topo != topo) build_crossings(fr, topo);
   const int *fv = topo->face_vert;
   const int nface = topo->nface;
 #ifdef _OPENMP
   if (nthread > 1) {
+    const int nblock = (nface + SS_FRAME_LANES - 1) / SS_FRAME_LANES;
 #pragma omp parallel for schedule(static) num_threads(nthread)
-    for (int f = 0; f < nface; f++) frame_update_face(fr, fv, pos, f);
+    for (int b = 0; b < nblock; b++) {
+      const int f0 = b * SS_FRAME_LANES, f1 = nface - f0 < SS_FRAME_LANES ? nface : f0 + SS_FRAME_LANES;
+      frames_range(fr, fv, pos, f0, f1);
+    }
     return;
   }
 #else
   (void)nthread;
 #endif
-  for (int f = 0; f < nface; f++) frame_update_face(fr, fv, pos, f);
+  frames_range(fr, fv, pos, 0, nface);
 }
 
 /* World point of canonical uv on face f (the walk's hot path: inlined). */

@@ -33,6 +33,9 @@ typedef struct ss_frames {
    * first update with it. */
   int *cross;        /* (nface x 3) */
   const ss_topo *cross_topo;
+  int isa;           /* vector instruction set of the update (isa.h): the widest the CPU
+                        runs unless set otherwise; the same bits from any, and from -1:
+                        one face at a time without lanes (the tests' reference) */
 } ss_frames;
 
 #define SS_FRAME_RECORD 16 /* doubles per face record in ss_frames.walk */

@@ -24,7 +24,7 @@ static void run_isa(const ss_scene *sc, int method, int threads, int isa, double
   CHECK_MSG(ss_sim_create(&sim, nv, ss_scene_rest(sc), ss_scene_nface(sc), ss_scene_faces(sc), NULL,
                           &set, err, sizeof err) == SS_OK, "%s", err);
   if (!sim) return;
-  if (isa >= 0) sim->isa = isa;
+  if (isa >= 0) ss_sim_set_isa(sim, isa);
   double *pose = malloc(3 * (size_t)nv * sizeof(double));
   for (int f = 1; f <= 12; f++) {
     ss_scene_pose(sc, f, pose);
