@@ -46,20 +46,35 @@ double ss_membrane_eval(const double x[9], const double dm_inv[4], double rest_a
 #define SS_MEMBRANE_LANES 8
 typedef struct ss_membrane_face {
   int xo[3];      /* 3 * vertex index of each corner */
-  int pad;
+  int anchor;     /* 3 * index of its barycenter spring's anchor in bary_anchor */
   double dm_inv[4];
   double area;    /* rest area */
-  double pad2;
+  double k_bary;  /* stiffness of its barycenter spring */
 } ss_membrane_face;
 /* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. In the
  * widest vectors this CPU has; _isa: in those of isa (isa.h; one the CPU
- * runs): the same bits from every one. */
+ * runs): the same bits from every one.
+ * With bary_anchor (else NULL), each face's barycenter spring is added to
+ * its energy and to each corner's gradient, in the same pass over the same
+ * gathered corners: a zero-length spring of stiffness k_bary from the
+ * face's barycenter b to its anchor a = bary_anchor + anchor,
+ * e = 0.5 k |b - a|^2, each corner's gradient k (b - a) / 3 (computed as
+ * ss_bary_spring). */
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
-                            double mu, double lam, double compression, double *energy,
-                            double *grad);
+                            const double *bary_anchor, double mu, double lam, double compression,
+                            double *energy, double *grad);
 void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
-                                const double *x, double mu, double lam, double compression,
-                                double *energy, double *grad);
+                                const double *x, const double *bary_anchor, double mu, double lam,
+                                double compression, double *energy, double *grad);
+/* One barycenter spring as the batch computes it: corners x (9), anchor a,
+ * stiffness k; returns its energy, its gradient per corner into g3. */
+static inline double ss_bary_spring(const double x[9], const double a[3], double k, double g3[3]) {
+  const double dx = (x[0] + x[3] + x[6]) / 3.0 - a[0];
+  const double dy = (x[1] + x[4] + x[7]) / 3.0 - a[1];
+  const double dz = (x[2] + x[5] + x[8]) / 3.0 - a[2];
+  g3[0] = k * dx / 3.0, g3[1] = k * dy / 3.0, g3[2] = k * dz / 3.0;
+  return 0.5 * k * (dx * dx + dy * dy + dz * dz);
+}
 
 /* ---- bending: dihedral hinge ------------------------------------------------
  * x: 12 doubles, vertices (e0, e1, o0, o1): the shared edge e0-e1 and the two

@@ -497,17 +497,20 @@ double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double re
  * ss_membrane_eval. */
 /* The kernel, specialised by the constant `soft` (compression-soft when 1;
  * then compression is c): the Stable Neo-Hookean body as it was, or
- * comp_stress. */
+ * comp_stress; and by `bary` (1: each face's barycenter spring added, as
+ * ss_bary_spring, from the corners already gathered). */
 static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, int q0, int q1,
-                                                 const double *x, double mu, double lam,
-                                                 double compression, double *energy,
-                                                 double *grad, const int soft) {
+                                                 const double *x, const double *bary_anchor,
+                                                 double mu, double lam, double compression,
+                                                 double *energy, double *grad, const int soft,
+                                                 const int bary) {
   enum { L = SS_MEMBRANE_LANES };
   const double alpha = alpha_of(mu, lam);
   const double rest_offset = lam > 0.0 ? 0.5 * mu * mu / lam : 0.0;
   for (int qb = q0; qb < q1; qb += L) {
     const int m = q1 - qb < L ? q1 - qb : L;
     double xs[9][L], dm[4][L], area[L], en[L], gr[9][L];
+    double as[3][L], kb[L], eb[L], gb[3][L]; /* barycenter springs (bary) */
     double jl[L]; /* J per lane: a flag array of ints would stop the vectoriser */
     for (int l = 0; l < L; l++) {
       const ss_membrane_face *fc = face + qb + (l < m ? l : 0);
@@ -515,6 +518,10 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
         for (int i = 0; i < 3; i++) xs[3 * c + i][l] = x[fc->xo[c] + i];
       for (int i = 0; i < 4; i++) dm[i][l] = fc->dm_inv[i];
       area[l] = fc->area;
+      if (bary) {
+        for (int i = 0; i < 3; i++) as[i][l] = bary_anchor[fc->anchor + i];
+        kb[l] = fc->k_bary;
+      }
     }
 #ifdef _OPENMP
 #pragma omp simd
@@ -556,6 +563,19 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
       gr[7][l] = ar * (d20 * p0y + d21 * p1y);
       gr[8][l] = ar * (d20 * p0z + d21 * p1z);
       en[l] = ar * psi;
+      if (bary) { /* ss_bary_spring's arithmetic */
+        const double bx = (xs[0][l] + xs[3][l] + xs[6][l]) / 3.0 - as[0][l];
+        const double by = (xs[1][l] + xs[4][l] + xs[7][l]) / 3.0 - as[1][l];
+        const double bz = (xs[2][l] + xs[5][l] + xs[8][l]) / 3.0 - as[2][l];
+        const double k = kb[l];
+        const double gx = k * bx / 3.0, gy = k * by / 3.0, gz = k * bz / 3.0;
+        gb[0][l] = gx, gb[1][l] = gy, gb[2][l] = gz;
+        eb[l] = 0.5 * k * (bx * bx + by * by + bz * bz);
+        en[l] += eb[l];
+        gr[0][l] += gx, gr[1][l] += gy, gr[2][l] += gz;
+        gr[3][l] += gx, gr[4][l] += gy, gr[5][l] += gz;
+        gr[6][l] += gx, gr[7][l] += gy, gr[8][l] += gz;
+      }
     }
     for (int l = 0; l < m; l++) {
       if (!(jl[l] > 1e-280)) {
@@ -565,60 +585,62 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
           for (int i = 0; i < 3; i++) x9[3 * c + i] = x[fc->xo[c] + i];
         en[l] = ss_membrane_eval(x9, fc->dm_inv, fc->area, mu, lam, soft ? compression : 1.0, g9, NULL);
         for (int r = 0; r < 9; r++) gr[r][l] = g9[r];
+        if (bary) {
+          en[l] += eb[l];
+          for (int r = 0; r < 9; r++) gr[r][l] += gb[r % 3][l];
+        }
       }
       energy[qb + l] = en[l];
     }
-    double *gb = grad + 9 * (size_t)qb;
+    double *gout = grad + 9 * (size_t)qb;
     for (int l = 0; l < m; l++)
-      for (int r = 0; r < 9; r++) gb[9 * l + r] = gr[r][l];
+      for (int r = 0; r < 9; r++) gout[9 * l + r] = gr[r][l];
   }
 }
 
-/* The kernel compiled for each vector width (isa.h): the same bits from
- * each. */
-#define SS_BATCH_BODY                                                              \
-  if (compression < 1.0)                                                           \
-    batch_kernel(face, q0, q1, x, mu, lam, compression, energy, grad, 1);          \
-  else                                                                             \
-    batch_kernel(face, q0, q1, x, mu, lam, 1.0, energy, grad, 0);
-static void batch_base(const ss_membrane_face *face, int q0, int q1, const double *x, double mu,
-                       double lam, double compression, double *energy, double *grad) {
-  SS_BATCH_BODY
-}
+/* The kernel compiled for each vector width (isa.h), specialised by its two
+ * constants: the same bits from each width. */
+#define SS_BATCH_ARGS                                                                    \
+  const ss_membrane_face *face, int q0, int q1, const double *x, const double *bary_anchor, \
+      double mu, double lam, double compression, double *energy, double *grad
+#define SS_BATCH_BODY                                                                          \
+  if (compression < 1.0 && bary_anchor)                                                        \
+    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, 1, 1);      \
+  else if (compression < 1.0)                                                                  \
+    batch_kernel(face, q0, q1, x, NULL, mu, lam, compression, energy, grad, 1, 0);             \
+  else if (bary_anchor)                                                                        \
+    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, 1.0, energy, grad, 0, 1);              \
+  else                                                                                         \
+    batch_kernel(face, q0, q1, x, NULL, mu, lam, 1.0, energy, grad, 0, 0);
+static void batch_base(SS_BATCH_ARGS) { SS_BATCH_BODY }
 #ifdef SS_ISA_WIDE
-SS_TARGET_AVX2 static void batch_avx2(const ss_membrane_face *face, int q0, int q1,
-                                      const double *x, double mu, double lam, double compression,
-                                      double *energy, double *grad) {
-  SS_BATCH_BODY
-}
-SS_TARGET_AVX512 static void batch_avx512(const ss_membrane_face *face, int q0, int q1,
-                                          const double *x, double mu, double lam,
-                                          double compression, double *energy, double *grad) {
-  SS_BATCH_BODY
-}
+SS_TARGET_AVX2 static void batch_avx2(SS_BATCH_ARGS) { SS_BATCH_BODY }
+SS_TARGET_AVX512 static void batch_avx512(SS_BATCH_ARGS) { SS_BATCH_BODY }
 #endif
 #undef SS_BATCH_BODY
+#undef SS_BATCH_ARGS
 
 void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
-                                const double *x, double mu, double lam, double compression,
-                                double *energy, double *grad) {
+                                const double *x, const double *bary_anchor, double mu, double lam,
+                                double compression, double *energy, double *grad) {
 #ifdef SS_ISA_WIDE
   if (isa == SS_ISA_AVX512) {
-    batch_avx512(face, q0, q1, x, mu, lam, compression, energy, grad);
+    batch_avx512(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad);
     return;
   }
   if (isa == SS_ISA_AVX2) {
-    batch_avx2(face, q0, q1, x, mu, lam, compression, energy, grad);
+    batch_avx2(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad);
     return;
   }
 #else
   (void)isa;
 #endif
-  batch_base(face, q0, q1, x, mu, lam, compression, energy, grad);
+  batch_base(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad);
 }
 
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
-                            double mu, double lam, double compression, double *energy,
-                            double *grad) {
-  ss_membrane_eval_batch_isa(ss_isa_best(), face, q0, q1, x, mu, lam, compression, energy, grad);
+                            const double *bary_anchor, double mu, double lam, double compression,
+                            double *energy, double *grad) {
+  ss_membrane_eval_batch_isa(ss_isa_best(), face, q0, q1, x, bary_anchor, mu, lam, compression,
+                             energy, grad);
 }

@@ -141,6 +141,7 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
   if (material) {
     sim->m->set = sim->set;
     ss_sim_build_material(sim);
+    ss_sim_energy_springs(sim); /* k_face into the membrane records */
     if (old_bending > 0.0 && sim->set.bending != old_bending)
       for (int e = 0; e < sim->m->nhinge; e++)
         sim->m->hinge_weight[e] = sim->m->hinge_weight[e] / old_bending * sim->set.bending;

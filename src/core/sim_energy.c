@@ -74,38 +74,35 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
   g[3 * k + 2] += gv[2];
 }
 
-int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
-  const int nsim = sim->m->nsimface, nf = sim->m->nface, n = sim->m->ndof;
+void ss_sim_energy_springs(ss_sim *sim) {
   const int bary = sim->set.barycenter_anchors;
-  sim->m->bary_base = 9 * nsim;
+  for (int q = 0; q < sim->m->nsimface; q++) {
+    const int f = sim->m->simface[q];
+    ss_membrane_face *r = sim->m->mface + q;
+    r->anchor = 3 * f;
+    r->k_bary = bary ? sim->m->k_face[f] : 0.0;
+  }
+}
+
+int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
+  const int nsim = sim->m->nsimface, n = sim->m->ndof;
   /* mface, grad_ptr (zeroed), grad_slot: the model's arena; face_grad: the data's */
   for (int q = 0; q < nsim; q++) {
     int f = sim->m->simface[q];
     ss_membrane_face *r = sim->m->mface + q;
     for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->m->faces[3 * f + c];
-    r->pad = 0;
     memcpy(r->dm_inv, sim->m->dm_inv + 4 * f, 4 * sizeof(double));
     r->area = sim->m->rest_area[f];
-    r->pad2 = 0.0;
   }
-  /* Slots per dof in the order of the sum: springs (face order), membrane
-   * (simulated face order), each corner in turn. */
+  ss_sim_energy_springs(sim);
+  /* Slots per dof in the order of the sum: the simulated faces' (membrane
+   * and barycenter spring together) in simulated face order, each corner in
+   * turn. */
   int *cnt = sim->m->grad_ptr + 1;
   for (int pass = 0; pass < 2; pass++) {
     if (pass == 1) {
       for (int k = 0; k < n; k++) sim->m->grad_ptr[k + 1] += sim->m->grad_ptr[k];
       cnt = sim->m->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
-    }
-    for (int f = 0; bary && f < nf; f++) {
-      if (sim->m->k_face[f] == 0.0) continue;
-      for (int c = 0; c < 3; c++) {
-        int k = sim->m->dof[sim->m->faces[3 * f + c]];
-        if (k < 0) continue;
-        if (pass == 0)
-          cnt[k]++;
-        else
-          sim->m->grad_slot[cnt[k]++] = sim->m->bary_base + 3 * f;
-      }
     }
     for (int q = 0; q < nsim; q++)
       for (int c = 0; c < 3; c++) {
@@ -120,6 +117,7 @@ int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
   /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
   memmove(sim->m->grad_ptr + 1, sim->m->grad_ptr, (size_t)n * sizeof(int));
   sim->m->grad_ptr[0] = 0;
+  (void)err, (void)err_sz;
   return SS_OK;
 }
 
@@ -142,25 +140,9 @@ static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, do
   g[3 * k] = g0, g[3 * k + 1] = g1, g[3 * k + 2] = g2;
 }
 
-/* Face f's barycenter spring: its energy into be[f] (0 without a spring)
- * and its gradient (the same for its three corners) into face_grad (fg). */
-static inline void bary_spring(const ss_sim *sim, const double *xfull, int f, double *be, double *fg) {
-  const double kf = sim->m->k_face[f];
-  be[f] = 0.0;
-  if (kf == 0.0) return;
-  const int *fv = sim->m->faces + 3 * f;
-  const double *a = sim->anchor_pos + 3 * ((size_t)sim->m->nvert + f);
-  double d[3];
-  for (int i = 0; i < 3; i++)
-    d[i] = (xfull[3 * fv[0] + i] + xfull[3 * fv[1] + i] + xfull[3 * fv[2] + i]) / 3.0 - a[i];
-  be[f] = 0.5 * kf * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  double *gb = fg + sim->m->bary_base + 3 * f;
-  for (int i = 0; i < 3; i++) gb[i] = kf * d[i] / 3.0;
-}
-
 /* Every term's energy is summed into one total in a fixed order (vertex
- * terms, barycenter springs, membrane, hinges: the place for a new term is
- * between the membrane and the hinges, or after them), and every dof's
+ * terms, simulated faces' membrane with barycenter spring, hinges: the place
+ * for a new term is between the faces and the hinges, or after them), and every dof's
  * gradient is summed in the same order of terms: bit-for-bit the same for
  * any thread count. */
 typedef struct sum_ctx {
@@ -210,42 +192,24 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   double part_sum;
   ss_par_sum(sim->nthread, n, 1, inertia_block, &sc, sim->par_part, &part_sum);
   double e = part_sum;
-  /* Barycenter springs: energy, and each face's gradient (the same for its
-   * three corners) into face_grad. */
-  if (sim->set.barycenter_anchors) {
-    /* each face on its own (on the threads), its energy into face_energy
-     * (free until the membrane's), then summed in face order on one */
-    const int nface = sim->m->nface;
-    double *be = sim->face_energy;
-#ifdef _OPENMP
-    if (sim->nthread > 1 && nface > 256) {
-#pragma omp parallel for schedule(static) num_threads(sim->nthread)
-      for (int f = 0; f < nface; f++) bary_spring(sim, xfull, f, be, fg);
-    } else
-#endif
-    {
-      for (int f = 0; f < nface; f++) bary_spring(sim, xfull, f, be, fg);
-    }
-    sc.a = be;
-    ss_par_sum(sim->nthread, nface, 1, sum_block, &sc, sim->par_part, &part_sum);
-    e += part_sum;
-  }
-  /* Membrane: blocks of faces on all threads, energies summed in face order
-   * on one. */
+  /* Membrane and barycenter springs: blocks of faces on all threads (each
+   * face's spring in the membrane's pass over its corners), energies summed
+   * in face order. */
   const int nsim = sim->m->nsimface;
   const int nblock = (nsim + L - 1) / L;
   double *fe = sim->face_energy;
+  const double *bary_anchor = sim->set.barycenter_anchors ? sim->anchor_pos + 3 * (size_t)sim->m->nvert : NULL;
 #ifdef _OPENMP
   if (sim->nthread > 1 && nsim > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
       ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim,
-                                 xfull, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, fg);
+                                 xfull, bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, fg);
   } else
 #endif
   {
-    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, sim->m->mu, sim->m->lam,
-                               sim->m->set.compression, fe, fg);
+    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu,
+                               sim->m->lam, sim->m->set.compression, fe, fg);
   }
   sc.a = fe;
   ss_par_sum(sim->nthread, nsim, 1, sum_block, &sc, sim->par_part, &part_sum);
@@ -359,7 +323,6 @@ static inline void dof_normal(const ss_sim *sim, const double *xfull, double min
   double s[3] = {0.0, 0.0, 0.0};
   for (int e = m->grad_ptr[k]; e < m->grad_ptr[k + 1]; e++) {
     const int slot = m->grad_slot[e];
-    if (slot >= m->bary_base) continue; /* a barycenter spring's */
     const int f = m->simface[slot / 9];
     /* a sliver's normal swings with the smallest move of a corner: a vertex
      * with only slivers around it is judged as along the skin */

@@ -85,8 +85,8 @@ enum ss_vert_kind {
   X(mface, struct ss_membrane_face, (size_t)m->nface + 1,                                          \
     "(nsimface) packed membrane input, in simface order")                                        \
   X(grad_ptr, int, (size_t)m->nvert + 2, "(ndof + 1) CSR: the face_grad slots each dof sums")    \
-  X(grad_slot, int, 6 * (size_t)m->nface + 1,                                                    \
-    "in the order of the sum (springs by face, then membrane by face)")                          \
+  X(grad_slot, int, 3 * (size_t)m->nface + 1,                                                    \
+    "in the order of the sum (by simulated face, each corner)")                                   \
   X(diag_const, double, (size_t)m->nvert, "(ndof) diagonal of the scalar matrix without inertia") \
   X(diag_springs, double, (size_t)m->nvert,                                                      \
     "(ndof) its anchor springs' part alone: a flat membrane's stiffness across its surface")
@@ -107,10 +107,9 @@ enum ss_vert_kind {
     "(nanchor) sum over the last step's substeps of |a* - a0|")                                  \
   X(anchor_path, double, (size_t)m->nanchor, "(nanchor) sum of the lengths walked (walk only)")  \
   X(walkers, ss_walker *, (size_t)sim->nthread_max, "(nthread_max) walk scratch, one per thread") \
-  X(face_energy, double, (size_t)m->nface, "per face, in one evaluation: the barycenter springs' energies (nface), then the membrane's (nsimface)") \
+  X(face_energy, double, (size_t)m->nface, "(nsimface) per simulated face, in one evaluation: membrane and barycenter spring") \
   X(orient_s, double, (size_t)m->nface, "(nsimface) orient.c: s of each judged face in one evaluation") \
-  X(face_grad, double, (size_t)m->bary_base + (m->nanchor > m->nvert ? 3 * (size_t)m->nface : 0) + 1, \
-    "their gradients (9 per simulated face), then the barycenter springs' (3 per face)")        \
+  X(face_grad, double, 9 * (size_t)m->nsimface + 1, "their gradients (9 per simulated face)")   \
   X(mi, double, (size_t)m->ndof, "(ndof) inertia weight: mass (1/h^2 + damping/h)")              \
   X(target, double, 3 * (size_t)m->ndof, "(ndof x 3) inertia target (prediction, damping, gravity)") \
   X(xd, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: the unknowns")                          \
@@ -163,7 +162,6 @@ struct ss_model {
    * n x n matrix uses it directly, the 3n x 3n one expands each block. */
   int nblock;
   int nnz3;                   /* stored entries of the 3n x 3n matrix */
-  int bary_base;              /* first slot of the springs' part of face_grad */
   /* Symbolic analysis (fill-reducing ordering and symbolic factor, which
    * depend on the pattern alone) of the matrix of the solver the model was
    * built for (set.solver at model_build): the scalar n x n one (quasi-Newton,
@@ -280,8 +278,11 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
  * x_prev, v and the settings. */
 void ss_sim_energy_begin(ss_sim *sim, double h);
 /* The packed layout the energy evaluation runs on (mface, grad_ptr,
- * grad_slot, bary_base), once after the model and the pattern. */
+ * grad_slot), once after the model and the pattern. */
 int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz);
+/* The barycenter springs' stiffness in mface, from k_face: in the layout,
+ * and again whenever the material is rebuilt. */
+void ss_sim_energy_springs(ss_sim *sim);
 /* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).

@@ -410,7 +410,7 @@ static void test_batch_bits(unsigned long long *rng) {
   enum { NF = 3 * SS_MEMBRANE_LANES + 5 };
   double x[3 * 3 * NF];
   ss_membrane_face rec[NF];
-  double en[NF], gr[9 * NF];
+  double en[NF], gr[9 * NF], anchors[3 * NF];
   for (int q = 0; q < NF; q++) {
     double rest[9], cur[9];
     random_rest(rng, rest);
@@ -424,6 +424,9 @@ static void test_batch_bits(unsigned long long *rng) {
     double area;
     ss_membrane_rest(rest, rest + 3, rest + 6, rec[q].dm_inv, &area);
     rec[q].area = area;
+    rec[q].anchor = 3 * (NF - 1 - q); /* anchors in any order */
+    rec[q].k_bary = q % 5 == 3 ? 0.0 : 10.0 * ss_test_rand(rng);
+    for (int i = 0; i < 3; i++) anchors[rec[q].anchor + i] = cur[i] + 0.3 * randu(rng);
   }
   for (int isa = 0; isa < SS_ISA_COUNT; isa++) {
     if (!ss_isa_supported(isa)) {
@@ -433,10 +436,17 @@ static void test_batch_bits(unsigned long long *rng) {
     for (int start = 0; start <= SS_MEMBRANE_LANES; start += SS_MEMBRANE_LANES) {
       memset(en, 0, sizeof en);
       memset(gr, 0, sizeof gr);
-      ss_membrane_eval_batch_isa(isa, rec, start, NF, x, MU, LAM, COMP, en, gr);
+      /* odd starts: with each face's barycenter spring (ss_bary_spring added) */
+      const int bary = start != 0;
+      ss_membrane_eval_batch_isa(isa, rec, start, NF, x, bary ? anchors : NULL, MU, LAM, COMP, en, gr);
       for (int q = start; q < NF; q++) {
         double g9[9];
         double e = ss_membrane_eval(x + 9 * q, rec[q].dm_inv, rec[q].area, MU, LAM, COMP, g9, NULL);
+        if (bary) {
+          double gb[3];
+          e += ss_bary_spring(x + 9 * q, anchors + rec[q].anchor, rec[q].k_bary, gb);
+          for (int r = 0; r < 9; r++) g9[r] += gb[r % 3];
+        }
         CHECK_MSG(memcmp(&e, &en[q], sizeof e) == 0,
                   "batch energy of face %d differs in %s (%.17g vs %.17g)", q, ss_isa_name(isa), en[q], e);
         CHECK_MSG(memcmp(g9, gr + 9 * q, sizeof g9) == 0, "batch gradient of face %d differs in %s", q,
