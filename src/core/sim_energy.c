@@ -263,7 +263,7 @@ double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
  * the demo avatar's fingers). Judged by the membrane's diagonal alone, a
  * vertex 0.2 edge lengths off its anchor across the skin passed for
  * converged, and after a motion the skin never came home. */
-static double dof_residual2(const ss_sim *sim, const double *g, int k) {
+static inline double dof_residual2(const ss_sim *sim, const double *g, int k) {
   const double *gk = g + 3 * k, *n = sim->skin_n + 3 * k;
   double g2 = gk[0] * gk[0] + gk[1] * gk[1] + gk[2] * gk[2];
   double gn = gk[0] * n[0] + gk[1] * n[1] + gk[2] * n[2]; /* 0 where n is 0 */
@@ -281,28 +281,39 @@ static inline double dof_residual_along(const ss_sim *sim, const double *g, int 
 
 /* The largest residual over the dofs (along: ss_sim_residual_along's
  * measure), NaN if any is NaN. A maximum is exact in any order: on the
- * sim's threads with the same bits. */
+ * sim's threads and in vector lanes with the same bits. The square root
+ * is taken of the largest square (sqrt is correctly rounded, so monotone:
+ * the same value as the largest root), not of every dof's. */
 static double worst_residual(const ss_sim *sim, const double *g, int along) {
   const int ndof = sim->m->ndof;
   double worst = 0.0;
   int nan = 0;
-#ifdef _OPENMP
-  if (sim->nthread > 1 && ndof > 256) {
-#pragma omp parallel for schedule(static) num_threads(sim->nthread) reduction(max : worst) reduction(+ : nan)
+  if (along) {
     for (int k = 0; k < ndof; k++) {
-      const double r = along ? dof_residual_along(sim, g, k) : sqrt(dof_residual2(sim, g, k));
+      const double r = dof_residual_along(sim, g, k);
       if (r > worst) worst = r;
       nan += r != r;
     }
     return nan ? NAN : worst;
   }
+#ifdef _OPENMP
+  if (sim->nthread > 1 && ndof > 256) {
+#pragma omp parallel for simd schedule(static) num_threads(sim->nthread) reduction(max : worst) reduction(+ : nan)
+    for (int k = 0; k < ndof; k++) {
+      const double r2 = dof_residual2(sim, g, k);
+      worst = r2 > worst ? r2 : worst;
+      nan += r2 != r2;
+    }
+    return nan ? NAN : sqrt(worst);
+  }
+#pragma omp simd reduction(max : worst) reduction(+ : nan)
 #endif
   for (int k = 0; k < ndof; k++) {
-    const double r = along ? dof_residual_along(sim, g, k) : sqrt(dof_residual2(sim, g, k));
-    if (r > worst) worst = r;
-    nan += r != r;
+    const double r2 = dof_residual2(sim, g, k);
+    worst = r2 > worst ? r2 : worst;
+    nan += r2 != r2;
   }
-  return nan ? NAN : worst;
+  return nan ? NAN : sqrt(worst);
 }
 
 double ss_sim_residual(const ss_sim *sim, const double *g) { return worst_residual(sim, g, 0); }
