@@ -63,9 +63,15 @@ typedef struct ss_membrane_face {
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
                             const double *bary_anchor, double mu, double lam, double compression,
                             double *energy, double *grad);
+/* The same with where the gradients go chosen: grad (per face, as above)
+ * if not NULL; dof_grad if not NULL: each corner's gradient added to
+ * dof_grad[3 k ..] in face order, k = dof_of[vertex] (corners with
+ * dof_of < 0 skipped): one thread adding them face by face gives each dof
+ * the sum a gather of the per-face gradients in face order gives. */
 void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
                                 const double *x, const double *bary_anchor, double mu, double lam,
-                                double compression, double *energy, double *grad);
+                                double compression, double *energy, double *grad,
+                                double *dof_grad, const int *dof_of);
 /* One barycenter spring as the batch computes it: corners x (9), anchor a,
  * stiffness k; returns its energy, its gradient per corner into g3. */
 static inline double ss_bary_spring(const double x[9], const double a[3], double k, double g3[3]) {

@@ -502,7 +502,8 @@ double ss_membrane_eval_raw(const double x[9], const double dm_inv[4], double re
 static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, int q0, int q1,
                                                  const double *x, const double *bary_anchor,
                                                  double mu, double lam, double compression,
-                                                 double *energy, double *grad, const int soft,
+                                                 double *energy, double *grad, double *dof_grad,
+                                                 const int *dof_of, const int soft,
                                                  const int bary) {
   enum { L = SS_MEMBRANE_LANES };
   const double alpha = alpha_of(mu, lam);
@@ -592,9 +593,21 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
       }
       energy[qb + l] = en[l];
     }
-    double *gout = grad + 9 * (size_t)qb;
-    for (int l = 0; l < m; l++)
-      for (int r = 0; r < 9; r++) gout[9 * l + r] = gr[r][l];
+    if (grad) {
+      double *gout = grad + 9 * (size_t)qb;
+      for (int l = 0; l < m; l++)
+        for (int r = 0; r < 9; r++) gout[9 * l + r] = gr[r][l];
+    }
+    if (dof_grad)
+      for (int l = 0; l < m; l++) {
+        const ss_membrane_face *fc = face + qb + l;
+        for (int c = 0; c < 3; c++) {
+          const int k = dof_of[fc->xo[c] / 3];
+          if (k < 0) continue;
+          double *gk = dof_grad + 3 * (size_t)k;
+          gk[0] += gr[3 * c][l], gk[1] += gr[3 * c + 1][l], gk[2] += gr[3 * c + 2][l];
+        }
+      }
   }
 }
 
@@ -602,16 +615,18 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
  * constants: the same bits from each width. */
 #define SS_BATCH_ARGS                                                                    \
   const ss_membrane_face *face, int q0, int q1, const double *x, const double *bary_anchor, \
-      double mu, double lam, double compression, double *energy, double *grad
-#define SS_BATCH_BODY                                                                          \
-  if (compression < 1.0 && bary_anchor)                                                        \
-    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, 1, 1);      \
-  else if (compression < 1.0)                                                                  \
-    batch_kernel(face, q0, q1, x, NULL, mu, lam, compression, energy, grad, 1, 0);             \
-  else if (bary_anchor)                                                                        \
-    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, 1.0, energy, grad, 0, 1);              \
-  else                                                                                         \
-    batch_kernel(face, q0, q1, x, NULL, mu, lam, 1.0, energy, grad, 0, 0);
+      double mu, double lam, double compression, double *energy, double *grad,              \
+      double *dof_grad, const int *dof_of
+#define SS_BATCH_BODY                                                                                   \
+  if (compression < 1.0 && bary_anchor)                                                                 \
+    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, \
+                 1);                                                                                    \
+  else if (compression < 1.0)                                                                           \
+    batch_kernel(face, q0, q1, x, NULL, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, 0);   \
+  else if (bary_anchor)                                                                                 \
+    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 1);    \
+  else                                                                                                  \
+    batch_kernel(face, q0, q1, x, NULL, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 0);
 static void batch_base(SS_BATCH_ARGS) { SS_BATCH_BODY }
 #ifdef SS_ISA_WIDE
 SS_TARGET_AVX2 static void batch_avx2(SS_BATCH_ARGS) { SS_BATCH_BODY }
@@ -622,25 +637,26 @@ SS_TARGET_AVX512 static void batch_avx512(SS_BATCH_ARGS) { SS_BATCH_BODY }
 
 void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
                                 const double *x, const double *bary_anchor, double mu, double lam,
-                                double compression, double *energy, double *grad) {
+                                double compression, double *energy, double *grad,
+                                double *dof_grad, const int *dof_of) {
 #ifdef SS_ISA_WIDE
   if (isa == SS_ISA_AVX512) {
-    batch_avx512(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad);
+    batch_avx512(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
     return;
   }
   if (isa == SS_ISA_AVX2) {
-    batch_avx2(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad);
+    batch_avx2(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
     return;
   }
 #else
   (void)isa;
 #endif
-  batch_base(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad);
+  batch_base(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
 }
 
 void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
                             const double *bary_anchor, double mu, double lam, double compression,
                             double *energy, double *grad) {
   ss_membrane_eval_batch_isa(ss_isa_best(), face, q0, q1, x, bary_anchor, mu, lam, compression,
-                             energy, grad);
+                             energy, grad, NULL, NULL);
 }

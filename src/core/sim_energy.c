@@ -121,6 +121,16 @@ int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
   return SS_OK;
 }
 
+/* Gradient of dof k's own terms (inertia, vertex spring) into g. */
+static inline void own_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
+  int v = sim->m->dof_vert[k];
+  const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
+  double mi = sim->mi[k], kv = sim->m->k_vert[v];
+  g[3 * k] = mi * (x[0] - t[0]) + kv * (x[0] - a[0]);
+  g[3 * k + 1] = mi * (x[1] - t[1]) + kv * (x[1] - a[1]);
+  g[3 * k + 2] = mi * (x[2] - t[2]) + kv * (x[2] - a[2]);
+}
+
 /* Gradient of dof k: its own terms (inertia, vertex spring), then the
  * per-face parts it shares, summed in the order of grad_slot. */
 static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
@@ -194,7 +204,11 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   double e = part_sum;
   /* Membrane and barycenter springs: blocks of faces on all threads (each
    * face's spring in the membrane's pass over its corners), energies summed
-   * in face order. */
+   * in face order. The gradient: on threads, each face's into face_grad and
+   * each dof's gathered from there in face order; on one thread, each dof's
+   * own terms first and each face's added to its corners in face order by
+   * the kernel itself: the same additions in the same order, without the
+   * round trip through face_grad. */
   const int nsim = sim->m->nsimface;
   const int nblock = (nsim + L - 1) / L;
   double *fe = sim->face_energy;
@@ -203,28 +217,28 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   if (sim->nthread > 1 && nsim > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
-      ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim,
-                                 xfull, bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, fg);
+      ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull,
+                                 bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, g ? fg : NULL,
+                                 NULL, NULL);
+    if (g) {
+      if (n > 256) {
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+        for (int k = 0; k < n; k++) gather_grad(sim, k, xfull, g);
+      } else {
+        for (int k = 0; k < n; k++) gather_grad(sim, k, xfull, g);
+      }
+    }
   } else
 #endif
   {
-    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu,
-                               sim->m->lam, sim->m->set.compression, fe, fg);
+    if (g)
+      for (int k = 0; k < n; k++) own_grad(sim, k, xfull, g);
+    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu, sim->m->lam,
+                               sim->m->set.compression, fe, NULL, g, sim->m->dof);
   }
   sc.a = fe;
   ss_par_sum(sim->nthread, nsim, 1, sum_block, &sc, sim->par_part, &part_sum);
   e += part_sum;
-  if (g) {
-#ifdef _OPENMP
-    if (sim->nthread > 1 && n > 256) {
-#pragma omp parallel for schedule(static) num_threads(sim->nthread)
-      for (int k = 0; k < n; k++) gather_grad(sim, k, xfull, g);
-    } else
-#endif
-    {
-      for (int k = 0; k < n; k++) gather_grad(sim, k, xfull, g);
-    }
-  }
   /* Bending. */
   for (int q = 0; q < sim->m->nhinge; q++) {
     const int *hv = sim->m->hinge_vert + 4 * q;

@@ -438,7 +438,8 @@ static void test_batch_bits(unsigned long long *rng) {
       memset(gr, 0, sizeof gr);
       /* odd starts: with each face's barycenter spring (ss_bary_spring added) */
       const int bary = start != 0;
-      ss_membrane_eval_batch_isa(isa, rec, start, NF, x, bary ? anchors : NULL, MU, LAM, COMP, en, gr);
+      ss_membrane_eval_batch_isa(isa, rec, start, NF, x, bary ? anchors : NULL, MU, LAM, COMP, en, gr, NULL,
+                                 NULL);
       for (int q = start; q < NF; q++) {
         double g9[9];
         double e = ss_membrane_eval(x + 9 * q, rec[q].dm_inv, rec[q].area, MU, LAM, COMP, g9, NULL);
