@@ -343,20 +343,37 @@ double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
 /* The skin normal of dof k: the sum of its simulated faces' area vectors,
  * gathered through its membrane slots of grad_slot (simulated face order, so
  * the same sum in the same order as a scatter over the faces), normalised. */
-static inline void dof_normal(const ss_sim *sim, const double *xfull, double min_area, int k) {
+/* Simulated face q's area vector (twice its area along its normal) into
+ * fn[3 q ..]; zero for a sliver, whose normal swings with the smallest move
+ * of a corner (a vertex with only slivers around it is judged as along the
+ * skin). */
+static inline void face_area_vector(const ss_sim *sim, const double *xfull, double min_area, int q,
+                                    double *fn) {
+  const ss_model *m = sim->m;
+  const int f = m->simface[q];
+  double *n = fn + 3 * (size_t)q;
+  if (!(m->rest_area[f] >= min_area)) {
+    n[0] = n[1] = n[2] = 0.0;
+    return;
+  }
+  const int *fv = m->faces + 3 * f;
+  const double *a = xfull + 3 * fv[0], *b = xfull + 3 * fv[1], *c = xfull + 3 * fv[2];
+  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+/* The skin normal of dof k: the sum of its simulated faces' area vectors fn,
+ * gathered through its slots of grad_slot (simulated face order, so the same
+ * sum in the same order as a scatter over the faces), normalised. A sliver's
+ * zero adds nothing (a sum that is zero either way gives no normal). */
+static inline void dof_normal(const ss_sim *sim, const double *fn, int k) {
   const ss_model *m = sim->m;
   double s[3] = {0.0, 0.0, 0.0};
   for (int e = m->grad_ptr[k]; e < m->grad_ptr[k + 1]; e++) {
-    const int slot = m->grad_slot[e];
-    const int f = m->simface[slot / 9];
-    /* a sliver's normal swings with the smallest move of a corner: a vertex
-     * with only slivers around it is judged as along the skin */
-    if (!(m->rest_area[f] >= min_area)) continue;
-    const int *fv = m->faces + 3 * f;
-    const double *a = xfull + 3 * fv[0], *b = xfull + 3 * fv[1], *c = xfull + 3 * fv[2];
-    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    for (int i = 0; i < 3; i++) s[i] += fn[i]; /* area weighted */
+    const double *n = fn + 3 * (size_t)(m->grad_slot[e] / 9);
+    for (int i = 0; i < 3; i++) s[i] += n[i]; /* area weighted */
   }
   double *nk = sim->skin_n + 3 * k;
   double len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
@@ -367,18 +384,27 @@ static inline void dof_normal(const ss_sim *sim, const double *xfull, double min
   for (int i = 0; i < 3; i++) nk[i] = s[i] / len;
 }
 
-/* Each dof its own: on the sim's threads with the same bits. */
+/* Each face, then each dof its own: on the sim's threads with the same
+ * bits. The faces' area vectors go to face_grad, free outside an energy
+ * evaluation. */
 void ss_sim_normals_begin(ss_sim *sim, const double *xfull) {
-  const int ndof = sim->m->ndof;
+  const int ndof = sim->m->ndof, nsim = sim->m->nsimface;
   const double min_area = SS_SLIVER_AREA * sim->m->edge_len * sim->m->edge_len;
+  double *fn = sim->face_grad;
 #ifdef _OPENMP
   if (sim->nthread > 1 && ndof > 256) {
-#pragma omp parallel for schedule(static) num_threads(sim->nthread)
-    for (int k = 0; k < ndof; k++) dof_normal(sim, xfull, min_area, k);
+#pragma omp parallel num_threads(sim->nthread)
+    {
+#pragma omp for schedule(static)
+      for (int q = 0; q < nsim; q++) face_area_vector(sim, xfull, min_area, q, fn);
+#pragma omp for schedule(static)
+      for (int k = 0; k < ndof; k++) dof_normal(sim, fn, k);
+    }
     return;
   }
 #endif
-  for (int k = 0; k < ndof; k++) dof_normal(sim, xfull, min_area, k);
+  for (int q = 0; q < nsim; q++) face_area_vector(sim, xfull, min_area, q, fn);
+  for (int k = 0; k < ndof; k++) dof_normal(sim, fn, k);
 }
 
 /* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
