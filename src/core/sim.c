@@ -179,8 +179,15 @@ typedef struct anchor_counts {
  * own scratch). */
 static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_counts *c) {
   const int nv = sim->m->nvert;
-  if (a + SS_WALK_PREFETCH < sim->m->nanchor)
-    ss_frames_prefetch(ss_mover_frames(sim->mover), sim->anchor_face[a + SS_WALK_PREFETCH]);
+  if (a + SS_WALK_PREFETCH < sim->m->nanchor) {
+    const ss_frames *frp = ss_mover_frames(sim->mover);
+    const int fa = sim->anchor_face[a + SS_WALK_PREFETCH];
+    ss_frames_prefetch(frp, fa);
+    /* the tether turns its chord home into the tangent plane of the face the
+     * slide ends in, most often the face it starts in: its normal (a third of
+     * the anchor stage's own time went to waiting for it) */
+    if (sim->tether_frac > 0.0 && fa >= 0) __builtin_prefetch(frp->normal + 3 * (size_t)fa);
+  }
   double p[3];
   if (a < nv) {
     if (sim->m->dof[a] < 0 || sim->m->k_vert[a] == 0.0) return;
