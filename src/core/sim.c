@@ -320,7 +320,9 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
 #ifdef _OPENMP
   if (sim->nthread > 1 && ss_mover_method(sim->mover) != SS_METHOD_NRING) {
     long long moved = 0, steps = 0, boundary = 0, crease = 0, step_limit = 0;
-#pragma omp parallel for schedule(static) num_threads(sim->nthread) \
+    /* in chunks taken as threads free up: anchors differ in cost (a walk
+     * across faces, the tether's way home), so equal halves finished apart */
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(sim->nthread) \
     reduction(+ : moved, steps, boundary, crease, step_limit)
     for (int a = 0; a < nanchor; a++) {
       anchor_counts ct = {0, 0, 0, 0, 0};
