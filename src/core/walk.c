@@ -294,17 +294,23 @@ const char *ss_walk_stop_name(int stop) {
   }
 }
 
+/* One cache line of its own: each thread walks with its own walker and
+ * writes its stamp at every walk that crosses an edge; two walkers side by
+ * side in one line (as malloc places them) had the threads take the line
+ * from each other at every such walk. */
 struct ss_walker {
-  int nface;
+  _Alignas(64) int nface;
   unsigned int stamp;    /* id of the current walk */
   unsigned int *visited; /* (nface) stamp of the last walk that entered the face */
 };
+_Static_assert(sizeof(struct ss_walker) % 64 == 0, "a walker fills whole cache lines");
 
 int ss_walker_create(ss_walker **out, int nface) {
   if (!out || nface <= 0) return SS_E_ARG;
   *out = NULL;
-  ss_walker *w = calloc(1, sizeof *w);
+  ss_walker *w = aligned_alloc(64, sizeof *w); /* sizeof is a multiple of 64 */
   if (!w) return SS_E_NOMEM;
+  memset(w, 0, sizeof *w);
   w->nface = nface;
   w->visited = calloc((size_t)nface, sizeof(unsigned int));
   if (!w->visited) {
