@@ -366,27 +366,45 @@ static int all_finite(const double *a, size_t n) {
 
 /* threads 0: whether all cores pay is measured, not guessed (on a machine
  * whose cores are busy, every barrier waits for a descheduled thread and two
- * threads can be several times slower than one). Every SS_PROBE_PERIOD
- * steps, SS_PROBE_STEPS run with all threads and SS_PROBE_STEPS with one;
+ * threads can be several times slower than one). Each probe period starts
+ * with SS_PROBE_STEPS steps on one thread, then up to SS_PROBE_STEPS on all;
  * the rest of the period uses the faster (sum of wall-clock step times).
- * The bits do not depend on the thread count, so switching changes no
- * result. */
-#define SS_PROBE_PERIOD 50
-#define SS_PROBE_STEPS 3
-static void choose_threads(ss_sim *sim, double step_ms) {
+ * One thread goes first and the all-threads steps stop as soon as their sum
+ * passes the one-thread steps': beside a CPU hog a step on two threads of
+ * the demo avatar took 1.3-4.4 s against 7 ms on one, and three of them in a
+ * row at the start (as the probe ran them) left the node seconds behind.
+ * Each probe that one thread wins doubles the period (up to
+ * SS_PROBE_PERIOD_MAX steps), so that a busy machine is not asked again
+ * every 50 steps; one that all threads win sets it back. The bits do not
+ * depend on the thread count, so switching changes no result. */
+void ss_sim_choose_threads(ss_sim *sim, double step_ms) {
   int p = sim->thread_probe;
   if (p < 0) return;
-  if (p == 0) sim->probe_ms[0] = sim->probe_ms[1] = 0.0;
-  if (p < 2 * SS_PROBE_STEPS) sim->probe_ms[p < SS_PROBE_STEPS ? 0 : 1] += step_ms;
+  const int n = SS_PROBE_STEPS;
+  if (p < n)
+    sim->probe_ms[1] += step_ms; /* this step ran on one thread */
+  else if (p < 2 * n)
+    sim->probe_ms[0] += step_ms; /* on all */
   p++;
-  if (p < SS_PROBE_STEPS)
-    sim->nthread = sim->nthread_max;
-  else if (p < 2 * SS_PROBE_STEPS)
+  if (p < n) {
     sim->nthread = 1;
-  else if (p == 2 * SS_PROBE_STEPS)
-    sim->nthread = sim->probe_ms[0] <= sim->probe_ms[1] ? sim->nthread_max : 1;
-  sim->thread_probe = p >= SS_PROBE_PERIOD ? 0 : p;
-  if (sim->thread_probe == 0) sim->nthread = sim->nthread_max;
+  } else if (p < 2 * n) {
+    if (p > n && sim->probe_ms[0] > sim->probe_ms[1]) p = 2 * n; /* lost already: decide now */
+    else sim->nthread = sim->nthread_max;
+  }
+  if (p == 2 * n) {
+    const int all = !(sim->probe_ms[0] > sim->probe_ms[1]);
+    sim->nthread = all ? sim->nthread_max : 1;
+    sim->probe_period = all ? SS_PROBE_PERIOD
+                            : (2 * sim->probe_period < SS_PROBE_PERIOD_MAX ? 2 * sim->probe_period
+                                                                           : SS_PROBE_PERIOD_MAX);
+  }
+  if (p >= sim->probe_period) { /* a new probe: one thread first */
+    p = 0;
+    sim->probe_ms[0] = sim->probe_ms[1] = 0.0;
+    sim->nthread = 1;
+  }
+  sim->thread_probe = p;
 }
 
 /* ---- the stages of a substep, run in this order (as Box2D's solver.h lists
@@ -567,7 +585,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   if (!st->converged) warn(sim, SS_WARN_UNCONVERGED, n, st->substeps);
   if (st->anchors_step_limit) warn(sim, SS_WARN_STEP_LIMIT, n, st->anchors_step_limit);
   st->total_ms = ss_now_ms() - t_start;
-  choose_threads(sim, st->total_ms);
+  ss_sim_choose_threads(sim, st->total_ms);
   sim->st = NULL;
   if (status != SS_OK)
     return ss_fail(err, err_sz, status, "the linear solver failed (CHOLMOD status %d); last good state kept",

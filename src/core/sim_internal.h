@@ -188,6 +188,7 @@ struct ss_sim {
                                  CPU runs, chosen at create (ss_sim_set_isa); the same bits
                                  from any */
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
+  int probe_period;           /* threads 0: steps in the current probe period */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
   double h;                   /* substep of the current system */
   double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
@@ -226,6 +227,12 @@ struct ss_sim {
  * poisson, density, stiffness, barycenters, bending, orient): every sim on a
  * model has the model's (sim_model.c). */
 int ss_sim_in_model(size_t offset);
+/* threads 0: the probe's steps (sim.c). After each step of step_ms
+ * wall-clock ms, sets the thread count of the next. */
+#define SS_PROBE_STEPS 3       /* steps on one thread, then at most as many on all */
+#define SS_PROBE_PERIOD 50     /* steps from one probe to the next while all threads pay */
+#define SS_PROBE_PERIOD_MAX 1600 /* the longest period, after probes one thread won */
+void ss_sim_choose_threads(ss_sim *sim, double step_ms);
 /* Sets the vector instruction set of the sim's kernels (isa.h; one the CPU
  * runs): the same bits from any. Chosen at create: the widest. */
 void ss_sim_set_isa(ss_sim *sim, int isa);

@@ -241,13 +241,18 @@ static int sim_data(ss_sim *sim, char *err, int err_sz) {
   sim->thread_probe = -1;
 #ifdef _OPENMP
   sim->nthread = sim->set.threads > 0 ? sim->set.threads : auto_threads(sim->m->nface);
-  if (sim->set.threads == 0 && sim->nthread > 1) sim->thread_probe = 0;
   openmp_warm_up(sim->nthread);
 #endif
   sim->nthread_max = sim->nthread;
+  if (sim->set.threads == 0 && sim->nthread_max > 1) { /* the probe: one thread first */
+    sim->thread_probe = 0;
+    sim->probe_period = SS_PROBE_PERIOD;
+    sim->probe_ms[0] = sim->probe_ms[1] = 0.0;
+    sim->nthread = 1;
+  }
   ss_sim_set_isa(sim, ss_isa_best());
   status = data_arena(sim);
-  for (int t = 0; t < sim->nthread && !status; t++)
+  for (int t = 0; t < sim->nthread_max && !status; t++)
     status = ss_walker_create(&sim->walkers[t], sim->m->btopo->nface);
   if (status != SS_OK) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
   ss_sim_reset(sim);
