@@ -6,7 +6,7 @@ least squares in log-log over all sizes and prints a table (and with --png
 FILE a chart: ms per frame and peak RSS per triangle against triangles).
 
   /usr/bin/python3 bench/scaling.py BENCH_SIM [--sizes 2000,5000,...] [--frames N] [--threads T]
-                  [--substeps S] [--iterations I] [--png FILE]
+                  [--substeps S] [--iterations I] [--repeat R] [--png FILE]
 
 Read "cpu" (CPU time of the process per step) at one thread on a shared
 machine: wall-clock there mostly measures the other jobs.
@@ -15,6 +15,7 @@ import argparse
 import math
 import re
 import resource
+import statistics
 import subprocess
 import sys
 
@@ -51,11 +52,17 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--substeps", type=int, default=2, help="per frame (default: the sim's default, 2)")
     ap.add_argument("--iterations", type=int, default=3, help="per substep (default: the sim's default, 3)")
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="runs per size, their medians reported (one run of the same binary can be "
+                         "a third slower than the next on this machine)")
     ap.add_argument("--png")
     a = ap.parse_args()
     rows = []
     for tris in sorted(int(s) for s in a.sizes.split(",")):
-        r = run(a.bench, tris, a.frames, a.threads, a.substeps, a.iterations)
+        runs = [run(a.bench, tris, a.frames, a.threads, a.substeps, a.iterations) for _ in range(max(1, a.repeat))]
+        r = dict(runs[0])  # tris, and the peak RSS of the first (later runs of a size do not raise the maximum)
+        for k in ("total", "cpu", "walk", "assemble", "solve", "iterations"):
+            r[k] = statistics.median(x[k] for x in runs)
         rows.append(r)
         print("%7d tris: total %.2f cpu %.2f walk %.2f assemble %.2f solve %.2f ms/frame, %.2f iterations, "
               "peak RSS %.1f MB (%.2f kB per triangle)" % (r["tris"], r["total"], r["cpu"], r["walk"], r["assemble"],
