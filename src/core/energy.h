@@ -51,20 +51,15 @@ typedef struct ss_membrane_face {
   double area;    /* rest area */
   double k_bary;  /* stiffness of its barycenter spring */
 } ss_membrane_face;
-/* Faces [q0, q1) of face; q0 a multiple of SS_MEMBRANE_LANES. In the
- * widest vectors this CPU has; _isa: in those of isa (isa.h; one the CPU
- * runs): the same bits from every one.
+/* Faces [q0, q1) of face (q0 a multiple of SS_MEMBRANE_LANES) in the
+ * vectors of isa (isa.h; one the CPU runs): the same bits from every one.
  * With bary_anchor (else NULL), each face's barycenter spring is added to
  * its energy and to each corner's gradient, in the same pass over the same
  * gathered corners: a zero-length spring of stiffness k_bary from the
  * face's barycenter b to its anchor a = bary_anchor + anchor,
  * e = 0.5 k |b - a|^2, each corner's gradient k (b - a) / 3 (computed as
- * ss_bary_spring). */
-void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
-                            const double *bary_anchor, double mu, double lam, double compression,
-                            double *energy, double *grad);
-/* The same with where the gradients go chosen: grad (per face, as above)
- * if not NULL; dof_grad if not NULL: each corner's gradient added to
+ * ss_bary_spring). The gradients go to grad (9 per face, corner-major) if
+ * not NULL; and to dof_grad if not NULL: each corner's added to
  * dof_grad[3 k ..] in face order, k = dof_of[vertex] (corners with
  * dof_of < 0 skipped): one thread adding them face by face gives each dof
  * the sum a gather of the per-face gradients in face order gives. */

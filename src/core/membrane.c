@@ -653,10 +653,3 @@ void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, i
 #endif
   batch_base(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
 }
-
-void ss_membrane_eval_batch(const ss_membrane_face *face, int q0, int q1, const double *x,
-                            const double *bary_anchor, double mu, double lam, double compression,
-                            double *energy, double *grad) {
-  ss_membrane_eval_batch_isa(ss_isa_best(), face, q0, q1, x, bary_anchor, mu, lam, compression,
-                             energy, grad, NULL, NULL);
-}

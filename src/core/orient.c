@@ -60,6 +60,15 @@ static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face
                     sim->m->nanchor, f, n);
 }
 
+/* 1 if skin face f's anchors (barycenter and corners) are all on the body
+ * faces they were bound to: then both normals of ss_sim_orient_normal are the same. */
+static inline int anchored_at_home(const ss_sim *sim, int f) {
+  const int *now = sim->anchor_face, *home = sim->m->anchor_face0, *fv = sim->m->faces + 3 * f;
+  const int nv = sim->m->nvert;
+  if (sim->m->nanchor > nv && now[nv + f] != home[nv + f]) return 0;
+  return now[fv[0]] == home[fv[0]] && now[fv[1]] == home[fv[1]] && now[fv[2]] == home[fv[2]];
+}
+
 /* The body's "out" under skin face f: the normal where the face is anchored
  * and the normal (in this pose) of the body face it was bound to, halfway
  * between (unit). One alone misleads: an anchor walking home near a sharp
@@ -68,15 +77,6 @@ static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face
  * thinner than an edge is anchored on the far side while its home is on the
  * near side. Returns 0 (not judged) where the two disagree by more than 120
  * degrees: the body turns over within the face's reach. */
-/* 1 if skin face f's anchors (barycenter and corners) are all on the body
- * faces they were bound to: then both normals below are the same. */
-static inline int anchored_at_home(const ss_sim *sim, int f) {
-  const int *now = sim->anchor_face, *home = sim->m->anchor_face0, *fv = sim->m->faces + 3 * f;
-  const int nv = sim->m->nvert;
-  if (sim->m->nanchor > nv && now[nv + f] != home[nv + f]) return 0;
-  return now[fv[0]] == home[fv[0]] && now[fv[1]] == home[fv[1]] && now[fv[2]] == home[fv[2]];
-}
-
 int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]) {
   double a[3], h[3];
   normal_under(sim, fr, sim->anchor_face, f, a);

@@ -340,9 +340,6 @@ double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
   return sim->m->ndof ? sqrt(sum / sim->m->ndof) : 0.0;
 }
 
-/* The skin normal of dof k: the sum of its simulated faces' area vectors,
- * gathered through its membrane slots of grad_slot (simulated face order, so
- * the same sum in the same order as a scatter over the faces), normalised. */
 /* Simulated face q's area vector (twice its area along its normal) into
  * fn[3 q ..]; zero for a sliver, whose normal swings with the smallest move
  * of a corner (a vertex with only slivers around it is judged as along the

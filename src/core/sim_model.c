@@ -224,14 +224,14 @@ static int model_settings_agree(const ss_model *m, const ss_sim_settings *set, c
 
 /* ---- data ---- */
 
-/* The data of sim on its model: mover, threads and walkers, the arena, the
- * state at rest. */
 /* The kernels' vector instruction set (sim->isa and the frame update's). */
 void ss_sim_set_isa(ss_sim *sim, int isa) {
   sim->isa = isa;
   ss_mover_set_isa(sim->mover, isa);
 }
 
+/* The data of sim on its model: mover, threads and walkers, the arena, the
+ * state at rest. */
 static int sim_data(ss_sim *sim, char *err, int err_sz) {
   int status = ss_mover_create(&sim->mover, sim->m->btopo, &sim->set.mover, sim->m->bvh_rest, err, err_sz);
   if (status != SS_OK) return status;

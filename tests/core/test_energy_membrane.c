@@ -401,7 +401,7 @@ static void test_degenerate(unsigned long long *rng) {
   }
 }
 
-/* The stepping kernel (ss_membrane_eval_batch) computes exactly what
+/* The stepping kernel (ss_membrane_eval_batch_isa) computes exactly what
  * ss_membrane_eval computes, bit for bit, for every kind of face (collapsed
  * ones included: J = 0 takes the fallback normal), at any count (a last,
  * partial block of lanes), from any starting block, and in each vector width
