@@ -32,6 +32,25 @@ enum ss_isa {
 #define SS_ALWAYS_INLINE
 #endif
 
+/* A kernel in each instruction set: SS_ISA_VARIANTS(name, (params), body)
+ * defines the static void functions name_base, name_avx2 and name_avx512
+ * (the last two only where SS_ISA_WIDE), each with the parameter list
+ * params and the body given (a call of the kernel's SS_ALWAYS_INLINE body,
+ * so that each is compiled for its own set); SS_ISA_CALL(isa, name, (args))
+ * calls the one for isa (base for an isa not compiled). */
+#ifdef SS_ISA_WIDE
+#define SS_ISA_VARIANTS(name, params, ...)                        \
+  static void name##_base params { __VA_ARGS__ }                  \
+  SS_TARGET_AVX2 static void name##_avx2 params { __VA_ARGS__ }   \
+  SS_TARGET_AVX512 static void name##_avx512 params { __VA_ARGS__ }
+#define SS_ISA_CALL(isa, name, args)                                              \
+  ((isa) == SS_ISA_AVX512 ? name##_avx512 args                                    \
+                          : (isa) == SS_ISA_AVX2 ? name##_avx2 args : name##_base args)
+#else
+#define SS_ISA_VARIANTS(name, params, ...) static void name##_base params { __VA_ARGS__ }
+#define SS_ISA_CALL(isa, name, args) ((void)(isa), name##_base args)
+#endif
+
 /* 1 if this CPU runs kernels compiled for isa (and they were compiled). */
 int ss_isa_supported(int isa);
 /* The widest supported. */

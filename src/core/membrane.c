@@ -611,45 +611,32 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
   }
 }
 
-/* The kernel compiled for each vector width (isa.h), specialised by its two
+/* The kernel in each vector width (isa.h), specialised by its two
  * constants: the same bits from each width. */
-#define SS_BATCH_ARGS                                                                    \
-  const ss_membrane_face *face, int q0, int q1, const double *x, const double *bary_anchor, \
-      double mu, double lam, double compression, double *energy, double *grad,              \
-      double *dof_grad, const int *dof_of
-#define SS_BATCH_BODY                                                                                   \
-  if (compression < 1.0 && bary_anchor)                                                                 \
-    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, \
-                 1);                                                                                    \
-  else if (compression < 1.0)                                                                           \
-    batch_kernel(face, q0, q1, x, NULL, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, 0);   \
-  else if (bary_anchor)                                                                                 \
-    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 1);    \
-  else                                                                                                  \
+static inline SS_ALWAYS_INLINE void batch_dispatch(const ss_membrane_face *face, int q0, int q1,
+                                                   const double *x, const double *bary_anchor,
+                                                   double mu, double lam, double compression,
+                                                   double *energy, double *grad, double *dof_grad,
+                                                   const int *dof_of) {
+  if (compression < 1.0 && bary_anchor)
+    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, 1);
+  else if (compression < 1.0)
+    batch_kernel(face, q0, q1, x, NULL, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, 0);
+  else if (bary_anchor)
+    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 1);
+  else
     batch_kernel(face, q0, q1, x, NULL, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 0);
-static void batch_base(SS_BATCH_ARGS) { SS_BATCH_BODY }
-#ifdef SS_ISA_WIDE
-SS_TARGET_AVX2 static void batch_avx2(SS_BATCH_ARGS) { SS_BATCH_BODY }
-SS_TARGET_AVX512 static void batch_avx512(SS_BATCH_ARGS) { SS_BATCH_BODY }
-#endif
-#undef SS_BATCH_BODY
-#undef SS_BATCH_ARGS
+}
+SS_ISA_VARIANTS(batch,
+                (const ss_membrane_face *face, int q0, int q1, const double *x, const double *bary_anchor,
+                 double mu, double lam, double compression, double *energy, double *grad, double *dof_grad,
+                 const int *dof_of),
+                batch_dispatch(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad,
+                               dof_of);)
 
 void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
                                 const double *x, const double *bary_anchor, double mu, double lam,
                                 double compression, double *energy, double *grad,
                                 double *dof_grad, const int *dof_of) {
-#ifdef SS_ISA_WIDE
-  if (isa == SS_ISA_AVX512) {
-    batch_avx512(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
-    return;
-  }
-  if (isa == SS_ISA_AVX2) {
-    batch_avx2(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
-    return;
-  }
-#else
-  (void)isa;
-#endif
-  batch_base(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of);
+  SS_ISA_CALL(isa, batch, (face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of));
 }

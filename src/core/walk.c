@@ -218,18 +218,8 @@ static inline SS_ALWAYS_INLINE void frames_kernel(ss_frames *fr, const int *fv, 
   }
 }
 
-static void frames_base(ss_frames *fr, const int *fv, const double *pos, int f0, int f1) {
-  frames_kernel(fr, fv, pos, f0, f1);
-}
-#ifdef SS_ISA_WIDE
-SS_TARGET_AVX2 static void frames_avx2(ss_frames *fr, const int *fv, const double *pos, int f0, int f1) {
-  frames_kernel(fr, fv, pos, f0, f1);
-}
-SS_TARGET_AVX512 static void frames_avx512(ss_frames *fr, const int *fv, const double *pos, int f0,
-                                           int f1) {
-  frames_kernel(fr, fv, pos, f0, f1);
-}
-#endif
+SS_ISA_VARIANTS(frames, (ss_frames *fr, const int *fv, const double *pos, int f0, int f1),
+                frames_kernel(fr, fv, pos, f0, f1);)
 
 /* Faces [f0, f1) in fr->isa's vectors (isa < 0: one face at a time, the
  * reference the kernels are tested against). */
@@ -238,17 +228,7 @@ static void frames_range(ss_frames *fr, const int *fv, const double *pos, int f0
     for (int f = f0; f < f1; f++) frame_update_face(fr, fv, pos, f);
     return;
   }
-#ifdef SS_ISA_WIDE
-  if (fr->isa == SS_ISA_AVX512) {
-    frames_avx512(fr, fv, pos, f0, f1);
-    return;
-  }
-  if (fr->isa == SS_ISA_AVX2) {
-    frames_avx2(fr, fv, pos, f0, f1);
-    return;
-  }
-#endif
-  frames_base(fr, fv, pos, f0, f1);
+  SS_ISA_CALL(fr->isa, frames, (fr, fv, pos, f0, f1));
 }
 
 void ss_frames_update(ss_frames *fr, const ss_topo *topo, const double *pos) {
