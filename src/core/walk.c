@@ -449,32 +449,26 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
     /* Most rays end inside their face. An edge's exit parameter te = a / b
      * (b > 0) is >= 1 when a >= b exactly (rounding is monotone), so where
      * all three compare so, no edge is crossed, as the divisions below would
-     * find, without them. */
-    const double sum = du + dv, rest = 1.0 - pu - pv;
-    if ((dv >= 0.0 || pv >= -dv) && (!(sum > 0.0) || rest >= sum) && (du >= 0.0 || pu >= -du)) {
-      /* ends inside f: the orthogonal projection of a* */
-      p[0] = pu + du;
-      p[1] = pv + dv;
-      clamp_uv(p);
-      length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
-      break;
-    }
-    /* the smallest ray parameter at which the ray leaves the triangle */
+     * find, without them. The smallest ray parameter at which the ray
+     * leaves the triangle: */
     double t_exit = 1.0;
     int k_exit = -1;
-    if (dv < 0.0) { /* edge 0: v = 0 */
-      double te = -pv / dv;
-      if (te < t_exit) t_exit = te, k_exit = 0;
+    const double sum = du + dv, rest = 1.0 - pu - pv;
+    if (!((dv >= 0.0 || pv >= -dv) && (!(sum > 0.0) || rest >= sum) && (du >= 0.0 || pu >= -du))) {
+      if (dv < 0.0) { /* edge 0: v = 0 */
+        double te = -pv / dv;
+        if (te < t_exit) t_exit = te, k_exit = 0;
+      }
+      if (sum > 0.0) { /* edge 1: u + v = 1 */
+        double te = rest / sum;
+        if (te < t_exit) t_exit = te, k_exit = 1;
+      }
+      if (du < 0.0) { /* edge 2: u = 0 */
+        double te = -pu / du;
+        if (te < t_exit) t_exit = te, k_exit = 2;
+      }
     }
-    if (sum > 0.0) { /* edge 1: u + v = 1 */
-      double te = rest / sum;
-      if (te < t_exit) t_exit = te, k_exit = 1;
-    }
-    if (du < 0.0) { /* edge 2: u = 0 */
-      double te = -pu / du;
-      if (te < t_exit) t_exit = te, k_exit = 2;
-    }
-    if (k_exit < 0) { /* every exit at t >= 1 after all: ends inside f */
+    if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
       p[0] = pu + du;
       p[1] = pv + dv;
       clamp_uv(p);
