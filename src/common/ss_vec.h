@@ -14,12 +14,18 @@ static inline void cross3(const double a[3], const double b[3], double out[3]) {
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* (b - a) x (c - a): triangle abc's normal, twice its area long. */
+static inline void tri_area_vector(const double a[3], const double b[3], const double c[3], double n[3]) {
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i];
+  cross3(e1, e2, n);
+}
+
 /* |(b - a) x (c - a)|^2: the squared doubled area of triangle abc (area
  * ratios and the safety net's squeezed-face test take it without a root). */
 static inline double tri_cross2(const double a[3], const double b[3], const double c[3]) {
-  double e1[3], e2[3], n[3];
-  for (int i = 0; i < 3; i++) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i];
-  cross3(e1, e2, n);
+  double n[3];
+  tri_area_vector(a, b, c, n);
   return dot3(n, n);
 }
 

@@ -134,12 +134,8 @@ static inline void own_grad(const ss_sim *sim, int k, const double *xfull, doubl
 /* Gradient of dof k: its own terms (inertia, vertex spring), then the
  * per-face parts it shares, summed in the order of grad_slot. */
 static inline void gather_grad(const ss_sim *sim, int k, const double *xfull, double *g) {
-  int v = sim->m->dof_vert[k];
-  const double *x = xfull + 3 * v, *t = sim->target + 3 * k, *a = sim->anchor_pos + 3 * v;
-  double mi = sim->mi[k], kv = sim->m->k_vert[v];
-  double g0 = mi * (x[0] - t[0]) + kv * (x[0] - a[0]);
-  double g1 = mi * (x[1] - t[1]) + kv * (x[1] - a[1]);
-  double g2 = mi * (x[2] - t[2]) + kv * (x[2] - a[2]);
+  own_grad(sim, k, xfull, g);
+  double g0 = g[3 * k], g1 = g[3 * k + 1], g2 = g[3 * k + 2];
   const double *fg = sim->face_grad;
   for (int e = sim->m->grad_ptr[k]; e < sim->m->grad_ptr[k + 1]; e++) {
     const double *p = fg + sim->m->grad_slot[e];
@@ -300,34 +296,25 @@ static inline double dof_residual_along(const ss_sim *sim, const double *g, int 
  * the same value as the largest root), not of every dof's. */
 static double worst_residual(const ss_sim *sim, const double *g, int along) {
   const int ndof = sim->m->ndof;
-  double worst = 0.0;
+  double worst = 0.0; /* the largest residual along, or square */
   int nan = 0;
-  if (along) {
-    for (int k = 0; k < ndof; k++) {
-      const double r = dof_residual_along(sim, g, k);
-      if (r > worst) worst = r;
-      nan += r != r;
-    }
-    return nan ? NAN : worst;
-  }
 #ifdef _OPENMP
   if (sim->nthread > 1 && ndof > 256) {
 #pragma omp parallel for simd schedule(static) num_threads(sim->nthread) reduction(max : worst) reduction(+ : nan)
     for (int k = 0; k < ndof; k++) {
-      const double r2 = dof_residual2(sim, g, k);
-      worst = r2 > worst ? r2 : worst;
-      nan += r2 != r2;
+      const double r = along ? dof_residual_along(sim, g, k) : dof_residual2(sim, g, k);
+      worst = r > worst ? r : worst;
+      nan += r != r;
     }
-    return nan ? NAN : sqrt(worst);
-  }
+  } else
 #pragma omp simd reduction(max : worst) reduction(+ : nan)
 #endif
   for (int k = 0; k < ndof; k++) {
-    const double r2 = dof_residual2(sim, g, k);
-    worst = r2 > worst ? r2 : worst;
-    nan += r2 != r2;
+    const double r = along ? dof_residual_along(sim, g, k) : dof_residual2(sim, g, k);
+    worst = r > worst ? r : worst;
+    nan += r != r;
   }
-  return nan ? NAN : sqrt(worst);
+  return nan ? NAN : along ? worst : sqrt(worst);
 }
 
 double ss_sim_residual(const ss_sim *sim, const double *g) { return worst_residual(sim, g, 0); }
@@ -354,11 +341,7 @@ static inline void face_area_vector(const ss_sim *sim, const double *xfull, doub
     return;
   }
   const int *fv = m->faces + 3 * f;
-  const double *a = xfull + 3 * fv[0], *b = xfull + 3 * fv[1], *c = xfull + 3 * fv[2];
-  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  tri_area_vector(xfull + 3 * fv[0], xfull + 3 * fv[1], xfull + 3 * fv[2], n);
 }
 
 /* The skin normal of dof k: the sum of its simulated faces' area vectors fn,

@@ -13,6 +13,7 @@
 #include "ss_err.h"
 #include "ss_util.h"
 #include "ss_body_normal.h"
+#include "ss_vec.h"
 
 #define AREA_RATIO_MIN 0.05
 #define AREA_RATIO_MAX 20.0
@@ -155,11 +156,7 @@ static void anchored_normal(const run_meas *m, const ss_sim *sim, int f, double 
 /* Skin face f's (unnormalised) normal and its area ratio. */
 static double face_normal(const run_meas *m, const double *x, int f, double n[3]) {
   const int *fv = m->skin_faces + 3 * f;
-  const double *a = x + 3 * fv[0], *b = x + 3 * fv[1], *c = x + 3 * fv[2];
-  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  tri_area_vector(x + 3 * fv[0], x + 3 * fv[1], x + 3 * fv[2], n);
   return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / m->rest_area[f];
 }
 
