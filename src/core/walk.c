@@ -307,11 +307,15 @@ void ss_walker_destroy(ss_walker *w) {
   free(w);
 }
 
-/* Clamps (u, v) into the canonical triangle; non-finite becomes the barycenter. */
-static void clamp_uv(double uv[2]) {
-  double u = uv[0], v = uv[1];
+/* Clamps (u, v) into the canonical triangle; non-finite becomes the barycenter.
+ * On two scalars, inline: the walk keeps its point in registers (through an
+ * array and a call, the two stores and the vector load that read them back
+ * could not be forwarded, twice per walk: a third of a walk that stays in
+ * its face). */
+static inline SS_ALWAYS_INLINE void clamp_uv(double *u_io, double *v_io) {
+  double u = *u_io, v = *v_io;
   if (!(isfinite(u) && isfinite(v))) {
-    uv[0] = uv[1] = 1.0 / 3.0;
+    *u_io = *v_io = 1.0 / 3.0;
     return;
   }
   if (u < 0.0) u = 0.0;
@@ -321,8 +325,8 @@ static void clamp_uv(double uv[2]) {
     u /= s;
     v /= s;
   }
-  uv[0] = u;
-  uv[1] = v;
+  *u_io = u;
+  *v_io = v;
 }
 
 /* Canonical point at parameter s (0 at corner k, 1 at corner k+1) of edge k. */
@@ -416,21 +420,21 @@ static inline double canonical_length(const double *e, double du, double dv) {
 
 void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
              const double uv[2], const double target[3], int max_steps, ss_walk_result *res) {
-  double p[2] = {uv[0], uv[1]};
-  clamp_uv(p);
+  /* Scalars, not arrays, for the point and what every step computes: the
+   * compiler keeps them in registers (a point stored element by element and
+   * read back as one vector stalls the load). The arithmetic and its order
+   * are those of dot3 and face_point. */
+  double pu = uv[0], pv = uv[1];
+  clamp_uv(&pu, &pv);
   res->face = face;
-  res->uv[0] = p[0];
-  res->uv[1] = p[1];
+  res->uv[0] = pu;
+  res->uv[1] = pv;
   res->stop = SS_STOP_INSIDE;
   res->steps = 0;
   res->length = 0.0;
   const double ax = target[0], ay = target[1], az = target[2];
   if (!(isfinite(ax) && isfinite(ay) && isfinite(az))) return;
 
-  /* Scalars, not arrays, for what every step computes: the compiler keeps
-   * them in registers (a point stored element by element and read back as
-   * one vector stalls the load on every step). The arithmetic and its order
-   * are those of dot3 and face_point. */
   int f = face;
   const int *cross = fr->cross;
   double length = 0.0;
@@ -438,7 +442,6 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   for (;;) {
     /* direction towards a* in f's canonical space */
     const double *w = fr->walk + SS_FRAME_RECORD * (size_t)f; /* origin, e1, e2, to_canon */
-    const double pu = p[0], pv = p[1];
     const double dx = ax - (w[0] + pu * w[3] + pv * w[6]);
     const double dy = ay - (w[1] + pu * w[4] + pv * w[7]);
     const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
@@ -469,14 +472,14 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       }
     }
     if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
-      p[0] = pu + du;
-      p[1] = pv + dv;
-      clamp_uv(p);
-      length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
+      double qu = pu + du, qv = pv + dv;
+      clamp_uv(&qu, &qv);
+      length += canonical_length(w + 3, qu - pu, qv - pv);
+      pu = qu, pv = qv;
       break;
     }
     if (t_exit < 0.0) t_exit = 0.0;
-    double h[2] = {pu + t_exit * du, pv + t_exit * dv};
+    double p[2], h[2] = {pu + t_exit * du, pv + t_exit * dv};
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
     length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
@@ -512,13 +515,14 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
         length += canonical_length(ss_frames_edges(fr, f), p[0] - hu, p[1] - hv);
       }
     }
+    pu = p[0], pv = p[1];
     if (stop != SS_STOP_INSIDE) {
       res->stop = stop;
       break;
     }
   }
   res->face = f;
-  res->uv[0] = p[0];
-  res->uv[1] = p[1];
+  res->uv[0] = pu;
+  res->uv[1] = pv;
   res->length = length;
 }
