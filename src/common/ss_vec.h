@@ -4,6 +4,14 @@
 
 #include <math.h>
 
+/* max(m, x) and min(m, x) for an m that is not NaN, x dropped where it is
+ * NaN: fmax and fmin then, inline (those are calls into libm, whose
+ * NaN handling the compiler may not assume away: 12 of them per closest
+ * point on a triangle, which the tether asks for two anchors in five per
+ * substep). */
+static inline double max_keep(double m, double x) { return x > m ? x : m; }
+static inline double min_keep(double m, double x) { return x < m ? x : m; }
+
 static inline double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }

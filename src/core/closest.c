@@ -73,13 +73,13 @@ double ss_closest_point_triangle(const double p[3], const double a[3], const dou
                                  const double c[3], double uv[2]) {
   double m = 0.0;
   for (int i = 0; i < 3; i++) {
-    m = fmax(m, fabs(p[i]));
-    m = fmax(m, fabs(a[i]));
-    m = fmax(m, fabs(b[i]));
-    m = fmax(m, fabs(c[i]));
+    m = max_keep(m, fabs(p[i]));
+    m = max_keep(m, fabs(a[i]));
+    m = max_keep(m, fabs(b[i]));
+    m = max_keep(m, fabs(c[i]));
   }
   int finite = isfinite(m);
-  for (int i = 0; i < 3 && finite; i++) /* fmax drops NaN: check each */
+  for (int i = 0; i < 3 && finite; i++) /* max_keep drops NaN: check each */
     finite = isfinite(p[i]) && isfinite(a[i]) && isfinite(b[i]) && isfinite(c[i]);
   if (!finite) {
     uv[0] = uv[1] = 1.0 / 3.0;

@@ -351,8 +351,8 @@ static void area_ratios(const ss_sim *sim, ss_sim_stats *st) {
     const int *fv = sim->m->faces + 3 * f;
     const double *x = sim->x;
     double r = 0.5 * sqrt(tri_cross2(x + 3 * fv[0], x + 3 * fv[1], x + 3 * fv[2])) / sim->m->rest_area[f];
-    lo = fmin(lo, r);
-    hi = fmax(hi, r);
+    lo = min_keep(lo, r);
+    hi = max_keep(hi, r);
   }
   st->min_area_ratio = sim->m->nsimface ? lo : 1.0;
   st->max_area_ratio = sim->m->nsimface ? hi : 1.0;
