@@ -175,8 +175,9 @@ typedef struct anchor_counts {
   long long moved, steps, boundary, crease, step_limit;
 } anchor_counts;
 
-/* Moves anchor a (if it holds a free point) with walker (NULL: the mover's
- * own scratch). */
+/* Moves anchor a (if it holds a free point) with walker (NULL: one thread;
+ * the walk then takes walkers[0], projection and n-ring the mover's own
+ * scratch). */
 static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_counts *c) {
   const int nv = sim->m->nvert;
   if (a + SS_WALK_PREFETCH < sim->m->nanchor) {
@@ -210,7 +211,10 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    if (walker)
+    if (ss_mover_method(sim->mover) == SS_METHOD_WALK) /* the walk itself, not through the mover */
+      ss_walk(walker ? walker : sim->walkers[0], sim->m->btopo, ss_mover_frames(sim->mover), sim->anchor_face[a],
+              sim->anchor_uv + 2 * a, target, sim->set.mover.walk_max_steps, &res);
+    else if (walker)
       ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
                          &res);
     else
