@@ -121,6 +121,32 @@ int main(int argc, char **argv) {
     printf("  %s: %.1f ns%s", ss_isa_name(isa), median(times, rounds), same ? "" : " (BITS DIFFER)");
   }
   printf("\n");
+  /* the same, each face's gradient added to its corners' in face order (as
+   * one thread runs it: every vertex a dof here) */
+  printf("  ... added to the vertices' gradients:");
+  double *ref_dof = calloc(3 * (size_t)nv, sizeof(double)), *dof = calloc(3 * (size_t)nv, sizeof(double));
+  int *dof_of = malloc((size_t)nv * sizeof(int));
+  if (!ref_dof || !dof || !dof_of) {
+    fprintf(stderr, "bench_kernels: out of memory\n");
+    return 1;
+  }
+  for (int v = 0; v < nv; v++) dof_of[v] = v;
+  ss_membrane_eval_batch_isa(SS_ISA_BASE, mface, 0, nf, pose, NULL, mu, lam, set.compression, energy, NULL, ref_dof,
+                             dof_of);
+  for (int isa = 0; isa < SS_ISA_COUNT; isa++) {
+    if (!ss_isa_supported(isa)) continue;
+    for (int r = 0; r < rounds; r++) {
+      memset(dof, 0, 3 * (size_t)nv * sizeof(double));
+      const double t0 = cpu_ns();
+      ss_membrane_eval_batch_isa(isa, mface, 0, nf, pose, NULL, mu, lam, set.compression, energy + nf, NULL, dof,
+                                 dof_of);
+      times[r] = (cpu_ns() - t0) / nf;
+    }
+    const int same = memcmp(dof, ref_dof, 3 * (size_t)nv * sizeof(double)) == 0;
+    printf("  %s: %.1f ns%s", ss_isa_name(isa), median(times, rounds), same ? "" : " (BITS DIFFER)");
+  }
+  printf("\n");
+  free(ref_dof), free(dof), free(dof_of);
   ss_frames_destroy(ref);
   ss_frames_destroy(fr);
   ss_topo_destroy(topo);
