@@ -19,6 +19,7 @@
 
 #include "energy.h"
 #include "isa.h"
+#include "ss_util.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_scene.h"
 #include "skin_sim/ss_sim.h"
@@ -28,16 +29,6 @@ static double cpu_ns(void) {
   struct timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return 1e9 * (double)ts.tv_sec + (double)ts.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_d);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 int main(int argc, char **argv) {
@@ -58,8 +49,11 @@ int main(int argc, char **argv) {
   ss_topo *topo = NULL;
   ss_frames *ref = NULL, *fr = NULL;
   ss_membrane_face *mface = aligned_alloc(64, sizeof(ss_membrane_face) * (size_t)nf);
-  double *energy = malloc(2 * (size_t)nf * sizeof(double)), *grad = malloc(18 * (size_t)nf * sizeof(double));
-  if (!pose || !times || !mface || !energy || !grad ||
+  /* the membrane's outputs: the reference's energies then a set's, the same for gradients */
+  const size_t nout_max = 9 * (size_t)nf > 3 * (size_t)nv ? 9 * (size_t)nf : 3 * (size_t)nv;
+  double *energy = malloc(2 * (size_t)nf * sizeof(double)), *out = malloc(2 * nout_max * sizeof(double));
+  int *dof_of = malloc((size_t)nv * sizeof(int));
+  if (!pose || !times || !mface || !energy || !out || !dof_of ||
       ss_topo_create(&topo, nv, rest, nf, faces, -1.0, err, sizeof err) != SS_OK ||
       ss_frames_create(&ref, nf) != SS_OK || ss_frames_create(&fr, nf) != SS_OK) {
     fprintf(stderr, "bench_kernels: %s\n", topo ? "out of memory" : err);
@@ -87,11 +81,14 @@ int main(int argc, char **argv) {
     const int same = memcmp(fr->walk, ref->walk, sizeof(double) * SS_FRAME_RECORD * (size_t)nf) == 0 &&
                      memcmp(fr->normal, ref->normal, sizeof(double) * 3 * (size_t)nf) == 0 &&
                      memcmp(fr->area, ref->area, sizeof(double) * (size_t)nf) == 0;
-    printf("  %s: %.1f ns%s", name, median(times, rounds), same ? "" : " (BITS DIFFER)");
+    printf("  %s: %.1f ns%s", name, ss_median(times, rounds), same ? "" : " (BITS DIFFER)");
   }
   printf("\n");
 
-  /* the membrane's energy and gradient, as the sim's defaults set it */
+  /* the membrane's energy and gradient, as the sim's defaults set it, both
+   * ways the sim runs it: each face's gradient written (as the threads do),
+   * or added to its corners' in face order (as one thread does; every
+   * vertex a dof here) */
   const ss_sim_settings set = ss_sim_default_settings();
   double mu, lam;
   ss_membrane_lame(set.young, set.poisson, &mu, &lam);
@@ -102,55 +99,36 @@ int main(int argc, char **argv) {
     ss_membrane_rest(rest + 3 * faces[3 * f], rest + 3 * faces[3 * f + 1], rest + 3 * faces[3 * f + 2], m->dm_inv,
                      &m->area);
   }
-  ss_membrane_eval_batch_isa(SS_ISA_BASE, mface, 0, nf, pose, NULL, mu, lam, set.compression, energy, grad, NULL,
-                             NULL);
-  printf("membrane energy and gradient (per skin face):");
-  for (int isa = 0; isa < SS_ISA_COUNT; isa++) {
-    if (!ss_isa_supported(isa)) {
-      printf("  %s: not on this CPU", ss_isa_name(isa));
-      continue;
-    }
-    double *e = energy + nf, *g = grad + 9 * (size_t)nf;
-    for (int r = 0; r < rounds; r++) {
-      const double t0 = cpu_ns();
-      ss_membrane_eval_batch_isa(isa, mface, 0, nf, pose, NULL, mu, lam, set.compression, e, g, NULL, NULL);
-      times[r] = (cpu_ns() - t0) / nf;
-    }
-    const int same = memcmp(e, energy, sizeof(double) * (size_t)nf) == 0 &&
-                     memcmp(g, grad, sizeof(double) * 9 * (size_t)nf) == 0;
-    printf("  %s: %.1f ns%s", ss_isa_name(isa), median(times, rounds), same ? "" : " (BITS DIFFER)");
-  }
-  printf("\n");
-  /* the same, each face's gradient added to its corners' in face order (as
-   * one thread runs it: every vertex a dof here) */
-  printf("  ... added to the vertices' gradients:");
-  double *ref_dof = calloc(3 * (size_t)nv, sizeof(double)), *dof = calloc(3 * (size_t)nv, sizeof(double));
-  int *dof_of = malloc((size_t)nv * sizeof(int));
-  if (!ref_dof || !dof || !dof_of) {
-    fprintf(stderr, "bench_kernels: out of memory\n");
-    return 1;
-  }
   for (int v = 0; v < nv; v++) dof_of[v] = v;
-  ss_membrane_eval_batch_isa(SS_ISA_BASE, mface, 0, nf, pose, NULL, mu, lam, set.compression, energy, NULL, ref_dof,
-                             dof_of);
-  for (int isa = 0; isa < SS_ISA_COUNT; isa++) {
-    if (!ss_isa_supported(isa)) continue;
-    for (int r = 0; r < rounds; r++) {
-      memset(dof, 0, 3 * (size_t)nv * sizeof(double));
-      const double t0 = cpu_ns();
-      ss_membrane_eval_batch_isa(isa, mface, 0, nf, pose, NULL, mu, lam, set.compression, energy + nf, NULL, dof,
-                                 dof_of);
-      times[r] = (cpu_ns() - t0) / nf;
+  for (int to_vertices = 0; to_vertices < 2; to_vertices++) {
+    const size_t nout = to_vertices ? 3 * (size_t)nv : 9 * (size_t)nf;
+    double *ref_out = out, *got = out + nout;
+    printf(to_vertices ? "  ... added to the vertices' gradients:" : "membrane energy and gradient (per skin face):");
+    for (int isa = SS_ISA_BASE - 1; isa < SS_ISA_COUNT; isa++) { /* SS_ISA_BASE - 1: the reference, untimed */
+      if (isa >= SS_ISA_BASE && !ss_isa_supported(isa)) {
+        printf("  %s: not on this CPU", ss_isa_name(isa));
+        continue;
+      }
+      double *o = isa < SS_ISA_BASE ? ref_out : got, *e = isa < SS_ISA_BASE ? energy : energy + nf;
+      for (int r = 0; r < (isa < SS_ISA_BASE ? 1 : rounds); r++) {
+        memset(o, 0, nout * sizeof(double)); /* added to, in the second way */
+        const double t0 = cpu_ns();
+        ss_membrane_eval_batch_isa(isa < SS_ISA_BASE ? SS_ISA_BASE : isa, mface, 0, nf, pose, NULL, mu, lam,
+                                   set.compression, e, to_vertices ? NULL : o, to_vertices ? o : NULL,
+                                   to_vertices ? dof_of : NULL);
+        times[r] = (cpu_ns() - t0) / nf;
+      }
+      if (isa < SS_ISA_BASE) continue;
+      const int same = memcmp(got, ref_out, nout * sizeof(double)) == 0 &&
+                       memcmp(e, energy, (size_t)nf * sizeof(double)) == 0;
+      printf("  %s: %.1f ns%s", ss_isa_name(isa), ss_median(times, rounds), same ? "" : " (BITS DIFFER)");
     }
-    const int same = memcmp(dof, ref_dof, 3 * (size_t)nv * sizeof(double)) == 0;
-    printf("  %s: %.1f ns%s", ss_isa_name(isa), median(times, rounds), same ? "" : " (BITS DIFFER)");
+    printf("\n");
   }
-  printf("\n");
-  free(ref_dof), free(dof), free(dof_of);
   ss_frames_destroy(ref);
   ss_frames_destroy(fr);
   ss_topo_destroy(topo);
-  free(mface), free(energy), free(grad), free(pose), free(times);
+  free(mface), free(energy), free(out), free(dof_of), free(pose), free(times);
   ss_scene_destroy(scene);
   return 0;
 }

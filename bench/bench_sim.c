@@ -30,21 +30,12 @@
 #include "skin_sim/ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "mover.h"
+#include "ss_util.h"
 
 static double cpu_ms(void) {
   struct timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_d);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 /* The per-anchor comparison of walk and projection (anchors 1). */
@@ -215,10 +206,10 @@ int main(int argc, char **argv) {
          "ms/frame total %.2f cpu %.2f pose %.2f walk %.2f assemble %.2f factor %.2f solve %.2f (medians); "
          "iterations %.2f/frame, energy evaluations %.2f/iteration, residual mean %.2g (rms %.2g), unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
          scene_name, nf, nv, ss_sim_ndof(sim), solver, ss_method_name(set.mover.method), set.substeps, frames,
-         median(t_total, frames), median(t_cpu, frames), median(t_pose, frames), median(t_walk, frames), median(t_asm, frames), median(t_fac, frames),
-         median(t_sol, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
+         ss_median(t_total, frames), ss_median(t_cpu, frames), ss_median(t_pose, frames), ss_median(t_walk, frames),
+         ss_median(t_asm, frames), ss_median(t_fac, frames), ss_median(t_sol, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
   if (anchors) {
-    double w = median(pr.walk_ns, frames), p = median(pr.project_ns, frames);
+    double w = ss_median(pr.walk_ns, frames), p = ss_median(pr.project_ns, frames);
     printf("anchors %d per frame (per anchor, same queries, CPU, medians): walk_ns %.1f project_ns %.1f "
            "project/walk %.1f (walk %.2f ms per frame, %.3f edges crossed per walk); replayed walks "
            "ending in the skin's face %lld/%lld\n",
