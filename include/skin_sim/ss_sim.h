@@ -303,9 +303,14 @@ const double *ss_sim_anchor_uv(const ss_sim *sim);  /* (nanchors x 2) */
  * pull, the distance |a* - a0| from the anchor to the candidate it was sent
  * towards; path, the length walked on the body surface (0 unless the method
  * is walk). (nanchors) each; zero for anchors that did not move. They let a
- * caller tell an honest slide from a jump across a gap (a snag). */
+ * caller tell an honest slide from a jump across a gap (a snag). Measured
+ * only after ss_sim_measure_anchors(sim, 1) (NULL until then, and after
+ * turning it off): they cost square roots on every anchor's walk, each
+ * substep (a sixth of the anchor stage on the 19k quadruped), and change
+ * nothing of the simulation. */
 const double *ss_sim_anchor_pull(const ss_sim *sim);
 const double *ss_sim_anchor_path(const ss_sim *sim);
+void ss_sim_measure_anchors(ss_sim *sim, int on);
 /* World positions of the anchors in the current body pose into out
  * (nanchors x 3). */
 void ss_sim_anchor_positions(const ss_sim *sim, double *out);

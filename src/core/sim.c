@@ -202,6 +202,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   }
   if (sim->anchor_face[a] < 0) return;
   const double slide = sim->slide_frac;
+  const int measure = sim->measure_anchors;
   const double *a0 = sim->anchor_pos + 3 * a;
   double target[3];
   ss_walk_result res = {0};
@@ -211,18 +212,26 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    if (ss_mover_method(sim->mover) == SS_METHOD_WALK) /* the walk itself, not through the mover */
-      ss_walk(walker ? walker : sim->walkers[0], sim->m->btopo, ss_mover_frames(sim->mover), sim->anchor_face[a],
-              sim->anchor_uv + 2 * a, target, sim->set.mover.walk_max_steps, &res);
-    else if (walker)
+    if (ss_mover_method(sim->mover) == SS_METHOD_WALK) { /* the walk itself, not through the mover */
+      ss_walker *wk = walker ? walker : sim->walkers[0];
+      const ss_frames *fr = ss_mover_frames(sim->mover);
+      if (measure)
+        ss_walk(wk, sim->m->btopo, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
+                sim->set.mover.walk_max_steps, &res);
+      else
+        ss_walk_unmeasured(wk, sim->m->btopo, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
+                           sim->set.mover.walk_max_steps, &res);
+    } else if (walker)
       ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
                          &res);
     else
       ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
-    double pull2 = 0.0;
-    for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
-    sim->anchor_pull[a] += sqrt(pull2);
-    sim->anchor_path[a] += res.length;
+    if (measure) {
+      double pull2 = 0.0;
+      for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
+      sim->anchor_pull[a] += sqrt(pull2);
+      sim->anchor_path[a] += res.length;
+    }
     c->steps += res.steps;
   }
   if (sim->tether_frac > 0.0 && res.face == sim->m->anchor_face0[a]) {
@@ -238,11 +247,13 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     const double du = sim->tether_frac * (uv0[0] - res.uv[0]);
     const double dv = sim->tether_frac * (uv0[1] - res.uv[1]);
     if (du != 0.0 || dv != 0.0) {
-      const double *e = ss_frames_edges(ss_mover_frames(sim->mover), res.face);
-      const double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
+      if (measure) {
+        const double *e = ss_frames_edges(ss_mover_frames(sim->mover), res.face);
+        const double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
+        sim->anchor_pull[a] += sqrt(x * x + y * y + z * z);
+      }
       res.uv[0] += du;
       res.uv[1] += dv;
-      sim->anchor_pull[a] += sqrt(x * x + y * y + z * z);
       moved = 1;
     }
   } else if (sim->tether_frac > 0.0 && sim->m->anchor_face0[a] >= 0) {
@@ -286,19 +297,24 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
        * would part ways within frames (0.4 edge lengths on quadruped). */
       home_stretch(fr, h, target, res.uv);
       res.face = h;
-      sim->anchor_pull[a] += sqrt(pull2);
+      if (measure) sim->anchor_pull[a] += sqrt(pull2);
       moved = 1;
     } else if (pull2 > 0.0) {
       const int face = res.face;
       const double uv[2] = {res.uv[0], res.uv[1]};
       ss_walk_result back;
-      ss_walk(walker ? walker : sim->walkers[0], sim->m->btopo, fr, face, uv, target,
-              sim->set.mover.walk_max_steps, &back);
+      ss_walker *wk = walker ? walker : sim->walkers[0];
+      if (measure)
+        ss_walk(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, &back);
+      else
+        ss_walk_unmeasured(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, &back);
       res.face = back.face;
       res.uv[0] = back.uv[0];
       res.uv[1] = back.uv[1];
-      sim->anchor_pull[a] += sqrt(pull2);
-      sim->anchor_path[a] += back.length;
+      if (measure) {
+        sim->anchor_pull[a] += sqrt(pull2);
+        sim->anchor_path[a] += back.length;
+      }
       c->steps += back.steps;
       moved = 1;
     }
@@ -567,8 +583,10 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   }
   double t_start = ss_now_ms();
   sim->st = st;
-  memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
-  memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
+  if (sim->measure_anchors) {
+    memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
+    memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
+  }
   int substeps = sim->set.substeps;
   double h = dt / substeps;
   const size_t nb3 = 3 * (size_t)sim->m->nbvert;
@@ -625,8 +643,16 @@ int ss_sim_body_nface(const ss_sim *sim) { return sim->m->nbface; }
 int ss_sim_nanchors(const ss_sim *sim) { return sim->m->nanchor; }
 const int *ss_sim_anchor_faces(const ss_sim *sim) { return sim->anchor_face; }
 const double *ss_sim_anchor_uv(const ss_sim *sim) { return sim->anchor_uv; }
-const double *ss_sim_anchor_pull(const ss_sim *sim) { return sim->anchor_pull; }
-const double *ss_sim_anchor_path(const ss_sim *sim) { return sim->anchor_path; }
+const double *ss_sim_anchor_pull(const ss_sim *sim) { return sim->measure_anchors ? sim->anchor_pull : NULL; }
+const double *ss_sim_anchor_path(const ss_sim *sim) { return sim->measure_anchors ? sim->anchor_path : NULL; }
+void ss_sim_measure_anchors(ss_sim *sim, int on) {
+  if (!sim) return;
+  if (on && !sim->measure_anchors) { /* nothing measured yet: zeros, not what an earlier step left */
+    memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
+    memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
+  }
+  sim->measure_anchors = on != 0;
+}
 const ss_topo *ss_sim_body_topo(const ss_sim *sim) { return sim->m->btopo; }
 
 void ss_sim_anchor_positions(const ss_sim *sim, double *out) {

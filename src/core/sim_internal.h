@@ -191,6 +191,7 @@ struct ss_sim {
   int probe_period;           /* threads 0: steps in the current probe period */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
   double h;                   /* substep of the current system */
+  int measure_anchors;        /* ss_sim_measure_anchors: anchor_pull and anchor_path summed */
   double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
   double tether_frac;         /* share of the way back home it walks this substep */
   /* CHOLMOD */

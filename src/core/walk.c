@@ -422,8 +422,12 @@ static inline double canonical_length(const double *e, double du, double dv) {
   return sqrt(x * x + y * y + z * z);
 }
 
-void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
-             const double uv[2], const double target[3], int max_steps, ss_walk_result *res) {
+/* The walk; with `measure` 0 (a constant: two copies) the path's length is
+ * not summed (res->length 0): a square root per face walked less, on the
+ * chain of dependent operations every walk is. */
+static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr,
+                                         int face, const double uv[2], const double target[3],
+                                         int max_steps, ss_walk_result *res, const int measure) {
   /* Scalars, not arrays, for the point and what every step computes: the
    * compiler keeps them in registers (a point stored element by element and
    * read back as one vector stalls the load). The arithmetic and its order
@@ -478,7 +482,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
     if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
       double qu = pu + du, qv = pv + dv;
       clamp_uv(&qu, &qv);
-      length += canonical_length(w + 3, qu - pu, qv - pv);
+      if (measure) length += canonical_length(w + 3, qu - pu, qv - pv);
       pu = qu, pv = qv;
       break;
     }
@@ -486,7 +490,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
     double p[2], h[2] = {pu + t_exit * du, pv + t_exit * dv};
     double s = edge_param(k_exit, h);
     edge_point(k_exit, s, p); /* exactly on the edge */
-    length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
+    if (measure) length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
     if (!stamped) {
       if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
         memset(walker->visited, 0, sizeof(unsigned int) * (size_t)walker->nface);
@@ -516,7 +520,7 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
       edge_dist2(fr, f, k_edge, target, &se);
       if (isfinite(se)) { /* NaN where the face's corners overflow: stay at h */
         edge_point(k_edge, se, p);
-        length += canonical_length(ss_frames_edges(fr, f), p[0] - hu, p[1] - hv);
+        if (measure) length += canonical_length(ss_frames_edges(fr, f), p[0] - hu, p[1] - hv);
       }
     }
     pu = p[0], pv = p[1];
@@ -529,4 +533,15 @@ void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int fa
   res->uv[0] = pu;
   res->uv[1] = pv;
   res->length = length;
+}
+
+void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
+             const double uv[2], const double target[3], int max_steps, ss_walk_result *res) {
+  walk(walker, topo, fr, face, uv, target, max_steps, res, 1);
+}
+
+void ss_walk_unmeasured(ss_walker *walker, const ss_topo *topo, const ss_frames *fr, int face,
+                        const double uv[2], const double target[3], int max_steps,
+                        ss_walk_result *res) {
+  walk(walker, topo, fr, face, uv, target, max_steps, res, 0);
 }

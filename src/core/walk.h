@@ -114,5 +114,10 @@ void ss_walker_destroy(ss_walker *walker);
 void ss_walk(ss_walker *walker, const ss_topo *topo, const ss_frames *frames, int face,
              const double uv[2], const double target[3], int max_steps,
              ss_walk_result *res);
+/* ss_walk without the path's length (res->length 0), the same face and uv:
+ * for callers that do not read it (a square root per face walked). */
+void ss_walk_unmeasured(ss_walker *walker, const ss_topo *topo, const ss_frames *frames, int face,
+                        const double uv[2], const double target[3], int max_steps,
+                        ss_walk_result *res);
 
 #endif

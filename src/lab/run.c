@@ -301,6 +301,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
     status = run_create(&sim, NULL, body, settings, err, err_sz);
   }
   if (status) return status;
+  ss_sim_measure_anchors(sim, 1); /* the snag test reads each anchor's pull and path */
   const ss_topo *topo = ss_sim_body_topo(sim);
   const int nanchor = ss_sim_nanchors(sim), skin_nvert = ss_sim_skin_nvert(sim);
   const int skin_nface = ss_sim_skin_nface(sim);

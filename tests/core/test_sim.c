@@ -347,6 +347,50 @@ static void test_slide(void) {
   fx_free(&g);
 }
 
+/* Each anchor's pull and path are measured only when asked, and measuring
+ * them changes nothing: a measured and an unmeasured sim (slide and
+ * tether on) step to the same bits, the unmeasured one reports NULL, the
+ * measured one a pull and a walked path for the anchors that moved. */
+static void test_measure_anchors(void) {
+  fx_mesh g = fx_grid(9, 9, 1.0, 1.0, 0.1);
+  double *pose = malloc(3 * (size_t)g.nvert * sizeof(double));
+  ss_sim_settings set = ss_sim_default_settings();
+  set.slide = 4.0;
+  set.tether = 2.0;
+  ss_sim *plain = make_sim(&g, &set), *measured = make_sim(&g, &set);
+  if (plain && measured) {
+    const int na = ss_sim_nanchors(plain);
+    CHECK(ss_sim_anchor_pull(plain) == NULL && ss_sim_anchor_path(plain) == NULL);
+    ss_sim_measure_anchors(measured, 1);
+    CHECK(ss_sim_anchor_pull(measured) != NULL && ss_sim_anchor_path(measured) != NULL);
+    int moved = 0, walked = 0, bad = 0;
+    ss_sim_stats st;
+    for (int f = 1; f <= 12; f++) {
+      fx_pose(&g, f / 30.0, pose);
+      CHECK_EQ_INT(ss_sim_step(plain, pose, 0.0, &st, NULL, 0), SS_OK);
+      CHECK_EQ_INT(ss_sim_step(measured, pose, 0.0, &st, NULL, 0), SS_OK);
+      const double *pull = ss_sim_anchor_pull(measured), *path = ss_sim_anchor_path(measured);
+      for (int a = 0; a < na; a++) {
+        moved += pull[a] > 0.0;
+        walked += path[a] > 0.0;
+        bad += !(pull[a] >= 0.0 && path[a] >= 0.0 && isfinite(pull[a]) && isfinite(path[a]));
+      }
+    }
+    CHECK_MSG(moved > na && walked > na, "anchors with a pull %d, with a path %d (of %d x 12)", moved, walked, na);
+    CHECK_EQ_INT(bad, 0);
+    CHECK(memcmp(ss_sim_skin_positions(plain), ss_sim_skin_positions(measured),
+                 3 * (size_t)ss_sim_skin_nvert(plain) * sizeof(double)) == 0);
+    CHECK(memcmp(ss_sim_anchor_faces(plain), ss_sim_anchor_faces(measured), (size_t)na * sizeof(int)) == 0);
+    CHECK(memcmp(ss_sim_anchor_uv(plain), ss_sim_anchor_uv(measured), 2 * (size_t)na * sizeof(double)) == 0);
+    ss_sim_measure_anchors(measured, 0);
+    CHECK(ss_sim_anchor_pull(measured) == NULL && ss_sim_anchor_path(measured) == NULL);
+  }
+  ss_sim_destroy(plain);
+  ss_sim_destroy(measured);
+  free(pose);
+  fx_free(&g);
+}
+
 /* Bending resists bending: a cantilever strip (root pinned through the face
  * mask, no anchors) under gravity droops less with hinge bending on, and
  * less again with a stiffer hinge; the membrane alone hardly resists. */
@@ -684,6 +728,7 @@ int main(void) {
   test_coarse_skin();
   test_bending_cantilever();
   test_slide();
+  test_measure_anchors();
   test_bad_input();
   test_warnings();
   test_small_meshes();
