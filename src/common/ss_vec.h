@@ -9,6 +9,13 @@
  * NaN handling the compiler may not assume away: 12 of them per closest
  * point on a triangle, which the tether asks for two anchors in five per
  * substep). */
+/* One third as a factor: barycenters and the barycenter springs' shares are
+ * products by it, not quotients by 3 (six divisions per face in the
+ * membrane kernel and three on every barycenter anchor's walk, where a
+ * division is a long latency on the dependency chain; a product differs from
+ * the quotient by at most an ulp). */
+#define SS_THIRD (1.0 / 3.0)
+
 static inline double max_keep(double m, double x) { return x > m ? x : m; }
 static inline double min_keep(double m, double x) { return x < m ? x : m; }
 

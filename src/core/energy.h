@@ -11,6 +11,8 @@
 #ifndef SKIN_SIM_ENERGY_H
 #define SKIN_SIM_ENERGY_H
 
+#include "ss_vec.h" /* SS_THIRD */
+
 /* ---- membrane: 2D Stable Neo-Hookean (Smith, de Goes, Kim 2018) ----------
  * F = [x1-x0, x2-x0] Dm^-1 (3x2), I_C = tr(F^T F), J = sqrt(det(F^T F)),
  * Psi = mu/2 (I_C - 2) + lam/2 (J - alpha)^2, alpha = 1 + mu/lam,
@@ -57,7 +59,7 @@ typedef struct ss_membrane_face {
  * its energy and to each corner's gradient, in the same pass over the same
  * gathered corners: a zero-length spring of stiffness k_bary from the
  * face's barycenter b to its anchor a = bary_anchor + anchor,
- * e = 0.5 k |b - a|^2, each corner's gradient k (b - a) / 3 (computed as
+ * e = 0.5 k |b - a|^2, each corner's gradient (k / 3) (b - a) (computed as
  * ss_bary_spring). The gradients go to grad (9 per face, corner-major) if
  * not NULL; and to dof_grad if not NULL: each corner's added to
  * dof_grad[3 k ..] in face order, k = dof_of[vertex] (corners with
@@ -70,10 +72,11 @@ void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, i
 /* One barycenter spring as the batch computes it: corners x (9), anchor a,
  * stiffness k; returns its energy, its gradient per corner into g3. */
 static inline double ss_bary_spring(const double x[9], const double a[3], double k, double g3[3]) {
-  const double dx = (x[0] + x[3] + x[6]) / 3.0 - a[0];
-  const double dy = (x[1] + x[4] + x[7]) / 3.0 - a[1];
-  const double dz = (x[2] + x[5] + x[8]) / 3.0 - a[2];
-  g3[0] = k * dx / 3.0, g3[1] = k * dy / 3.0, g3[2] = k * dz / 3.0;
+  const double dx = (x[0] + x[3] + x[6]) * SS_THIRD - a[0];
+  const double dy = (x[1] + x[4] + x[7]) * SS_THIRD - a[1];
+  const double dz = (x[2] + x[5] + x[8]) * SS_THIRD - a[2];
+  const double k3 = k * SS_THIRD;
+  g3[0] = k3 * dx, g3[1] = k3 * dy, g3[2] = k3 * dz;
   return 0.5 * k * (dx * dx + dy * dy + dz * dz);
 }
 

@@ -565,11 +565,11 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
       gr[8][l] = ar * (d20 * p0z + d21 * p1z);
       en[l] = ar * psi;
       if (bary) { /* ss_bary_spring's arithmetic */
-        const double bx = (xs[0][l] + xs[3][l] + xs[6][l]) / 3.0 - as[0][l];
-        const double by = (xs[1][l] + xs[4][l] + xs[7][l]) / 3.0 - as[1][l];
-        const double bz = (xs[2][l] + xs[5][l] + xs[8][l]) / 3.0 - as[2][l];
-        const double k = kb[l];
-        const double gx = k * bx / 3.0, gy = k * by / 3.0, gz = k * bz / 3.0;
+        const double bx = (xs[0][l] + xs[3][l] + xs[6][l]) * SS_THIRD - as[0][l];
+        const double by = (xs[1][l] + xs[4][l] + xs[7][l]) * SS_THIRD - as[1][l];
+        const double bz = (xs[2][l] + xs[5][l] + xs[8][l]) * SS_THIRD - as[2][l];
+        const double k = kb[l], k3 = k * SS_THIRD;
+        const double gx = k3 * bx, gy = k3 * by, gz = k3 * bz;
         gb[0][l] = gx, gb[1][l] = gy, gb[2][l] = gz;
         eb[l] = 0.5 * k * (bx * bx + by * by + bz * bz);
         en[l] += eb[l];

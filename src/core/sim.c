@@ -198,7 +198,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     if (sim->m->k_face[f] == 0.0) return;
     const int *fv = sim->m->faces + 3 * f;
     for (int i = 0; i < 3; i++)
-      p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) / 3.0;
+      p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) * SS_THIRD;
   }
   if (sim->anchor_face[a] < 0) return;
   const double slide = sim->slide_frac;
