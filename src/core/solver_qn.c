@@ -130,15 +130,20 @@ static void scalar_pattern(const ss_model *m, cholmod_sparse *A) {
   memcpy(A->i, m->brow, (size_t)m->nblock * sizeof(int));
 }
 
-/* A simplicial LL' factor: with three right-hand sides the solve is memory
- * bound, CHOLMOD's simplicial solve does the three columns in one pass over
- * L, and no BLAS (nor its threads) is involved, which keeps the result
- * bit-for-bit reproducible. supernodal is read by cholmod_analyze (the model's
- * cc), final_ll by cholmod_factorize (each sim's): both cc's are set alike.
- * (Each cholmod_common serves only this solver.) */
+/* A simplicial LDL' factor: CHOLMOD's simplicial solve does the three
+ * columns in one pass over L, and no BLAS (nor its threads) is involved,
+ * which keeps the result bit-for-bit reproducible (the supernodal solve,
+ * through BLAS, took twice as long here: 11.8 against 5.5 ms per frame on
+ * the 19k quadruped at 1 x 8). LDL' rather than LL': the LL' solves divide by
+ * the diagonal at every column of both triangular passes, on their chains of
+ * dependent operations; LDL' divides by D in a pass of its own (solve 5.48
+ * -> 5.07 ms per frame there, 3 runs each). supernodal is read by
+ * cholmod_analyze (the model's cc), final_ll by cholmod_factorize (each
+ * sim's): both cc's are set alike. (Each cholmod_common serves only this
+ * solver.) */
 static void scalar_common(cholmod_common *cc) {
   cc->supernodal = CHOLMOD_SIMPLICIAL;
-  cc->final_ll = 1;
+  cc->final_ll = 0;
 }
 
 int ss_solver_qn_analyze(ss_model *m, char *err, int err_sz) {
