@@ -300,8 +300,8 @@ static inline SS_ALWAYS_INLINE double dof_residual_along(const ss_sim *sim, cons
  * sim's threads, the same bits. In each instruction set (isa.h): baseline
  * x86-64 divides two doubles at a time, and with three divisions per dof
  * this pass, nine times a frame, was 2.4% of the 19k quadruped's frame. */
-static inline SS_ALWAYS_INLINE void residual_kernel(const ss_sim *sim, const double *g, int along, int k0,
-                                                    int k1, double *worst_out, int *nan_out) {
+static inline SS_ALWAYS_INLINE void residual_kernel(const ss_sim *sim, const double *g, int k0, int k1,
+                                                    double *worst_out, int *nan_out, const int along) {
   /* in lanes of their own (an omp simd max reduction was left scalar by the
    * vectoriser): each lane's largest and whether it met a NaN, as doubles */
   enum { L = 8 };
@@ -309,24 +309,13 @@ static inline SS_ALWAYS_INLINE void residual_kernel(const ss_sim *sim, const dou
   for (int l = 0; l < L; l++) wl[l] = 0.0, nl[l] = 0.0;
   int k = k0;
   for (; k + L <= k1; k += L) {
-    if (along) {
 #ifdef _OPENMP
 #pragma omp simd
 #endif
-      for (int l = 0; l < L; l++) {
-        const double r = dof_residual_along(sim, g, k + l);
-        wl[l] = r > wl[l] ? r : wl[l];
-        nl[l] = r != r ? 1.0 : nl[l];
-      }
-    } else {
-#ifdef _OPENMP
-#pragma omp simd
-#endif
-      for (int l = 0; l < L; l++) {
-        const double r = dof_residual2(sim, g, k + l);
-        wl[l] = r > wl[l] ? r : wl[l];
-        nl[l] = r != r ? 1.0 : nl[l];
-      }
+    for (int l = 0; l < L; l++) {
+      const double r = along ? dof_residual_along(sim, g, k + l) : dof_residual2(sim, g, k + l);
+      wl[l] = r > wl[l] ? r : wl[l];
+      nl[l] = r != r ? 1.0 : nl[l];
     }
   }
   double worst = 0.0;
@@ -343,8 +332,10 @@ static inline SS_ALWAYS_INLINE void residual_kernel(const ss_sim *sim, const dou
   *worst_out = worst;
   *nan_out = nan;
 }
+/* specialised by the constant along: one loop each */
 SS_ISA_VARIANTS(residual, (const ss_sim *sim, const double *g, int along, int k0, int k1, double *worst, int *nan),
-                residual_kernel(sim, g, along, k0, k1, worst, nan);)
+                if (along) residual_kernel(sim, g, k0, k1, worst, nan, 1);
+                else residual_kernel(sim, g, k0, k1, worst, nan, 0);)
 
 /* The largest residual over the dofs (along: ss_sim_residual_along's
  * measure), NaN if any is NaN. The square root is taken of the largest
