@@ -49,12 +49,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "isa.h"
 #include "sim_internal.h"
 #include "ss_body_normal.h"
 
 /* The body's normal under skin face f, from `face` (the anchors now, or as
- * bound at rest): ss_body_normal.h. */
-static void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face, int f,
+ * bound at rest): ss_body_normal.h. Inlined: out of line, its three stores
+ * were read back by ss_sim_orient_normal two at a time, a load that could not
+ * be forwarded, on every face of every substep. */
+static inline SS_ALWAYS_INLINE void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face, int f,
                          double n[3]) {
   body_normal_under(fr->normal, fr->area, sim->m->body_area0, face, sim->m->faces, sim->m->nvert,
                     sim->m->nanchor, f, n);
