@@ -12,7 +12,9 @@
 #          build/release/devel/lib/skin_sim/bench_sim 5 quadruped 19000 60 quasi-newton 1 8 1e-4 walk 1
 #
 # Read "cpu" (process CPU time per step, all threads) for one thread on a
-# loaded machine: wall-clock times there mostly measure the other jobs.
+# loaded machine: wall-clock times there mostly measure the other jobs. After
+# the medians (and their ratios to the first binary) it prints the fastest
+# round of each, which a noisy neighbour disturbs least.
 set -euo pipefail
 if [[ "${1:-}" == "--bins" ]]; then
   IFS=, read -r -a bins <<<"${2:?usage: ab.sh --bins A,B[,C...] ROUNDS [bench_sim args]}"
@@ -53,4 +55,13 @@ for t in tags:
           "  " + ",".join(sorted(set(r["hash"] for r in rows[t]))))
 for t in tags[1:]:
     print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (med[t][k] / med[tags[0]][k] if med[tags[0]].get(k) else float("nan")) for k in keys))
+# The fastest round of each: the run a busy neighbour disturbed least (the
+# times are CPU-bound and deterministic, so noise only adds); read beside the
+# medians when they disagree.
+low = {t: {k: min(r[k] for r in rows[t]) for k in keys if k in rows[t][0]} for t in rows}
+print("fastest round of each:")
+for t in tags:
+    print("%-6s" % t + "".join("%10.2f" % low[t].get(k, float("nan")) for k in keys))
+for t in tags[1:]:
+    print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (low[t][k] / low[tags[0]][k] if low[tags[0]].get(k) else float("nan")) for k in keys))
 PYEOF
