@@ -171,6 +171,17 @@ static void home_stretch(const ss_frames *fr, int h, const double target[3], dou
   ss_closest_point_triangle(target, o, b, c, uv);
 }
 
+/* The walk of an anchor, its path's length summed only where measured
+ * (ss_sim_measure_anchors). */
+static inline void walk_anchor(const ss_sim *sim, ss_walker *walker, const ss_frames *fr, int face,
+                               const double uv[2], const double target[3], ss_walk_result *res) {
+  ss_walker *wk = walker ? walker : sim->walkers[0];
+  if (sim->measure_anchors)
+    ss_walk(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, res);
+  else
+    ss_walk_unmeasured(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, res);
+}
+
 typedef struct anchor_counts {
   long long moved, steps, boundary, crease, step_limit;
 } anchor_counts;
@@ -212,16 +223,10 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    if (ss_mover_method(sim->mover) == SS_METHOD_WALK) { /* the walk itself, not through the mover */
-      ss_walker *wk = walker ? walker : sim->walkers[0];
-      const ss_frames *fr = ss_mover_frames(sim->mover);
-      if (measure)
-        ss_walk(wk, sim->m->btopo, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
-                sim->set.mover.walk_max_steps, &res);
-      else
-        ss_walk_unmeasured(wk, sim->m->btopo, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
-                           sim->set.mover.walk_max_steps, &res);
-    } else if (walker)
+    if (ss_mover_method(sim->mover) == SS_METHOD_WALK) /* the walk itself, not through the mover */
+      walk_anchor(sim, walker, ss_mover_frames(sim->mover), sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
+                  &res);
+    else if (walker)
       ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
                          &res);
     else
@@ -303,11 +308,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
       const int face = res.face;
       const double uv[2] = {res.uv[0], res.uv[1]};
       ss_walk_result back;
-      ss_walker *wk = walker ? walker : sim->walkers[0];
-      if (measure)
-        ss_walk(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, &back);
-      else
-        ss_walk_unmeasured(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, &back);
+      walk_anchor(sim, walker, fr, face, uv, target, &back);
       res.face = back.face;
       res.uv[0] = back.uv[0];
       res.uv[1] = back.uv[1];
