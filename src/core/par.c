@@ -33,7 +33,7 @@ void ss_par_sum(int nthread, int n, int k, ss_par_fn fn, void *ctx, double *part
 
 typedef struct vec_ctx {
   double *out, *out2;
-  const double *a, *b;
+  const double *a, *b, *c, *d;
   double alpha;
 } vec_ctx;
 
@@ -208,20 +208,20 @@ void ss_par_norm2_dot(int nthread, double *part, int n, const double *a, const d
 static void pair_block(void *ctx, int i0, int i1, double *sums) {
   const vec_ctx *v = ctx;
   double *restrict s_out = v->out, *restrict y_out = v->out2;
-  const double *restrict x = v->a, *restrict g = v->b;
+  const double *restrict x = v->a, *restrict g = v->b, *restrict x_old = v->c, *restrict g_old = v->d;
   double sy[L] = {0}, ss[L] = {0}, yy[L] = {0};
   int i = i0;
   for (; i1 - i >= L; i += L)
     SS_PAR_LANE_LOOP
     for (int l = 0; l < L; l++) {
-      const double si = x[i + l] - s_out[i + l], yi = g[i + l] - y_out[i + l];
+      const double si = x[i + l] - x_old[i + l], yi = g[i + l] - g_old[i + l];
       s_out[i + l] = si, y_out[i + l] = yi;
       sy[l] += si * yi;
       ss[l] += si * si;
       yy[l] += yi * yi;
     }
   for (int l = 0; i < i1; i++, l++) {
-    const double si = x[i] - s_out[i], yi = g[i] - y_out[i];
+    const double si = x[i] - x_old[i], yi = g[i] - g_old[i];
     s_out[i] = si, y_out[i] = yi;
     sy[l] += si * yi;
     ss[l] += si * si;
@@ -230,8 +230,8 @@ static void pair_block(void *ctx, int i0, int i1, double *sums) {
   sums[0] = ss_par_lanes_total(sy), sums[1] = ss_par_lanes_total(ss), sums[2] = ss_par_lanes_total(yy);
 }
 
-void ss_par_pair(int nthread, double *part, int n, double *s, const double *x, double *y,
-                 const double *g, double sums[3]) {
-  vec_ctx v = {.out = s, .out2 = y, .a = x, .b = g};
+void ss_par_pair(int nthread, double *part, int n, double *s, const double *x, const double *x_old,
+                 double *y, const double *g, const double *g_old, double sums[3]) {
+  vec_ctx v = {.out = s, .out2 = y, .a = x, .b = g, .c = x_old, .d = g_old};
   ss_par_sum(nthread, n, 3, pair_block, &v, part, sums);
 }

@@ -61,8 +61,8 @@ double ss_par_neg_axpy_dot(int nthread, double *part, int n, double *out, double
 /* *aa = sum a[i]^2, *ab = sum a[i] b[i] */
 void ss_par_norm2_dot(int nthread, double *part, int n, const double *a, const double *b, double *aa,
                       double *ab);
-/* s = x - s, y = g - y; sums[0..3) = s.y, s.s, y.y */
-void ss_par_pair(int nthread, double *part, int n, double *s, const double *x, double *y,
-                 const double *g, double sums[3]);
+/* s = x - x_old, y = g - g_old; sums[0..3) = s.y, s.s, y.y */
+void ss_par_pair(int nthread, double *part, int n, double *s, const double *x, const double *x_old,
+                 double *y, const double *g, const double *g_old, double sums[3]);
 
 #endif

@@ -20,7 +20,8 @@ typedef struct ss_solve {
   double *g;       /* (ndof x 3) the gradient of E at xd */
   double *dir;     /* (ndof x 3) the direction a solver writes */
   double *xt, *gt; /* (ndof x 3) the line search's trial point and its gradient; an
-                      accepted trial swaps with xd and g (no copy) */
+                      accepted trial swaps with xd and g (no copy), so after it they
+                      hold the point and gradient before the step (qn_accepted) */
   double e;        /* E at xd */
   int step_memory; /* the line search starts where the last one ended (ss_solver_ops) */
   double alpha0;   /* with step_memory: the next search's first trial step, in (0, 1] */

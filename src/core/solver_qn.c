@@ -225,9 +225,8 @@ static int preconditioned_gradient(ss_solve *s) {
   return SS_DIR_OK;
 }
 
-/* The L-BFGS direction. s and y of the newest pair are formed in place in
- * the ring buffer: the slot at lb_head holds x_old and g_old until the step
- * is accepted (qn_accepted). */
+/* The L-BFGS direction. The newest pair goes to the ring buffer's slot at
+ * lb_head when the step is accepted (qn_accepted). */
 static int lbfgs_direction(ss_solve *s) {
   ss_sim *sim = s->sim;
   int n3 = 3 * sim->m->ndof, m = sim->lb_m;
@@ -289,10 +288,6 @@ static int lbfgs_direction(ss_solve *s) {
     if (preconditioned_gradient(s) != SS_DIR_OK) return SS_E_SOLVER;
   }
   st->solve_ms += ss_now_ms() - t1;
-  /* Keep x and g before the step in the slot the new pair will use. */
-  double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
-  memcpy(s_new, s->xd, (size_t)n3 * sizeof *s_new);
-  memcpy(y_new, g, (size_t)n3 * sizeof *y_new);
   return SS_DIR_OK;
 }
 
@@ -306,14 +301,16 @@ static int qn_dir(ss_solve *s, int attempt) {
   return SS_DIR_NONE;
 }
 
-/* The new pair and its three dots in one pass. */
+/* The new pair and its three dots in one pass. The point and gradient
+ * before the step are where the accepted line search left them: it swapped
+ * them into xt and gt (line_search.c), so no copy of them is kept. */
 static void qn_accepted(ss_solve *s) {
   ss_sim *sim = s->sim;
   int n3 = 3 * sim->m->ndof, m = sim->lb_m;
   const double *xd = s->xd, *g = s->g;
   double *s_new = sim->lb_s + (size_t)sim->lb_head * n3, *y_new = sim->lb_y + (size_t)sim->lb_head * n3;
   double sums[3];
-  ss_par_pair(sim->nthread, sim->par_part, n3, s_new, xd, y_new, g, sums);
+  ss_par_pair(sim->nthread, sim->par_part, n3, s_new, xd, s->xt, y_new, g, s->gt, sums);
   const double sy = sums[0], ss = sums[1], yy = sums[2];
   if (sy > 1e-12 * sqrt(ss * yy)) {
     sim->lb_rho[sim->lb_head] = 1.0 / sy;
