@@ -171,6 +171,12 @@ static void home_stretch(const ss_frames *fr, int h, const double target[3], dou
   ss_closest_point_triangle(target, o, b, c, uv);
 }
 
+/* Each anchor's pull and path back to 0 (ss_sim_measure_anchors). */
+static void clear_anchor_measures(ss_sim *sim) {
+  memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
+  memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
+}
+
 /* The walk of an anchor, its path's length summed only where measured
  * (ss_sim_measure_anchors). */
 static inline void walk_anchor(const ss_sim *sim, ss_walker *walker, const ss_frames *fr, int face,
@@ -584,10 +590,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   }
   double t_start = ss_now_ms();
   sim->st = st;
-  if (sim->measure_anchors) {
-    memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
-    memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
-  }
+  if (sim->measure_anchors) clear_anchor_measures(sim);
   int substeps = sim->set.substeps;
   double h = dt / substeps;
   const size_t nb3 = 3 * (size_t)sim->m->nbvert;
@@ -648,10 +651,7 @@ const double *ss_sim_anchor_pull(const ss_sim *sim) { return sim->measure_anchor
 const double *ss_sim_anchor_path(const ss_sim *sim) { return sim->measure_anchors ? sim->anchor_path : NULL; }
 void ss_sim_measure_anchors(ss_sim *sim, int on) {
   if (!sim) return;
-  if (on && !sim->measure_anchors) { /* nothing measured yet: zeros, not what an earlier step left */
-    memset(sim->anchor_pull, 0, (size_t)sim->m->nanchor * sizeof(double));
-    memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
-  }
+  if (on && !sim->measure_anchors) clear_anchor_measures(sim); /* zeros, not what an earlier step left */
   sim->measure_anchors = on != 0;
 }
 const ss_topo *ss_sim_body_topo(const ss_sim *sim) { return sim->m->btopo; }
