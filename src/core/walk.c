@@ -311,6 +311,12 @@ void ss_walker_destroy(ss_walker *w) {
   free(w);
 }
 
+/* 1 where x, y are both finite: x - x is 0 for a finite x and NaN for an
+ * infinite or NaN one, and a sum with a NaN is NaN (two subtractions, an
+ * add and one compare, where isfinite takes a mask and a compare each: the
+ * walk tests two or three values at every ray step). */
+static inline SS_ALWAYS_INLINE int finite2(double x, double y) { return (x - x) + (y - y) == 0.0; }
+
 /* Clamps (u, v) into the canonical triangle; non-finite becomes the barycenter.
  * On two scalars, inline: the walk keeps its point in registers (through an
  * array and a call, the two stores and the vector load that read them back
@@ -318,7 +324,7 @@ void ss_walker_destroy(ss_walker *w) {
  * its face). */
 static inline SS_ALWAYS_INLINE void clamp_uv(double *u_io, double *v_io) {
   double u = *u_io, v = *v_io;
-  if (!(isfinite(u) && isfinite(v))) {
+  if (!finite2(u, v)) {
     *u_io = *v_io = 1.0 / 3.0;
     return;
   }
@@ -441,7 +447,7 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
   res->steps = 0;
   res->length = 0.0;
   const double ax = target[0], ay = target[1], az = target[2];
-  if (!(isfinite(ax) && isfinite(ay) && isfinite(az))) return;
+  if (!finite2(ax, ay) || !finite2(az, 0.0)) return;
 
   int f = face;
   const int *cross = fr->cross;
@@ -455,7 +461,7 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
     const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
     const double du = w[9] * dx + w[10] * dy + w[11] * dz;
     const double dv = w[12] * dx + w[13] * dy + w[14] * dz;
-    if (!(isfinite(du) && isfinite(dv))) break; /* stay where we are */
+    if (!finite2(du, dv)) break; /* stay where we are */
 
     /* Most rays end inside their face. An edge's exit parameter te = a / b
      * (b > 0) is >= 1 when a >= b exactly (rounding is monotone), so where
@@ -465,7 +471,12 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
     double t_exit = 1.0;
     int k_exit = -1;
     const double sum = du + dv, rest = 1.0 - pu - pv;
-    if (!((dv >= 0.0 || pv >= -dv) && (!(sum > 0.0) || rest >= sum) && (du >= 0.0 || pu >= -du))) {
+    /* The point is never negative (clamped at the start, on an edge after a
+     * crossing), so edge 0 is not crossed (dv >= 0, or pv >= -dv) exactly
+     * where pv + dv >= 0: a rounded sum has the sign of the exact one. The
+     * same for edge 2, and the sums are the end point's if it is inside. */
+    double qu = pu + du, qv = pv + dv;
+    if (!(qv >= 0.0 && (!(sum > 0.0) || rest >= sum) && qu >= 0.0)) {
       if (dv < 0.0) { /* edge 0: v = 0 */
         double te = -pv / dv;
         if (te < t_exit) t_exit = te, k_exit = 0;
@@ -480,7 +491,6 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
       }
     }
     if (k_exit < 0) { /* ends inside f: the orthogonal projection of a* */
-      double qu = pu + du, qv = pv + dv;
       clamp_uv(&qu, &qv);
       if (measure) length += canonical_length(w + 3, qu - pu, qv - pv);
       pu = qu, pv = qv;
