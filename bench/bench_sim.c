@@ -19,7 +19,10 @@
  * closest point on the body (the BVH), each over all anchors in one timed loop
  * (CPU time), and prints the per-frame medians in ns per anchor, their ratio,
  * and how many replayed walks ended where the skin's own walk did (all of them
- * at 1 substep and no tether). */
+ * at 1 substep and no tether). The walk compared with projection sums its
+ * path's length (as the mover's does); unmeasured_walk_ns times the same walks
+ * as the sim walks them (ss_walk_unmeasured: no length unless
+ * ss_sim_measure_anchors), after the projections. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <time.h>
@@ -45,6 +48,8 @@ typedef struct probe {
   int *face0, *face;       /* (nanchor) before the step / replayed walk result */
   double *uv0, *target;    /* (nanchor x 2), (nanchor x 3) */
   double *walk_ns, *project_ns; /* (frames) per anchor */
+  double *bare_ns;              /* (frames) per anchor: the walk without its length, as the sim walks */
+  ss_walker *walker;            /* for those */
   long long same, compared, steps;
   int walked; /* anchors replayed per frame */
 } probe;
@@ -65,7 +70,9 @@ static int probe_create(probe *pr, const ss_sim *sim, int frames, char *err, int
   pr->target = malloc(3 * n * sizeof(double));
   pr->walk_ns = malloc((size_t)frames * sizeof(double));
   pr->project_ns = malloc((size_t)frames * sizeof(double));
-  if (!pr->face0 || !pr->face || !pr->uv0 || !pr->target || !pr->walk_ns || !pr->project_ns) {
+  pr->bare_ns = malloc((size_t)frames * sizeof(double));
+  if (!pr->face0 || !pr->face || !pr->uv0 || !pr->target || !pr->walk_ns || !pr->project_ns || !pr->bare_ns ||
+      ss_walker_create(&pr->walker, ss_sim_body_topo(sim)->nface) != SS_OK) {
     snprintf(err, (size_t)err_sz, "out of memory for the anchor probe");
     return 1;
   }
@@ -76,7 +83,8 @@ static void probe_destroy(probe *pr) {
   ss_mover_destroy(pr->walk);
   ss_mover_destroy(pr->project);
   free(pr->face0), free(pr->face), free(pr->uv0), free(pr->target);
-  free(pr->walk_ns), free(pr->project_ns);
+  free(pr->walk_ns), free(pr->project_ns), free(pr->bare_ns);
+  ss_walker_destroy(pr->walker);
 }
 
 /* Before a step: where the anchors are. */
@@ -123,9 +131,19 @@ static void probe_after(probe *pr, const ss_sim *sim, const double *pose, double
     ss_mover_move(pr->project, pr->face0[a], pr->uv0 + 2 * a, pr->target + 3 * a, &res);
   }
   double c2 = cpu_ms();
+  /* the sim's own walk: its length not summed (ss_sim_measure_anchors off) */
+  const ss_topo *topo = ss_sim_body_topo(sim);
+  const int max_steps = set->mover.walk_max_steps;
+  for (int a = 0; a < pr->nanchor; a++) {
+    if (a + SS_WALK_PREFETCH < pr->nanchor) ss_frames_prefetch(fr, pr->face0[a + SS_WALK_PREFETCH]);
+    if (pr->face0[a] < 0) continue;
+    ss_walk_unmeasured(pr->walker, topo, fr, pr->face0[a], pr->uv0 + 2 * a, pr->target + 3 * a, max_steps, &res);
+  }
+  double c3 = cpu_ms();
   pr->walked = n;
   pr->walk_ns[f] = n ? 1e6 * (c1 - c0) / n : 0.0;
   pr->project_ns[f] = n ? 1e6 * (c2 - c1) / n : 0.0;
+  pr->bare_ns[f] = n ? 1e6 * (c3 - c2) / n : 0.0;
   const int *face_sim = ss_sim_anchor_faces(sim);
   for (int a = 0; a < pr->nanchor; a++) {
     if (pr->face0[a] < 0) continue;
@@ -210,10 +228,11 @@ int main(int argc, char **argv) {
          ss_median(t_asm, frames), ss_median(t_fac, frames), ss_median(t_sol, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
   if (anchors) {
     double w = ss_median(pr.walk_ns, frames), p = ss_median(pr.project_ns, frames);
+    double b = ss_median(pr.bare_ns, frames);
     printf("anchors %d per frame (per anchor, same queries, CPU, medians): walk_ns %.1f project_ns %.1f "
-           "project/walk %.1f (walk %.2f ms per frame, %.3f edges crossed per walk); replayed walks "
+           "project/walk %.1f unmeasured_walk_ns %.1f (walk %.2f ms per frame, %.3f edges crossed per walk); replayed walks "
            "ending in the skin's face %lld/%lld\n",
-           pr.walked, w, p, w > 0.0 ? p / w : 0.0, 1e-6 * w * pr.walked,
+           pr.walked, w, p, w > 0.0 ? p / w : 0.0, b, 1e-6 * w * pr.walked,
            pr.compared ? (double)pr.steps / (double)pr.compared : 0.0, pr.same, pr.compared);
     probe_destroy(&pr);
   }
