@@ -379,18 +379,18 @@ static double edge_dist2(const ss_frames *fr, int f, int k, const double x[3], d
  * and p (canonical point in the new face) and returns SS_STOP_INSIDE, or
  * returns why it cannot (boundary, crease, step bound), leaving *f and p. */
 static inline int cross_edge(ss_walker *walker, const int *cross, int *f, int k, double s, double p[2],
-                             int max_steps, ss_walk_result *res) {
+                             int max_steps, int *steps) {
   const int cr = cross[3 * *f + k];
   if (cr < 0) return SS_STOP_BOUNDARY;
   const int g = cr >> 3;
   if (walker->visited[g] == walker->stamp) return SS_STOP_CREASE;
-  if (res->steps >= max_steps) return SS_STOP_STEP_LIMIT;
+  if (*steps >= max_steps) return SS_STOP_STEP_LIMIT;
   /* the same point of the shared edge, in g, matched by welded end points */
   const int kg = (cr >> 1) & 3;
   edge_point(kg, (cr & 1) == 0 ? s : 1.0 - s, p);
   *f = g;
   walker->visited[g] = walker->stamp;
-  res->steps++;
+  ++*steps;
   return SS_STOP_INSIDE;
 }
 
@@ -453,6 +453,7 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
   const int *cross = fr->cross;
   double length = 0.0;
   int stamped = 0; /* this walk's stamp taken and its start face marked (at its first crossing) */
+  int steps = 0;   /* edges crossed */
   for (;;) {
     /* direction towards a* in f's canonical space */
     const double *w = fr->walk + SS_FRAME_RECORD * (size_t)f; /* origin, e1, e2, to_canon */
@@ -499,8 +500,10 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
     if (t_exit < 0.0) t_exit = 0.0;
     double p[2], h[2] = {pu + t_exit * du, pv + t_exit * dv};
     double s = edge_param(k_exit, h);
-    edge_point(k_exit, s, p); /* exactly on the edge */
-    if (measure) length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
+    if (measure) {
+      edge_point(k_exit, s, p); /* exactly on the edge */
+      length += canonical_length(w + 3, p[0] - pu, p[1] - pv);
+    }
     if (!stamped) {
       if (++walker->stamp == 0) { /* wrapped after 2^32 walks: forget old stamps */
         memset(walker->visited, 0, sizeof(unsigned int) * (size_t)walker->nface);
@@ -510,12 +513,15 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
       stamped = 1;
     }
     int k_edge = k_exit; /* the edge p lies on */
-    int stop = cross_edge(walker, cross, &f, k_exit, s, p, max_steps, res);
+    int stop = cross_edge(walker, cross, &f, k_exit, s, p, max_steps, &steps);
+    /* stopped: on the edge met, exactly (a crossing put p in the neighbour,
+     * and the point on this side is needed only here) */
+    if (stop != SS_STOP_INSIDE) edge_point(k_exit, s, p);
     while (stop == SS_STOP_INSIDE && fr->walk[SS_FRAME_RECORD * (size_t)f + 15] != 0.0) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
       if (k_pass < 0) break;
       k_edge = k_pass;
-      stop = cross_edge(walker, cross, &f, k_pass, s, p, max_steps, res);
+      stop = cross_edge(walker, cross, &f, k_pass, s, p, max_steps, &steps);
     }
     if (stop == SS_STOP_CREASE) {
       /* "the optimal anchor position lies along an edge": the point of the
@@ -542,6 +548,7 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
   res->face = f;
   res->uv[0] = pu;
   res->uv[1] = pv;
+  res->steps = steps;
   res->length = length;
 }
 
