@@ -478,15 +478,17 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
      * same for edge 2, and the sums are the end point's if it is inside. */
     double qu = pu + du, qv = pv + dv;
     if (!(qv >= 0.0 && (!(sum > 0.0) || rest >= sum) && qu >= 0.0)) {
-      if (dv < 0.0) { /* edge 0: v = 0 */
+      /* Only the edges that test failed: where it passed, the exit
+       * parameter is >= 1 (see above) and would not be taken. */
+      if (qv < 0.0) { /* edge 0: v = 0 (dv < -pv <= 0) */
         double te = -pv / dv;
         if (te < t_exit) t_exit = te, k_exit = 0;
       }
-      if (sum > 0.0) { /* edge 1: u + v = 1 */
+      if (sum > 0.0 && rest < sum) { /* edge 1: u + v = 1 */
         double te = rest / sum;
         if (te < t_exit) t_exit = te, k_exit = 1;
       }
-      if (du < 0.0) { /* edge 2: u = 0 */
+      if (qu < 0.0) { /* edge 2: u = 0 */
         double te = -pu / du;
         if (te < t_exit) t_exit = te, k_exit = 2;
       }
