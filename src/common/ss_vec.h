@@ -4,11 +4,6 @@
 
 #include <math.h>
 
-/* max(m, x) and min(m, x) for an m that is not NaN, x dropped where it is
- * NaN: fmax and fmin then, inline (those are calls into libm, whose
- * NaN handling the compiler may not assume away: 12 of them per closest
- * point on a triangle, which the tether asks for two anchors in five per
- * substep). */
 /* One third as a factor: barycenters and the barycenter springs' shares are
  * products by it, not quotients by 3 (six divisions per face in the
  * membrane kernel and three on every barycenter anchor's walk, where a
@@ -16,6 +11,11 @@
  * the quotient by at most an ulp). */
 #define SS_THIRD (1.0 / 3.0)
 
+/* max(m, x) and min(m, x) for an m that is not NaN, x dropped where it is
+ * NaN: fmax and fmin then, inline (those are calls into libm, whose
+ * NaN handling the compiler may not assume away: 12 of them per closest
+ * point on a triangle, which the tether asks for two anchors in five per
+ * substep). */
 static inline double max_keep(double m, double x) { return x > m ? x : m; }
 static inline double min_keep(double m, double x) { return x < m ? x : m; }
 
