@@ -517,8 +517,8 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
     int k_edge = k_exit; /* the edge p lies on */
     int stop = cross_edge(walker, cross, &f, k_exit, s, p, max_steps, &steps);
     /* stopped: on the edge met, exactly (a crossing put p in the neighbour,
-     * and the point on this side is needed only here) */
-    if (stop != SS_STOP_INSIDE) edge_point(k_exit, s, p);
+     * and unmeasured, the point on this side is needed only here) */
+    if (stop != SS_STOP_INSIDE && !measure) edge_point(k_exit, s, p);
     while (stop == SS_STOP_INSIDE && fr->walk[SS_FRAME_RECORD * (size_t)f + 15] != 0.0) {
       const int k_pass = pass_through_edge(walker, topo, fr, f, p, &s);
       if (k_pass < 0) break;
