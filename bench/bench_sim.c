@@ -34,6 +34,7 @@
 #include "skin_sim/ss_sim.h"
 #include "mover.h"
 #include "ss_util.h"
+#include "ss_vec.h"
 
 static double cpu_ms(void) {
   struct timespec ts;
@@ -96,7 +97,10 @@ static void probe_before(probe *pr, const ss_sim *sim) {
 /* After step f (one substep, body pose `pose`): replays the anchors' moves. */
 static void probe_after(probe *pr, const ss_sim *sim, const double *pose, double dt, int f) {
   const ss_sim_settings *set = ss_sim_get_settings(sim);
-  const double frac = set->slide > 0.0 ? -expm1(-set->slide * dt / set->substeps) : 0.0;
+  /* the sim's own arithmetic (sim.c: h, slide_frac, barycenters by SS_THIRD),
+   * so that the replayed targets are the skin's to the bit */
+  const double h = dt / set->substeps;
+  const double frac = set->slide > 0.0 ? -expm1(-set->slide * h) : 0.0;
   const double *x = ss_sim_skin_positions(sim);
   const int *faces = ss_sim_skin_faces(sim), nv = pr->nskinvert;
   ss_mover_set_pose(pr->walk, pose);
@@ -110,7 +114,7 @@ static void probe_after(probe *pr, const ss_sim *sim, const double *pose, double
       memcpy(p, x + 3 * a, sizeof p);
     } else {
       const int *fv = faces + 3 * (a - nv);
-      for (int i = 0; i < 3; i++) p[i] = (x[3 * fv[0] + i] + x[3 * fv[1] + i] + x[3 * fv[2] + i]) / 3.0;
+      for (int i = 0; i < 3; i++) p[i] = (x[3 * fv[0] + i] + x[3 * fv[1] + i] + x[3 * fv[2] + i]) * SS_THIRD;
     }
     ss_anchor_position(fr, pr->face0[a], pr->uv0 + 2 * a, a0);
     for (int i = 0; i < 3; i++) pr->target[3 * a + i] = a0[i] + frac * (p[i] - a0[i]);
