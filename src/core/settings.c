@@ -75,7 +75,8 @@ static const ss_setting table[] = {
      "1/s", SS_APPLY_STEP, 1, NULL,
      "how fast anchors follow the skin (time constant 1/slide); 0 glued, inf frictionless"},
     {"tether", NULL, SS_SETTING_DOUBLE, OFF(tether), 3.0, 0, INF, 0, 1, "1/s", SS_APPLY_STEP, 1,
-     NULL, "rate at which anchors walk back home (connective tissue); 0 free sliding"},
+     NULL, "rate at which anchors walk back home (connective tissue); next to home they are put "
+     "back on their home face; 0 free sliding"},
     {"orient", NULL, SS_SETTING_DOUBLE, OFF(orient), 200.0, 0, INF, 0, 1, "N/m",
      SS_APPLY_REFACTOR, 1, NULL,
      "skin faces resist turning over against the body and vertices resist going under it "
