@@ -71,6 +71,14 @@ static double closest_unscaled(const double p[3], const double a[3], const doubl
 
 double ss_closest_point_triangle(const double p[3], const double a[3], const double b[3],
                                  const double c[3], double uv[2]) {
+  /* The usual case in one pass of comparisons without branches: every
+   * coordinate finite and at most SS_CLOSEST_BIG (a NaN compares false),
+   * where the checks below would take the same path. */
+  int usual = 1;
+  for (int i = 0; i < 3; i++)
+    usual &= (fabs(p[i]) <= SS_CLOSEST_BIG) & (fabs(a[i]) <= SS_CLOSEST_BIG) & (fabs(b[i]) <= SS_CLOSEST_BIG) &
+             (fabs(c[i]) <= SS_CLOSEST_BIG);
+  if (usual) return closest_unscaled(p, a, b, c, uv);
   double m = 0.0;
   for (int i = 0; i < 3; i++) {
     m = max_keep(m, fabs(p[i]));
