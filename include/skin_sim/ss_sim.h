@@ -101,9 +101,10 @@ typedef struct ss_sim_settings {
                             put on the home face's point nearest that step's end, so it stays
                             on its home face unless one substep's slide carries it past the
                             faces around it (under a steady pull along a flat body the
-                            anchors stay home whatever the tether, 0.3 or 3 /s: a leash more
-                            than a rate; README, fifteenth session). 0 = the paper's free
-                            sliding; default 3 */
+                            vertex anchors stay at home and the others on their home face
+                            whatever the tether, 0.3 or 3 /s: a leash more than a rate;
+                            README, fifteenth session). 0 = the paper's free sliding;
+                            default 3 */
   double orient;         /* N/m (energy per m^2 of rest skin, as young), >= 0: the skin lies face up
                             on its body. Each skin face whose area projected on the tangent plane
                             of the body under it (signed, over its rest area: 1 flat, 0 on edge,
