@@ -79,6 +79,7 @@ double ss_closest_point_triangle(const double p[3], const double a[3], const dou
     usual &= (fabs(p[i]) <= SS_CLOSEST_BIG) & (fabs(a[i]) <= SS_CLOSEST_BIG) & (fabs(b[i]) <= SS_CLOSEST_BIG) &
              (fabs(c[i]) <= SS_CLOSEST_BIG);
   if (usual) return closest_unscaled(p, a, b, c, uv);
+  /* Here some coordinate is not finite or is beyond SS_CLOSEST_BIG. */
   double m = 0.0;
   for (int i = 0; i < 3; i++) {
     m = max_keep(m, fabs(p[i]));
@@ -93,8 +94,7 @@ double ss_closest_point_triangle(const double p[3], const double a[3], const dou
     uv[0] = uv[1] = 1.0 / 3.0;
     return INFINITY;
   }
-  if (!(m > SS_CLOSEST_BIG)) return closest_unscaled(p, a, b, c, uv);
-  int e;
+  int e; /* all finite, so m > SS_CLOSEST_BIG: scale it near 1 */
   frexp(m, &e);
   double sp[3], sa[3], sb[3], sc[3];
   for (int i = 0; i < 3; i++) { /* exact: scaling by a power of two */
