@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "scene_geom.h"
 #include "skin_sim/ss_sim.h"
 
 /* argv[i] as a number if there is one, else `fallback`; *bad set where it is not a number. */
@@ -40,24 +41,23 @@ int main(int argc, char **argv) {
     return 2;
   }
   const int substeps = (int)substeps_d, frames = (int)frames_d, n = (int)n_d;
-  const int nvert = n * n, nface = 2 * (n - 1) * (n - 1);
-  double *pos = malloc(3 * sizeof(double) * (size_t)nvert);
-  int *faces = malloc(3 * sizeof(int) * (size_t)nface);
-  if (!pos || !faces) {
+  /* the patch: the scenes' open grid sheet over [0, 1]^2 (scene_geom.h) */
+  double *coord = malloc(sizeof(double) * (size_t)n);
+  ss_mb mb = {0};
+  mb.failed = !coord;
+  if (coord) {
+    for (int i = 0; i < n; i++) coord[i] = (double)i / (n - 1);
+    ss_mb_sheet(&mb, coord, n - 1, coord, n - 1, NULL);
+    free(coord);
+  }
+  if (mb.failed) {
     fprintf(stderr, "bench_tether: out of memory\n");
+    ss_mb_free(&mb);
     return 1;
   }
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++) {
-      double *p = pos + 3 * (j * n + i);
-      p[0] = (double)i / (n - 1), p[1] = (double)j / (n - 1), p[2] = 0.0;
-    }
-  for (int j = 0, f = 0; j + 1 < n; j++)
-    for (int i = 0; i + 1 < n; i++, f += 2) {
-      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      int *t = faces + 3 * f;
-      t[0] = a, t[1] = b, t[2] = d, t[3] = a, t[4] = d, t[5] = c;
-    }
+  const int nvert = mb.nv, nface = mb.nf;
+  const double *pos = mb.pos;
+  const int *faces = mb.tri;
   ss_sim_settings set = ss_sim_default_settings();
   set.substeps = substeps;
   set.tether = tether;
@@ -107,7 +107,6 @@ int main(int argc, char **argv) {
   ss_sim_destroy(sim);
   free(home);
   free(now);
-  free(pos);
-  free(faces);
+  ss_mb_free(&mb);
   return 0;
 }
