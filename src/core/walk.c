@@ -39,6 +39,7 @@
 #include <string.h>
 
 #include "walk.h"
+#include "closest.h"
 #include "isa.h"
 #include "ss_vec.h"
 
@@ -563,4 +564,45 @@ void ss_walk_unmeasured(ss_walker *walker, const ss_topo *topo, const ss_frames 
                         const double uv[2], const double target[3], int max_steps,
                         ss_walk_result *res) {
   walk(walker, topo, fr, face, uv, target, max_steps, res, 0);
+}
+
+/* The slide of an anchor on a leash (see walk.h). Its first part is the
+ * walk's first ray step, in the same order of operations, so that a slide
+ * ending inside the face is the walk's to the bit. */
+int ss_slide_in_face(const ss_frames *fr, int face, const double uv[2], const double target[3],
+                     int measure, ss_walk_result *res) {
+  double pu = uv[0], pv = uv[1];
+  clamp_uv(&pu, &pv);
+  const double ax = target[0], ay = target[1], az = target[2];
+  if (!finite2(ax, ay) || !finite2(az, 0.0)) return 0;
+  const double *w = fr->walk + SS_FRAME_RECORD * (size_t)face;
+  const double dx = ax - (w[0] + pu * w[3] + pv * w[6]);
+  const double dy = ay - (w[1] + pu * w[4] + pv * w[7]);
+  const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
+  const double du = w[9] * dx + w[10] * dy + w[11] * dz;
+  const double dv = w[12] * dx + w[13] * dy + w[14] * dz;
+  if (!finite2(du, dv)) return 0;
+  const double sum = du + dv, rest = 1.0 - pu - pv;
+  double qu = pu + du, qv = pv + dv;
+  if (qv >= 0.0 && (!(sum > 0.0) || rest >= sum) && qu >= 0.0) {
+    clamp_uv(&qu, &qv); /* inside: where the walk ends */
+  } else {
+    /* outside: within reach, the face's point nearest the target */
+    const double qw = 1.0 - qu - qv;
+    const double lowest = qu < qv ? (qu < qw ? qu : qw) : (qv < qw ? qv : qw);
+    if (!(lowest > -SS_LEASH_REACH) || w[15] != 0.0) return 0; /* far, or a degenerate face */
+    const double b[3] = {w[0] + w[3], w[1] + w[4], w[2] + w[5]};
+    const double c[3] = {w[0] + w[6], w[1] + w[7], w[2] + w[8]};
+    double q[2];
+    ss_closest_point_triangle(target, w, b, c, q);
+    qu = q[0], qv = q[1];
+    clamp_uv(&qu, &qv);
+  }
+  res->face = face;
+  res->uv[0] = qu;
+  res->uv[1] = qv;
+  res->stop = SS_STOP_INSIDE;
+  res->steps = 0;
+  res->length = measure ? canonical_length(w + 3, qu - pu, qv - pv) : 0.0;
+  return 1;
 }

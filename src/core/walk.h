@@ -120,4 +120,15 @@ void ss_walk_unmeasured(ss_walker *walker, const ss_topo *topo, const ss_frames 
                         const double uv[2], const double target[3], int max_steps,
                         ss_walk_result *res);
 
+/* The slide of an anchor held on a leash to `face` (its home face): where
+ * the target projects into the face, the walk's end (the same bits); where
+ * it projects outside but within SS_LEASH_REACH (in the face's barycentric
+ * coordinates: the triangle grown to four times its size about its
+ * centroid, about as far as its neighbours reach), the face's point nearest
+ * the target, and no walk. Returns 1 with *res set, or 0 (the target is
+ * farther, not finite, or the face degenerate): the caller walks. */
+#define SS_LEASH_REACH 1.0
+int ss_slide_in_face(const ss_frames *frames, int face, const double uv[2], const double target[3],
+                     int measure, ss_walk_result *res);
+
 #endif

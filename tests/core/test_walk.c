@@ -565,6 +565,86 @@ static void test_exit_exact(void) {
   ss_topo_destroy(topo);
 }
 
+/* The slide on the tether's leash (ss_slide_in_face): a target that projects
+ * into the face gives the walk's end to the bit; one that projects outside
+ * but within reach gives the face's point nearest it (no point of the face
+ * nearer, 0 steps, the path its straight length); a farther, non-finite or
+ * degenerate case is left to the walk (0). */
+static void test_slide_in_face(void) {
+  test_mesh m = test_seamed_cube();
+  walk_env e = env_make(&m);
+  unsigned long long s = 29;
+  int inside = 0, clamped = 0, far = 0;
+  for (int trial = 0; trial < 2000; trial++) {
+    const int f = (int)(12 * ss_test_rand(&s)) % 12;
+    double uv[2] = {ss_test_rand(&s), ss_test_rand(&s)};
+    if (uv[0] + uv[1] > 1.0) uv[0] = 1.0 - uv[0], uv[1] = 1.0 - uv[1];
+    if (trial % 4 == 0) uv[0] = 0.0; /* on an edge, as a leashed anchor often is */
+    double a0[3], target[3];
+    ss_anchor_position(e.frames, f, uv, a0);
+    const double reach = trial % 2 ? 0.3 : 1.5;
+    for (int c = 0; c < 3; c++) target[c] = a0[c] + reach * (2.0 * ss_test_rand(&s) - 1.0);
+    /* the target's barycentric coordinates in the face's plane */
+    const double *o = ss_frames_origin(e.frames, f), *t = ss_frames_to_canon(e.frames, f);
+    const double d[3] = {target[0] - o[0], target[1] - o[1], target[2] - o[2]};
+    const double qu = t[0] * d[0] + t[1] * d[1] + t[2] * d[2], qv = t[3] * d[0] + t[4] * d[1] + t[5] * d[2];
+    const double lowest = fmin(fmin(qu, qv), 1.0 - qu - qv);
+    ss_walk_result r, w;
+    const int got = ss_slide_in_face(e.frames, f, uv, target, 1, &r);
+    if (fabs(lowest) < 1e-9 || fabs(lowest + SS_LEASH_REACH) < 1e-9) continue; /* on a border */
+    CHECK_EQ_INT(got, lowest > -SS_LEASH_REACH);
+    if (!got) {
+      far++;
+      continue;
+    }
+    CHECK_EQ_INT(r.face, f);
+    CHECK_EQ_INT(r.steps, 0);
+    CHECK_EQ_INT(r.stop, SS_STOP_INSIDE);
+    CHECK(uv_inside(r.uv));
+    double a1[3];
+    ss_anchor_position(e.frames, f, r.uv, a1);
+    CHECK_NEAR(r.length, sqrt((a1[0] - a0[0]) * (a1[0] - a0[0]) + (a1[1] - a0[1]) * (a1[1] - a0[1]) +
+                              (a1[2] - a0[2]) * (a1[2] - a0[2])),
+               1e-12);
+    if (lowest > 0.0) {
+      inside++;
+      ss_walk(e.walker, e.topo, e.frames, f, uv, target, 512, &w);
+      CHECK(w.face == r.face && w.uv[0] == r.uv[0] && w.uv[1] == r.uv[1]);
+      CHECK(w.length == r.length);
+    } else {
+      clamped++;
+      const double d1 = (a1[0] - target[0]) * (a1[0] - target[0]) + (a1[1] - target[1]) * (a1[1] - target[1]) +
+                        (a1[2] - target[2]) * (a1[2] - target[2]);
+      for (int i = 0; i <= 20; i++)
+        for (int j = 0; i + j <= 20; j++) {
+          double x[3];
+          ss_anchor_position(e.frames, f, (double[2]){i / 20.0, j / 20.0}, x);
+          const double d2 = (x[0] - target[0]) * (x[0] - target[0]) + (x[1] - target[1]) * (x[1] - target[1]) +
+                            (x[2] - target[2]) * (x[2] - target[2]);
+          CHECK(d1 <= d2 + 1e-12);
+        }
+    }
+  }
+  CHECK_MSG(inside > 100 && clamped > 100 && far > 100, "cases: %d inside, %d clamped, %d far", inside,
+            clamped, far);
+  ss_walk_result r;
+  const double nan_target[3] = {0.1, NAN, 0.0}, uv[2] = {0.2, 0.2};
+  CHECK_EQ_INT(ss_slide_in_face(e.frames, 0, uv, nan_target, 0, &r), 0);
+  env_free(&e);
+  test_mesh_free(&m);
+
+  /* a face with no area: left to the walk, which passes through it */
+  test_mesh z = test_grid(3, 3, 0.0, 1);
+  for (int c = 0; c < 3; c++) z.pos[3 * z.faces[2] + c] = z.pos[3 * z.faces[0] + c];
+  walk_env ez = env_make(&z);
+  CHECK(ez.frames->degenerate[0]);
+  double a[3]; /* beyond its far end, along the line it is */
+  ss_anchor_position(ez.frames, 0, (double[2]){1.5, 0.0}, a);
+  CHECK_EQ_INT(ss_slide_in_face(ez.frames, 0, uv, a, 0, &r), 0);
+  env_free(&ez);
+  test_mesh_free(&z);
+}
+
 int main(void) {
   test_frame_records();
   test_frame_lanes();
@@ -579,5 +659,6 @@ int main(void) {
   test_slivers_and_zero_area();
   test_clamp_and_nan();
   test_projection_property();
+  test_slide_in_face();
   return ss_test_finish("test_walk");
 }
