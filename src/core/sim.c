@@ -201,10 +201,6 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     const ss_frames *frp = ss_mover_frames(sim->mover);
     const int fa = sim->anchor_face[a + SS_WALK_PREFETCH];
     ss_frames_prefetch(frp, fa);
-    /* the tether turns its chord home into the tangent plane of the face the
-     * slide ends in, most often the face it starts in: its normal (a third of
-     * the anchor stage's own time went to waiting for it) */
-    if (sim->tether_frac > 0.0 && fa >= 0) __builtin_prefetch(frp->normal + 3 * (size_t)fa);
   }
   double p[3];
   if (a < nv) {
