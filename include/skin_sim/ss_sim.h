@@ -96,14 +96,17 @@ typedef struct ss_sim_settings {
                             method, so it cannot jump across a gap) towards the point where it
                             was bound, a fraction 1 - exp(-tether h) of the straight way there
                             in a substep of h seconds: a relaxation rate independent of the step
-                            (a time constant of 1/tether s). Except next to home: an anchor
-                            whose slide ends in a face sharing a corner with its home face is
-                            put on the home face's point nearest that step's end, so it stays
-                            on its home face unless one substep's slide carries it past the
-                            faces around it (under a steady pull along a flat body the
-                            vertex anchors stay at home and the others on their home face
-                            whatever the tether, 0.3 or 3 /s: a leash more than a rate;
-                            README, fifteenth session). 0 = the paper's free sliding;
+                            (a time constant of 1/tether s). Except near home: with the walk,
+                            an anchor in its home face slides within it (to the face's point nearest its
+                            slide's target) unless the target lies beyond the face's
+                            neighbours (outside the face grown to four times its size about
+                            its centroid), and one whose slide ends in a face sharing a corner
+                            with its home face is put on the home face's point nearest that
+                            step's end, so it stays on its home face unless one substep's
+                            slide carries it past the faces around it (under a steady pull
+                            along a flat body the vertex anchors stay at home and the others
+                            on their home face whatever the tether, 0.3 or 3 /s: a leash more
+                            than a rate; README). 0 = the paper's free sliding;
                             default 3 */
   double orient;         /* N/m (energy per m^2 of rest skin, as young), >= 0: the skin lies face up
                             on its body. Each skin face whose area projected on the tangent plane
