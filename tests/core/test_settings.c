@@ -19,7 +19,7 @@
 static void defaults(void) {
   ss_sim_settings s = ss_sim_default_settings();
   CHECK(s.solver == SS_SOLVER_QUASI_NEWTON && s.mover.method == SS_METHOD_WALK);
-  CHECK(s.dt == 1.0 / 30.0 && s.substeps == 2 && s.iterations == 3 && s.tol == 1e-4);
+  CHECK(s.dt == 1.0 / 30.0 && s.substeps == 4 && s.iterations == 2 && s.tol == 1e-4);
   CHECK(s.safety_residual == 0.05 && s.iterations_max == 32 && s.lbfgs_history == 6);
   CHECK(s.young == 50.0 && s.poisson == 0.3 && s.density == 1.0 && s.anchor_stiffness == 1e3);
   CHECK(s.barycenter_anchors == 1 && s.bending == 0.0 && s.damping == 0.0);

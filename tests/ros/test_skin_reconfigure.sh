@@ -3,7 +3,7 @@
 # from launch/skin.launch, a waving sheet streamed by tests/ros/skin_probe.c, and
 # `rosrun dynamic_reconfigure dynparam` (the Python client rqt_reconfigure uses too):
 #  - dynparam get lists the table's settings with their values in force;
-#  - `dynparam set /skin_sim substeps 6` while streaming: skin_stats' substeps per step
+#  - `dynparam set /skin_sim substeps 12` while streaming: skin_stats' substeps per step
 #    triple from one step on and stay so (no reset), the log says it;
 #  - `dynparam set /skin_sim young 500`: taken, "refactored" in the log;
 #  - a bad value (poisson 0.7, method crawl) is refused with a log line naming it, and
@@ -35,7 +35,7 @@ fi
 dynparam get /skin_sim > "$ROS_ENV_DIR/get0.txt" 2>&1; rc=$?
 echo "--- dynparam get /skin_sim:"; cat "$ROS_ENV_DIR/get0.txt"
 ros_env_check "dynparam get /skin_sim exits 0" "[ $rc -eq 0 ]"
-for k in "'slide': 20.79" "'poisson': 0.3" "'substeps': 2" "'method': 'walk'" \
+for k in "'slide': 20.79" "'poisson': 0.3" "'substeps': 4" "'method': 'walk'" \
          "'solver': 'quasi-newton'" "'barycenters': True" "'gravity': '0 0 0'" "'young': 50.0"; do
   ros_env_check "dynparam get shows $k" "grep -qF \"$k\" '$ROS_ENV_DIR/get0.txt'"
 done
@@ -55,8 +55,8 @@ wait_stats() { # wait_stats N: until N skin_stats were recorded (120 s at most)
 }
 wait_stats 20
 n0=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
-dynparam set /skin_sim substeps 6 > "$ROS_ENV_DIR/set_substeps.txt" 2>&1; rc=$?
-ros_env_check "dynparam set /skin_sim substeps 6 exits 0" "[ $rc -eq 0 ]"
+dynparam set /skin_sim substeps 12 > "$ROS_ENV_DIR/set_substeps.txt" 2>&1; rc=$?
+ros_env_check "dynparam set /skin_sim substeps 12 exits 0" "[ $rc -eq 0 ]"
 dynparam set /skin_sim young 500 > /dev/null 2>&1; rc=$?
 ros_env_check "dynparam set /skin_sim young 500 exits 0" "[ $rc -eq 0 ]"
 dynparam set /skin_sim poisson 0.7 > "$ROS_ENV_DIR/set_poisson.txt" 2>&1
@@ -101,16 +101,16 @@ print('SUBSTEPS_OK' if ok_sub else 'SUBSTEPS_BAD')
 print('RESETS_OK' if ok_res else 'RESETS_BAD')
 PY
 cat "$ROS_ENV_DIR/seq.txt"
-ros_env_check "substeps 6: skin_stats' substeps per step triple from one step on, never back"   "grep -q SUBSTEPS_OK '$ROS_ENV_DIR/seq.txt'"
-ros_env_check "log: substeps 2 -> 6" "grep -q 'dynamic_reconfigure: substeps 2 -> 6' '$log'"
+ros_env_check "substeps 12: skin_stats' substeps per step triple from one step on, never back"   "grep -q SUBSTEPS_OK '$ROS_ENV_DIR/seq.txt'"
+ros_env_check "log: substeps 4 -> 12" "grep -q 'dynamic_reconfigure: substeps 4 -> 12' '$log'"
 ros_env_check "log: young 50 -> 500, refactored" \
   "grep -q 'dynamic_reconfigure: young 50 -> 500' '$log' && grep -q 'refactored' '$log'"
 ros_env_check "log: poisson 0.7 refused, naming it and the range" \
   "grep -q 'poisson refused: poisson must be in \[0, 0.5) (got 0.7); it stays 0.3' '$log'"
 ros_env_check "log: method crawl refused, naming the choices" \
   "grep -q \"method refused: method expects walk, project, nring, got 'crawl'\" '$log'"
-ros_env_check "served config keeps what is in force (poisson 0.3, method walk, young 500, substeps 6)" \
-  "grep -qF \"'poisson': 0.3\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'method': 'walk'\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'young': 500.0\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'substeps': 6\" '$ROS_ENV_DIR/get1.txt'"
+ros_env_check "served config keeps what is in force (poisson 0.3, method walk, young 500, substeps 12)" \
+  "grep -qF \"'poisson': 0.3\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'method': 'walk'\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'young': 500.0\" '$ROS_ENV_DIR/get1.txt' && grep -qF \"'substeps': 12\" '$ROS_ENV_DIR/get1.txt'"
 ros_env_check "parameter server mirrors it (rosparam get /skin_sim/young: 500.0, poisson 0.3)" \
   "[ \"\$(rosparam get /skin_sim/young)\" = 500.0 ] && [ \"\$(rosparam get /skin_sim/poisson)\" = 0.3 ]"
 ros_env_check "barycenters false: no reset before, one after (the skin created again), output goes on" \

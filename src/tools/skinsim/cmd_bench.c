@@ -4,7 +4,7 @@
  * every field of `skinsim run --json` after the sweep's own columns) and draws
  * the charts with scripts/plot_bench.py (matplotlib).
  *
- * The sweep is a base configuration (the defaults: quasi-Newton, 2 substeps of 3
+ * The sweep is a base configuration (the defaults: quasi-Newton, 4 substeps of 2
  * iterations, walk) varied one axis at a time, not the cartesian product:
  *  - methods:  every body x {walk, project, nring 1, 2, 4}          (stability, Pareto)
  *  - solvers:  a few scenes x {newton, quasi-newton} x iterations {1, 2, 4, 8, converged},
