@@ -7,7 +7,7 @@ on a shared machine; wall ms at the given thread counts). Prints a table,
 marks the Pareto front and, with --png, draws it.
 
   /usr/bin/python3 bench/pareto.py SKINSIM BENCH_SIM [--tris 19000] [--frames 60] [--configs 1x8,2x8,...]
-                  [--cache DIR] [--threads 1,2] [--png FILE]
+                  [--cache DIR] [--threads 1,2] [--png FILE] [--default 4x2]
 """
 import argparse
 import json
@@ -43,6 +43,7 @@ def main():
     ap.add_argument("--cache", default=os.path.expanduser("~/.cache/skin_sim"))
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--png")
+    ap.add_argument("--default", default="4x2", help="the configuration ringed on the chart (the defaults')")
     a = ap.parse_args()
     threads = [int(t) for t in a.threads.split(",")]
     rows = []
@@ -69,9 +70,17 @@ def main():
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
         for r in rows:
             ax.plot(r[key], r["error"], "o", color="C0" if r in front else "C7")
-            ax.annotate("%dx%d" % (r["substeps"], r["iterations"]), (r[key], r["error"]), fontsize=8,
-                        xytext=(4, 2), textcoords="offset points")
+            name = "%dx%d" % (r["substeps"], r["iterations"])
+            if name == a.default:
+                ax.plot(r[key], r["error"], "o", mfc="none", mec="C3", ms=12)
+                name += " (default)"
+            ax.annotate(name, (r[key], r["error"]), fontsize=8, xytext=(4, 2), textcoords="offset points")
         ax.axvline(33.3, color="gray", lw=0.8)
+        one = [r for r in rows if r["substeps"] == 1 and r["iterations"] == 8]
+        if one:  # issue 9's bar: half of the error of 1 substep of 8 iterations
+            ax.axhline(0.5 * one[0]["error"], color="gray", lw=0.8, ls="--")
+            ax.annotate("half of 1x8's error", (ax.get_xlim()[0], 0.5 * one[0]["error"]), fontsize=7,
+                        xytext=(4, 2), textcoords="offset points", color="gray")
         ax.set_xlabel("CPU ms per frame, %d thread" % threads[0])
         ax.set_ylabel("error vs truth (mean edge lengths)")
         ax.set_title("quadruped %d triangles, %d frames: substeps x iterations" % (a.tris, a.frames))
