@@ -50,8 +50,8 @@ def main():
     ap.add_argument("--sizes", default="2000,5000,10000,19000,38000,80000")
     ap.add_argument("--frames", type=int, default=20)
     ap.add_argument("--threads", type=int, default=1)
-    ap.add_argument("--substeps", type=int, default=2, help="per frame (default: the sim's default, 2)")
-    ap.add_argument("--iterations", type=int, default=3, help="per substep (default: the sim's default, 3)")
+    ap.add_argument("--substeps", type=int, default=4, help="per frame (default: the sim's default, 4)")
+    ap.add_argument("--iterations", type=int, default=2, help="per substep (default: the sim's default, 2)")
     ap.add_argument("--repeat", type=int, default=1,
                     help="runs per size, their medians reported (one run of the same binary can be "
                          "a third slower than the next on this machine)")
