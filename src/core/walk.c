@@ -429,6 +429,18 @@ static inline double canonical_length(const double *e, double du, double dv) {
   return sqrt(x * x + y * y + z * z);
 }
 
+/* The ray of a walk step from canonical point (pu, pv) of the face whose
+ * record is w towards world point a: its canonical direction (du, dv). The
+ * arithmetic and its order are those of dot3 and face_point. */
+static inline SS_ALWAYS_INLINE void ray_direction(const double *w, double pu, double pv, double ax, double ay,
+                                                  double az, double *du, double *dv) {
+  const double dx = ax - (w[0] + pu * w[3] + pv * w[6]);
+  const double dy = ay - (w[1] + pu * w[4] + pv * w[7]);
+  const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
+  *du = w[9] * dx + w[10] * dy + w[11] * dz;
+  *dv = w[12] * dx + w[13] * dy + w[14] * dz;
+}
+
 /* The walk; with `measure` 0 (a constant: two copies) the path's length is
  * not summed (res->length 0): a square root per face walked less, on the
  * chain of dependent operations every walk is. */
@@ -458,11 +470,8 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
   for (;;) {
     /* direction towards a* in f's canonical space */
     const double *w = fr->walk + SS_FRAME_RECORD * (size_t)f; /* origin, e1, e2, to_canon */
-    const double dx = ax - (w[0] + pu * w[3] + pv * w[6]);
-    const double dy = ay - (w[1] + pu * w[4] + pv * w[7]);
-    const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
-    const double du = w[9] * dx + w[10] * dy + w[11] * dz;
-    const double dv = w[12] * dx + w[13] * dy + w[14] * dz;
+    double du, dv;
+    ray_direction(w, pu, pv, ax, ay, az, &du, &dv);
     if (!finite2(du, dv)) break; /* stay where we are */
 
     /* Most rays end inside their face. An edge's exit parameter te = a / b
@@ -576,11 +585,8 @@ int ss_slide_in_face(const ss_frames *fr, int face, const double uv[2], const do
   const double ax = target[0], ay = target[1], az = target[2];
   if (!finite2(ax, ay) || !finite2(az, 0.0)) return 0;
   const double *w = fr->walk + SS_FRAME_RECORD * (size_t)face;
-  const double dx = ax - (w[0] + pu * w[3] + pv * w[6]);
-  const double dy = ay - (w[1] + pu * w[4] + pv * w[7]);
-  const double dz = az - (w[2] + pu * w[5] + pv * w[8]);
-  const double du = w[9] * dx + w[10] * dy + w[11] * dz;
-  const double dv = w[12] * dx + w[13] * dy + w[14] * dz;
+  double du, dv;
+  ray_direction(w, pu, pv, ax, ay, az, &du, &dv);
   if (!finite2(du, dv)) return 0;
   const double sum = du + dv, rest = 1.0 - pu - pv;
   double qu = pu + du, qv = pv + dv;
