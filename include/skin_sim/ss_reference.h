@@ -34,7 +34,7 @@
 extern "C" {
 #endif
 
-#define SS_REFERENCE_VERSION 10     /* bump when the simulation's results change */
+#define SS_REFERENCE_VERSION 11     /* bump when the simulation's results change */
 #define SS_REFERENCE_SUBSTEPS 16
 #define SS_REFERENCE_ITERATIONS 100
 #define SS_REFERENCE_TOL 1e-6

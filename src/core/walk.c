@@ -39,7 +39,6 @@
 #include <string.h>
 
 #include "walk.h"
-#include "closest.h"
 #include "isa.h"
 #include "ss_vec.h"
 
@@ -575,6 +574,42 @@ void ss_walk_unmeasured(ss_walker *walker, const ss_topo *topo, const ss_frames 
   walk(walker, topo, fr, face, uv, target, max_steps, res, 0);
 }
 
+/* The point of the canonical triangle nearest (in the face's own metric,
+ * G = Dm^T Dm: world distance in its plane) to canonical point (qu, qv)
+ * outside it, which lies beyond the edges flagged (u < 0: edge 2, u + v > 1:
+ * edge 1, v < 0: edge 0; at least one, at most two). The nearest point of a
+ * convex polygon to a point outside lies on an edge the point is beyond:
+ * each such edge's nearest point (the projection in G, clamped to the edge),
+ * the nearer of them. Selects, not branches: which edge wins is as
+ * unpredictable as where a skin pulls (against the general closest point on
+ * a triangle, ss_closest_point_triangle, the walk stage 15% faster at 1x8
+ * and 4x2 on the 19k quadruped). e are the face's edges e1, e2. */
+static inline SS_ALWAYS_INLINE void nearest_in_face(const double *e, int out2, int out1, int out0, double *qu_io,
+                                                    double *qv_io) {
+  const double qu = *qu_io, qv = *qv_io;
+  const double a = e[0] * e[0] + e[1] * e[1] + e[2] * e[2]; /* e1.e1 */
+  const double b = e[0] * e[3] + e[1] * e[4] + e[2] * e[5]; /* e1.e2 */
+  const double c = e[3] * e[3] + e[4] * e[4] + e[5] * e[5]; /* e2.e2 */
+  /* edge 0 (v = 0): (t, 0); edge 2 (u = 0): (0, t); edge 1: (1 - t, t) */
+  double t0 = qu + b * qv / a, t2 = qv + b * qu / c, t1 = ((c - b) * qv + (a - b) * (1.0 - qu)) / (a + c - 2.0 * b);
+  t0 = t0 < 0.0 ? 0.0 : t0 > 1.0 ? 1.0 : t0;
+  t1 = t1 < 0.0 ? 0.0 : t1 > 1.0 ? 1.0 : t1;
+  t2 = t2 < 0.0 ? 0.0 : t2 > 1.0 ? 1.0 : t2;
+  const double u0 = t0 - qu, v0 = -qv, u1 = 1.0 - t1 - qu, v1 = t1 - qv, u2 = -qu, v2 = t2 - qv;
+  double d0 = a * u0 * u0 + 2.0 * b * u0 * v0 + c * v0 * v0;
+  double d1 = a * u1 * u1 + 2.0 * b * u1 * v1 + c * v1 * v1;
+  double d2 = a * u2 * u2 + 2.0 * b * u2 * v2 + c * v2 * v2;
+  d0 = out0 ? d0 : INFINITY;
+  d1 = out1 ? d1 : INFINITY;
+  d2 = out2 ? d2 : INFINITY;
+  double nu = d0 <= d1 ? t0 : 1.0 - t1, nv = d0 <= d1 ? 0.0 : t1;
+  const double dm = d0 <= d1 ? d0 : d1;
+  nu = d2 < dm ? 0.0 : nu;
+  nv = d2 < dm ? t2 : nv;
+  *qu_io = nu;
+  *qv_io = nv;
+}
+
 /* The slide of an anchor on a leash (see walk.h). Its first part is the
  * walk's first ray step, in the same order of operations, so that a slide
  * ending inside the face is the walk's to the bit. */
@@ -597,11 +632,8 @@ int ss_slide_in_face(const ss_frames *fr, int face, const double uv[2], const do
     const double qw = 1.0 - qu - qv;
     const double lowest = qu < qv ? (qu < qw ? qu : qw) : (qv < qw ? qv : qw);
     if (!(lowest > -SS_LEASH_REACH) || w[15] != 0.0) return 0; /* far, or a degenerate face */
-    const double b[3] = {w[0] + w[3], w[1] + w[4], w[2] + w[5]};
-    const double c[3] = {w[0] + w[6], w[1] + w[7], w[2] + w[8]};
-    double q[2];
-    ss_closest_point_triangle(target, w, b, c, q);
-    qu = q[0], qv = q[1];
+    /* the edges beyond which the walk's test above put it (one at least) */
+    nearest_in_face(w + 3, !(qu >= 0.0), sum > 0.0 && rest < sum, !(qv >= 0.0), &qu, &qv);
     clamp_uv(&qu, &qv);
   }
   res->face = face;

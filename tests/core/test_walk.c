@@ -627,6 +627,58 @@ static void test_slide_in_face(void) {
   }
   CHECK_MSG(inside > 100 && clamped > 100 && far > 100, "cases: %d inside, %d clamped, %d far", inside,
             clamped, far);
+  /* At rest a leashed anchor sits on a corner or an edge of its home face
+   * and its target is where it is, within rounding: it stays there (the
+   * walk's in-face test and the nearest point must agree on the edges it
+   * is beyond, or the anchor jumps to another edge) */
+  const double on_border[7][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}, {0.3, 0.7}};
+  for (int f = 0; f < 12; f++)
+    for (int i = 0; i < 7; i++)
+      for (int j = 0; j < 12; j++) {
+        double t[3]; /* off by a few units of the last place or less, as rounding leaves it */
+        ss_anchor_position(e.frames, f, on_border[i], t);
+        const int c = j % 3, up = (j / 3) & 1;
+        if (j < 6) t[c] = nextafter(t[c], up ? INFINITY : -INFINITY); /* one unit of the last place */
+        else t[c] += up ? 1e-15 : -1e-15;
+        ss_walk_result rb;
+        CHECK(ss_slide_in_face(e.frames, f, on_border[i], t, 0, &rb));
+        double at[3];
+        ss_anchor_position(e.frames, f, rb.uv, at);
+        const double moved = sqrt((at[0] - t[0]) * (at[0] - t[0]) + (at[1] - t[1]) * (at[1] - t[1]) +
+                                  (at[2] - t[2]) * (at[2] - t[2]));
+        CHECK_MSG(moved < 1e-12, "face %d, (%g, %g): the slide to where it is moved it %g", f, on_border[i][0],
+                  on_border[i][1], moved);
+      }
+  /* The same at a corner at the world's origin, where rounding leaves the
+   * target off by far less than a unit of the last place of 1: the walk's
+   * test sees the point beyond an edge that u + v = 1 in rounding does not
+   * (as a skin at rest gave), the origin at each corner in turn */
+  const double uv_corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  for (int rot = 0; rot < 3; rot++) {
+    test_mesh tri = {3, 1, malloc(9 * sizeof(double)), malloc(3 * sizeof(int))};
+    const double corner[3][3] = {{0, 0, 0}, {1, 0, 0}, {0.3, 0.8, 0}};
+    for (int k = 0; k < 3; k++) {
+      tri.faces[k] = k;
+      for (int c = 0; c < 3; c++) tri.pos[3 * k + c] = corner[(k + 3 - rot) % 3][c];
+    }
+    walk_env et = env_make(&tri);
+    const double *uv0 = uv_corner[rot]; /* the corner at the origin */
+    for (int j = 0; j < 6; j++) {
+      double t[3];
+      ss_anchor_position(et.frames, 0, uv0, t);
+      CHECK(t[0] == 0.0 && t[1] == 0.0 && t[2] == 0.0);
+      t[j % 3] = j < 3 ? 1e-20 : -1e-20;
+      ss_walk_result rt;
+      CHECK(ss_slide_in_face(et.frames, 0, uv0, t, 0, &rt));
+      double at[3];
+      ss_anchor_position(et.frames, 0, rt.uv, at);
+      CHECK_MSG(fabs(at[0]) + fabs(at[1]) + fabs(at[2]) < 1e-12, "corner %d, offset %d: moved to (%g, %g)", rot,
+                j, rt.uv[0], rt.uv[1]);
+    }
+    env_free(&et);
+    test_mesh_free(&tri);
+  }
+
   ss_walk_result r;
   const double nan_target[3] = {0.1, NAN, 0.0}, uv[2] = {0.2, 0.2};
   CHECK_EQ_INT(ss_slide_in_face(e.frames, 0, uv, nan_target, 0, &r), 0);
