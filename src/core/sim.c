@@ -195,12 +195,11 @@ typedef struct anchor_counts {
 /* Moves anchor a (if it holds a free point) with walker (NULL: one thread;
  * the walk then takes walkers[0], projection and n-ring the mover's own
  * scratch). */
-static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_counts *c) {
+static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int a, ss_walker *walker,
+                               anchor_counts *c) {
   const int nv = sim->m->nvert;
   if (a + SS_WALK_PREFETCH < sim->m->nanchor) {
-    const ss_frames *frp = ss_mover_frames(sim->mover);
-    const int fa = sim->anchor_face[a + SS_WALK_PREFETCH];
-    ss_frames_prefetch(frp, fa);
+    ss_frames_prefetch(fr, sim->anchor_face[a + SS_WALK_PREFETCH]);
   }
   double p[3];
   if (a < nv) {
@@ -226,9 +225,8 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
     const int home = sim->m->anchor_face0[a];
-    const int walks = ss_mover_method(sim->mover) == SS_METHOD_WALK;
     if (walks && sim->tether_frac > 0.0 && home >= 0 && sim->anchor_face[a] == home &&
-        ss_slide_in_face(ss_mover_frames(sim->mover), home, sim->anchor_uv + 2 * a, target, measure,
+        ss_slide_in_face(fr, home, sim->anchor_uv + 2 * a, target, measure,
                          &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most
@@ -240,7 +238,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
        * projection and n-ring jump where they jump (their snags are what
        * they are compared for). */
     } else if (walks) /* the walk itself, not through the mover */
-      walk_anchor(sim, walker, ss_mover_frames(sim->mover), sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
+      walk_anchor(sim, walker, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
                   &res);
     else if (walker)
       ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
@@ -269,7 +267,7 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
     const double dv = sim->tether_frac * (uv0[1] - res.uv[1]);
     if (du != 0.0 || dv != 0.0) {
       if (measure) {
-        const double *e = ss_frames_edges(ss_mover_frames(sim->mover), res.face);
+        const double *e = ss_frames_edges(fr, res.face);
         const double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
         sim->anchor_pull[a] += sqrt(x * x + y * y + z * z);
       }
@@ -280,7 +278,6 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
   } else if (sim->tether_frac > 0.0 && sim->m->anchor_face0[a] >= 0) {
     /* the tether: walk back along the surface towards where the anchor was
      * bound (always the walk, whatever the method: it cannot jump a gap) */
-    const ss_frames *fr = ss_mover_frames(sim->mover);
     double here[3], home[3];
     ss_anchor_position(fr, res.face, res.uv, here);
     ss_anchor_position(fr, sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a, home);
@@ -353,6 +350,9 @@ static inline void move_anchor(ss_sim *sim, int a, ss_walker *walker, anchor_cou
 static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   if (sim->slide_frac <= 0.0 && sim->tether_frac <= 0.0) return;
   const int nanchor = sim->m->nanchor;
+  /* once, not per anchor (calls into mover.c) */
+  const ss_frames *fr = ss_mover_frames(sim->mover);
+  const int walks = ss_mover_method(sim->mover) == SS_METHOD_WALK;
   anchor_counts c = {0, 0, 0, 0, 0};
 #ifdef _OPENMP
   if (sim->nthread > 1 && ss_mover_method(sim->mover) != SS_METHOD_NRING) {
@@ -363,7 +363,7 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
     reduction(+ : moved, steps, boundary, crease, step_limit)
     for (int a = 0; a < nanchor; a++) {
       anchor_counts ct = {0, 0, 0, 0, 0};
-      move_anchor(sim, a, sim->walkers[omp_get_thread_num()], &ct);
+      move_anchor(sim, fr, walks, a, sim->walkers[omp_get_thread_num()], &ct);
       moved += ct.moved, steps += ct.steps, boundary += ct.boundary;
       crease += ct.crease, step_limit += ct.step_limit;
     }
@@ -372,7 +372,7 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   } else
 #endif
   {
-    for (int a = 0; a < nanchor; a++) move_anchor(sim, a, NULL, &c);
+    for (int a = 0; a < nanchor; a++) move_anchor(sim, fr, walks, a, NULL, &c);
   }
   st->anchors_moved += (int)c.moved;
   st->walk_steps += (int)c.steps;
