@@ -194,7 +194,8 @@ typedef struct anchor_counts {
 
 /* Moves anchor a (if it holds a free point) with walker (NULL: one thread;
  * the walk then takes walkers[0], projection and n-ring the mover's own
- * scratch). */
+ * scratch) over the mover's frames fr; walks: the mover's method is the
+ * walk. */
 static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int a, ss_walker *walker,
                                anchor_counts *c) {
   const int nv = sim->m->nvert;
@@ -226,8 +227,7 @@ static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int 
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
     const int home = sim->m->anchor_face0[a];
     if (walks && sim->tether_frac > 0.0 && home >= 0 && sim->anchor_face[a] == home &&
-        ss_slide_in_face(fr, home, sim->anchor_uv + 2 * a, target, measure,
-                         &res)) {
+        ss_slide_in_face(fr, home, sim->anchor_uv + 2 * a, target, measure, &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most
        * of the time). Walked out onto a neighbour, the tether below would
@@ -238,8 +238,7 @@ static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int 
        * projection and n-ring jump where they jump (their snags are what
        * they are compared for). */
     } else if (walks) /* the walk itself, not through the mover */
-      walk_anchor(sim, walker, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
-                  &res);
+      walk_anchor(sim, walker, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
     else if (walker)
       ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
                          &res);

@@ -584,14 +584,15 @@ void ss_walk_unmeasured(ss_walker *walker, const ss_topo *topo, const ss_frames 
  * unpredictable as where a skin pulls (against the general closest point on
  * a triangle, ss_closest_point_triangle, the walk stage 15% faster at 1x8
  * and 4x2 on the 19k quadruped). e are the face's edges e1, e2. */
-static inline SS_ALWAYS_INLINE void nearest_in_face(const double *e, int out2, int out1, int out0, double *qu_io,
-                                                    double *qv_io) {
+static inline SS_ALWAYS_INLINE void nearest_in_face(const double *e, int out2, int out1, int out0,
+                                                    double *qu_io, double *qv_io) {
   const double qu = *qu_io, qv = *qv_io;
   const double a = e[0] * e[0] + e[1] * e[1] + e[2] * e[2]; /* e1.e1 */
   const double b = e[0] * e[3] + e[1] * e[4] + e[2] * e[5]; /* e1.e2 */
   const double c = e[3] * e[3] + e[4] * e[4] + e[5] * e[5]; /* e2.e2 */
   /* edge 0 (v = 0): (t, 0); edge 2 (u = 0): (0, t); edge 1: (1 - t, t) */
-  double t0 = qu + b * qv / a, t2 = qv + b * qu / c, t1 = ((c - b) * qv + (a - b) * (1.0 - qu)) / (a + c - 2.0 * b);
+  double t0 = qu + b * qv / a, t2 = qv + b * qu / c;
+  double t1 = ((c - b) * qv + (a - b) * (1.0 - qu)) / (a + c - 2.0 * b);
   t0 = t0 < 0.0 ? 0.0 : t0 > 1.0 ? 1.0 : t0;
   t1 = t1 < 0.0 ? 0.0 : t1 > 1.0 ? 1.0 : t1;
   t2 = t2 < 0.0 ? 0.0 : t2 > 1.0 ? 1.0 : t2;

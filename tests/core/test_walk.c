@@ -565,6 +565,11 @@ static void test_exit_exact(void) {
   ss_topo_destroy(topo);
 }
 
+/* Squared distance between world points a and b. */
+static double dist2(const double a[3], const double b[3]) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
 /* The slide on the tether's leash (ss_slide_in_face): a target that projects
  * into the face gives the walk's end to the bit; one that projects outside
  * but within reach gives the face's point nearest it (no point of the face
@@ -603,9 +608,7 @@ static void test_slide_in_face(void) {
     CHECK(uv_inside(r.uv));
     double a1[3];
     ss_anchor_position(e.frames, f, r.uv, a1);
-    CHECK_NEAR(r.length, sqrt((a1[0] - a0[0]) * (a1[0] - a0[0]) + (a1[1] - a0[1]) * (a1[1] - a0[1]) +
-                              (a1[2] - a0[2]) * (a1[2] - a0[2])),
-               1e-12);
+    CHECK_NEAR(r.length, sqrt(dist2(a1, a0)), 1e-12);
     if (lowest > 0.0) {
       inside++;
       ss_walk(e.walker, e.topo, e.frames, f, uv, target, 512, &w);
@@ -613,15 +616,12 @@ static void test_slide_in_face(void) {
       CHECK(w.length == r.length);
     } else {
       clamped++;
-      const double d1 = (a1[0] - target[0]) * (a1[0] - target[0]) + (a1[1] - target[1]) * (a1[1] - target[1]) +
-                        (a1[2] - target[2]) * (a1[2] - target[2]);
+      const double d1 = dist2(a1, target);
       for (int i = 0; i <= 20; i++)
         for (int j = 0; i + j <= 20; j++) {
           double x[3];
           ss_anchor_position(e.frames, f, (double[2]){i / 20.0, j / 20.0}, x);
-          const double d2 = (x[0] - target[0]) * (x[0] - target[0]) + (x[1] - target[1]) * (x[1] - target[1]) +
-                            (x[2] - target[2]) * (x[2] - target[2]);
-          CHECK(d1 <= d2 + 1e-12);
+          CHECK(d1 <= dist2(x, target) + 1e-12);
         }
     }
   }
@@ -644,10 +644,9 @@ static void test_slide_in_face(void) {
         CHECK(ss_slide_in_face(e.frames, f, on_border[i], t, 0, &rb));
         double at[3];
         ss_anchor_position(e.frames, f, rb.uv, at);
-        const double moved = sqrt((at[0] - t[0]) * (at[0] - t[0]) + (at[1] - t[1]) * (at[1] - t[1]) +
-                                  (at[2] - t[2]) * (at[2] - t[2]));
-        CHECK_MSG(moved < 1e-12, "face %d, (%g, %g): the slide to where it is moved it %g", f, on_border[i][0],
-                  on_border[i][1], moved);
+        const double moved = sqrt(dist2(at, t));
+        CHECK_MSG(moved < 1e-12, "face %d, (%g, %g): the slide to where it is moved it %g", f,
+                  on_border[i][0], on_border[i][1], moved);
       }
   /* The same at a corner at the world's origin, where rounding leaves the
    * target off by far less than a unit of the last place of 1: the walk's
@@ -672,8 +671,8 @@ static void test_slide_in_face(void) {
       CHECK(ss_slide_in_face(et.frames, 0, uv0, t, 0, &rt));
       double at[3];
       ss_anchor_position(et.frames, 0, rt.uv, at);
-      CHECK_MSG(fabs(at[0]) + fabs(at[1]) + fabs(at[2]) < 1e-12, "corner %d, offset %d: moved to (%g, %g)", rot,
-                j, rt.uv[0], rt.uv[1]);
+      CHECK_MSG(fabs(at[0]) + fabs(at[1]) + fabs(at[2]) < 1e-12, "corner %d, offset %d: moved to (%g, %g)",
+                rot, j, rt.uv[0], rt.uv[1]);
     }
     env_free(&et);
     test_mesh_free(&tri);
