@@ -247,6 +247,7 @@ typedef struct ss_sim_stats {
   int walk_steps;      /* edges crossed by all walks */
   double min_area_ratio; /* over simulated faces after the step: area / rest area */
   double max_area_ratio;
+  int threads;         /* threads the step ran on (with threads 0, as the probe chose) */
 } ss_sim_stats;
 
 /* Advances by dt (<= 0: settings dt) to the body pose body_pos (body nvert x

@@ -620,6 +620,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   if (!st->converged) warn(sim, SS_WARN_UNCONVERGED, n, st->substeps);
   if (st->anchors_step_limit) warn(sim, SS_WARN_STEP_LIMIT, n, st->anchors_step_limit);
   st->total_ms = ss_now_ms() - t_start;
+  st->threads = sim->nthread;
   ss_sim_choose_threads(sim, st->total_ms);
   sim->st = NULL;
   if (status != SS_OK)

@@ -118,8 +118,10 @@ typedef struct node {
   unsigned long processed; /* meshes processed (skin created, stepped or republished) */
   unsigned long nstep_ms;  /* of which stepped (timed) */
   double step_ms_sum, step_ms_max;
+  unsigned long core_steps, core_steps_multi; /* ss_sim_step calls; of them on more than one thread */
   struct { unsigned long in, processed, nstep_ms; double step_ms_sum;
-           uint32_t rejected, dropped, skipped, resets, failures; } win; /* at the window start */
+           uint32_t rejected, dropped, skipped, resets, failures;
+           unsigned long core_steps, core_steps_multi; } win; /* at the window start */
 } node;
 
 /* ------------------------------------------------------------------ parameters */
@@ -507,6 +509,8 @@ static void process(node *nd, const mailbox *b)
       acc.anchors_boundary += st.anchors_boundary; acc.anchors_crease += st.anchors_crease;
       acc.failures += st.failures;
       nd->steps++;
+      nd->core_steps++;
+      nd->core_steps_multi += st.threads > 1;
     }
     if (acc.failures) {
       nd->failures += (uint32_t)acc.failures;
@@ -672,21 +676,26 @@ static void diagnose(node *nd)
   snprintf(v[11], sizeof v[11], "%u", (unsigned)w.failures);
   snprintf(v[12], sizeof v[12], "%u", (unsigned)nd->resets);
   snprintf(v[13], sizeof v[13], "%d", nd->nweld);
-  rosc_kv kv[14 + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
+  /* with ~threads 0 the skin measures whether all cores pay (a busy robot
+   * computer: mostly one): how many of the window's skin steps ran on more */
+  snprintf(v[14], sizeof v[14], "%lu of %lu", nd->core_steps_multi - nd->win.core_steps_multi,
+           nd->core_steps - nd->win.core_steps);
+  rosc_kv kv[15 + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
                   {"step time max (ms)", v[2]}, {"input period (ms)", v[3]},
                   {"step budget (ms)", v[4]},   {"inputs received", v[5]},
                   {"inputs processed", v[6]},   {"inputs rejected", v[7]},
                   {"inputs dropped", v[8]},     {"inputs skipped", v[9]},
                   {"resets", v[10]},            {"failures", v[11]},
-                  {"resets total", v[12]},      {"skin vertices", v[13]}};
+                  {"resets total", v[12]},      {"skin vertices", v[13]},
+                  {"skin steps on more than one thread", v[14]}};
   /* the core's warnings over the skin's life (since it was last created) */
   char wkey[SS_NWARNING][48], wval[SS_NWARNING][24];
   const ss_warning *warn = nd->sim ? ss_sim_warnings(nd->sim) : NULL; /* no skin yet: 0 */
   for (int k = 0; k < SS_NWARNING; k++) {
     snprintf(wkey[k], sizeof wkey[k], "skin steps %s (since created)", ss_warning_name(k));
     snprintf(wval[k], sizeof wval[k], "%lld", warn ? warn[k].number : 0LL);
-    kv[14 + k].key = wkey[k];
-    kv[14 + k].value = wval[k];
+    kv[15 + k].key = wkey[k];
+    kv[15 + k].value = wval[k];
   }
   rosc_diag_update(nd->diag, level, msg, kv, sizeof kv / sizeof kv[0]);
   nd->win.in = nd->frames_in;
@@ -698,6 +707,8 @@ static void diagnose(node *nd)
   nd->win.skipped = nd->skipped;
   nd->win.resets = nd->resets;
   nd->win.failures = nd->failures;
+  nd->win.core_steps = nd->core_steps;
+  nd->win.core_steps_multi = nd->core_steps_multi;
   nd->step_ms_max = 0.0;
 }
 

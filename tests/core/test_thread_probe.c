@@ -4,6 +4,7 @@
  * the all-threads steps cut short once they have lost, the faster kept for
  * the rest of the period, the period doubled after each probe one thread
  * wins (up to SS_PROBE_PERIOD_MAX) and set back when all threads win. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "sim_internal.h"
@@ -51,6 +52,12 @@ int main(void) {
                           NULL, &set, err, sizeof err) == SS_OK, "%s", err);
   if (!sim) return ss_test_finish("test_thread_probe");
   CHECK_EQ_INT(sim->thread_probe, -1); /* threads 1: no probe */
+  ss_sim_stats st;
+  double *pose = malloc(sizeof(double) * 3 * (size_t)ss_scene_nvert(sc));
+  ss_scene_pose(sc, 1.0, pose);
+  CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, err, sizeof err), SS_OK);
+  CHECK_EQ_INT(st.threads, 1); /* what the step ran on, for a node's diagnostics */
+  free(pose);
   const int nt = sim->nthread;
   ss_sim_choose_threads(sim, 5.0);
   CHECK_EQ_INT(sim->nthread, nt);

@@ -49,11 +49,13 @@ ros_env_check "good: skin_probe stream passes (exit $rc)" "[ $rc -eq 0 ]"
 ros_env_check "good: level OK, 'stepping normally'" "level_is good 0 && grep -q 'stepping normally' '$ROS_ENV_DIR/diag_good.txt'"
 for k in "step time mean (ms)" "step time max (ms)" "input period (ms)" "step budget (ms)" \
          "inputs received" "inputs processed" "inputs rejected" "inputs dropped" \
-         "inputs skipped" "resets" "failures" "window (s)" \
+         "inputs skipped" "resets" "failures" "window (s)" "skin steps on more than one thread" \
          "skin steps refused (since created)" "skin steps failure (since created)" \
          "skin steps unconverged (since created)" "skin steps step_limit (since created)"; do
   ros_env_check "good: key '$k' present" "grep -qF 'key: \"$k\"' '$ROS_ENV_DIR/diag_good.txt'"
 done
+ros_env_check "good: the window's skin steps counted, with those on more than one thread" \
+  "grep -A1 'key: \"skin steps on more than one thread\"' '$ROS_ENV_DIR/diag_good.txt' | grep -qE 'value: \"[0-9]+ of [1-9][0-9]*\"'"
 ros_env_check "good: input period measured (100 ms)" \
   "grep -A1 'key: \"input period (ms)\"' '$ROS_ENV_DIR/diag_good.txt' | grep -q 'value: \"100.00\"'"
 
