@@ -105,7 +105,7 @@ typedef struct node {
   int carry_disc;         /* a jump seen on a message that was rejected: reset on the next */
   /* counters */
   uint32_t rejected, dropped, skipped, resets, failures;
-  unsigned long frames_in, frames_out, steps;
+  unsigned long frames_in, frames_out, steps; /* steps: ss_sim_step calls */
   double last_marker_wall;
   /* ~reset (std_srvs/Empty): the next mesh creates the skin again on its pose */
   int reset_req;
@@ -118,10 +118,10 @@ typedef struct node {
   unsigned long processed; /* meshes processed (skin created, stepped or republished) */
   unsigned long nstep_ms;  /* of which stepped (timed) */
   double step_ms_sum, step_ms_max;
-  unsigned long core_steps, core_steps_multi; /* ss_sim_step calls; of them on more than one thread */
+  unsigned long steps_multi; /* of the ss_sim_step calls, those on more than one thread */
   struct { unsigned long in, processed, nstep_ms; double step_ms_sum;
            uint32_t rejected, dropped, skipped, resets, failures;
-           unsigned long core_steps, core_steps_multi; } win; /* at the window start */
+           unsigned long steps, steps_multi; } win; /* at the window start */
 } node;
 
 /* ------------------------------------------------------------------ parameters */
@@ -509,8 +509,7 @@ static void process(node *nd, const mailbox *b)
       acc.anchors_boundary += st.anchors_boundary; acc.anchors_crease += st.anchors_crease;
       acc.failures += st.failures;
       nd->steps++;
-      nd->core_steps++;
-      nd->core_steps_multi += st.threads > 1;
+      nd->steps_multi += st.threads > 1;
     }
     if (acc.failures) {
       nd->failures += (uint32_t)acc.failures;
@@ -678,8 +677,8 @@ static void diagnose(node *nd)
   snprintf(v[13], sizeof v[13], "%d", nd->nweld);
   /* with ~threads 0 the skin measures whether all cores pay (a busy robot
    * computer: mostly one): how many of the window's skin steps ran on more */
-  snprintf(v[14], sizeof v[14], "%lu of %lu", nd->core_steps_multi - nd->win.core_steps_multi,
-           nd->core_steps - nd->win.core_steps);
+  snprintf(v[14], sizeof v[14], "%lu of %lu", nd->steps_multi - nd->win.steps_multi,
+           nd->steps - nd->win.steps);
   rosc_kv kv[15 + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
                   {"step time max (ms)", v[2]}, {"input period (ms)", v[3]},
                   {"step budget (ms)", v[4]},   {"inputs received", v[5]},
@@ -707,8 +706,8 @@ static void diagnose(node *nd)
   nd->win.skipped = nd->skipped;
   nd->win.resets = nd->resets;
   nd->win.failures = nd->failures;
-  nd->win.core_steps = nd->core_steps;
-  nd->win.core_steps_multi = nd->core_steps_multi;
+  nd->win.steps = nd->steps;
+  nd->win.steps_multi = nd->steps_multi;
   nd->step_ms_max = 0.0;
 }
 
