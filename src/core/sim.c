@@ -177,57 +177,165 @@ static void clear_anchor_measures(ss_sim *sim) {
   memset(sim->anchor_path, 0, (size_t)sim->m->nanchor * sizeof(double));
 }
 
-/* The walk of an anchor, its path's length summed only where measured
- * (ss_sim_measure_anchors). */
-static inline void walk_anchor(const ss_sim *sim, ss_walker *walker, const ss_frames *fr, int face,
-                               const double uv[2], const double target[3], ss_walk_result *res) {
-  ss_walker *wk = walker ? walker : sim->walkers[0];
-  if (sim->measure_anchors)
-    ss_walk(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, res);
-  else
-    ss_walk_unmeasured(wk, sim->m->btopo, fr, face, uv, target, sim->set.mover.walk_max_steps, res);
-}
-
 typedef struct anchor_counts {
   long long moved, steps, boundary, crease, step_limit;
 } anchor_counts;
 
+/* What the anchor pass reads of the sim, read once per pass into a local
+ * copy (a value, never addressed): through sim, every field was loaded again
+ * for each anchor, since the stores into anchor_face and anchor_uv might
+ * have changed them for all the compiler knew (a fifth of the pass's
+ * instructions at 1x8 on the 19k quadruped, callgrind). */
+typedef struct anchor_pass {
+  ss_sim *sim;
+  const ss_frames *fr; /* the mover's frames */
+  const double *x, *anchor_pos, *k_vert, *k_face, *anchor_uv0;
+  const int *dof, *faces, *anchor_face0;
+  int *anchor_face;
+  double *anchor_uv;
+  double slide, tether; /* this substep's fractions of the way */
+  int nv, nanchor, max_steps;
+  int walks;   /* the mover's method is the walk */
+  int measure; /* ss_sim_measure_anchors */
+} anchor_pass;
+
+static anchor_pass anchor_pass_of(ss_sim *sim) {
+  anchor_pass P = {
+      .sim = sim,
+      .fr = ss_mover_frames(sim->mover),
+      .x = sim->x,
+      .anchor_pos = sim->anchor_pos,
+      .k_vert = sim->m->k_vert,
+      .k_face = sim->m->k_face,
+      .anchor_uv0 = sim->m->anchor_uv0,
+      .dof = sim->m->dof,
+      .faces = sim->m->faces,
+      .anchor_face0 = sim->m->anchor_face0,
+      .anchor_face = sim->anchor_face,
+      .anchor_uv = sim->anchor_uv,
+      .slide = sim->slide_frac,
+      .tether = sim->tether_frac,
+      .nv = sim->m->nvert,
+      .nanchor = sim->m->nanchor,
+      .max_steps = sim->set.mover.walk_max_steps,
+      .walks = ss_mover_method(sim->mover) == SS_METHOD_WALK,
+      .measure = sim->measure_anchors,
+  };
+  return P;
+}
+
+/* The walk of an anchor, its path's length summed only where measured
+ * (ss_sim_measure_anchors). */
+static inline void walk_anchor(const anchor_pass *P, ss_walker *walker, int face, const double uv[2],
+                               const double target[3], ss_walk_result *res) {
+  ss_walker *wk = walker ? walker : P->sim->walkers[0];
+  if (P->measure)
+    ss_walk(wk, P->sim->m->btopo, P->fr, face, uv, target, P->max_steps, res);
+  else
+    ss_walk_unmeasured(wk, P->sim->m->btopo, P->fr, face, uv, target, P->max_steps, res);
+}
+
+/* The tether of an anchor out of its home face: walk back along the surface
+ * towards where it was bound (always the walk, whatever the method: it
+ * cannot jump a gap). Updates res; returns 1 if the anchor moved. */
+static int tether_from_afar(const anchor_pass *P, int a, ss_walker *walker, ss_walk_result *res,
+                            anchor_counts *c) {
+  ss_sim *sim = P->sim;
+  const ss_frames *fr = P->fr;
+  double here[3], home[3], target[3];
+  ss_anchor_position(fr, res->face, res->uv, here);
+  ss_anchor_position(fr, P->anchor_face0[a], P->anchor_uv0 + 2 * a, home);
+  /* The step: tether_frac of the way, along the surface: the chord to
+   * home turned into the body's tangent plane here (kept at its length).
+   * The chord itself dives into the body where home is far round it, and
+   * half a turn round a capsule it points straight in: an anchor there
+   * walked nowhere (twist: 6 anchors half a turn from home for good). */
+  double d[3], d2 = 0.0, dn = 0.0;
+  const double *n = fr->normal + 3 * res->face;
+  for (int i = 0; i < 3; i++) {
+    d[i] = home[i] - here[i];
+    d2 += d[i] * d[i];
+    dn += d[i] * n[i];
+  }
+  double t2 = 0.0;
+  for (int i = 0; i < 3; i++) {
+    d[i] -= dn * n[i];
+    t2 += d[i] * d[i];
+  }
+  const double scale = t2 > 0.0 ? P->tether * sqrt(d2 / t2) : 0.0;
+  double pull2 = 0.0;
+  for (int i = 0; i < 3; i++) {
+    target[i] = here[i] + scale * d[i];
+    pull2 += (target[i] - here[i]) * (target[i] - here[i]);
+  }
+  const int h = P->anchor_face0[a];
+  if (pull2 > 0.0 && share_corner(sim->m->btopo, res->face, h)) {
+    /* Next to home (its face shares a corner with the home face): the
+     * rest of the way in the home face's own frame. A bind point is often
+     * a body vertex (a skin copied from the body), where the faces around
+     * meet at angles: walking onto it, the face the walk ends in - and the
+     * plane it projects on - would flip with the last bits of the skin's
+     * position, and Newton and quasi-Newton (or a copied and a bound skin)
+     * would part ways within frames (0.4 edge lengths on quadruped). */
+    home_stretch(fr, h, target, res->uv);
+    res->face = h;
+    if (P->measure) sim->anchor_pull[a] += sqrt(pull2);
+    return 1;
+  }
+  if (pull2 > 0.0) {
+    const int face = res->face;
+    const double uv[2] = {res->uv[0], res->uv[1]};
+    ss_walk_result back;
+    walk_anchor(P, walker, face, uv, target, &back);
+    res->face = back.face;
+    res->uv[0] = back.uv[0];
+    res->uv[1] = back.uv[1];
+    if (P->measure) {
+      sim->anchor_pull[a] += sqrt(pull2);
+      sim->anchor_path[a] += back.length;
+    }
+    c->steps += back.steps;
+    return 1;
+  }
+  return 0;
+}
+
 /* Moves anchor a (if it holds a free point) with walker (NULL: one thread;
  * the walk then takes walkers[0], projection and n-ring the mover's own
- * scratch) over the mover's frames fr; walks: the mover's method is the
- * walk. */
-static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int a, ss_walker *walker,
-                               anchor_counts *c) {
-  const int nv = sim->m->nvert;
-  if (a + SS_WALK_PREFETCH < sim->m->nanchor) {
-    ss_frames_prefetch(fr, sim->anchor_face[a + SS_WALK_PREFETCH]);
+ * scratch). */
+static inline void move_anchor(const anchor_pass *P, int a, ss_walker *walker, anchor_counts *c) {
+  const ss_frames *fr = P->fr;
+  if (a + SS_WALK_PREFETCH < P->nanchor) {
+    ss_frames_prefetch(fr, P->anchor_face[a + SS_WALK_PREFETCH]);
   }
   double p[3];
-  if (a < nv) {
-    if (sim->m->dof[a] < 0 || sim->m->k_vert[a] == 0.0) return;
-    memcpy(p, sim->x + 3 * a, sizeof p);
+  if (a < P->nv) {
+    if (P->dof[a] < 0 || P->k_vert[a] == 0.0) return;
+    memcpy(p, P->x + 3 * a, sizeof p);
   } else {
-    int f = a - nv;
-    if (sim->m->k_face[f] == 0.0) return;
-    const int *fv = sim->m->faces + 3 * f;
+    int f = a - P->nv;
+    if (P->k_face[f] == 0.0) return;
+    const int *fv = P->faces + 3 * f;
     for (int i = 0; i < 3; i++)
-      p[i] = (sim->x[3 * fv[0] + i] + sim->x[3 * fv[1] + i] + sim->x[3 * fv[2] + i]) * SS_THIRD;
+      p[i] = (P->x[3 * fv[0] + i] + P->x[3 * fv[1] + i] + P->x[3 * fv[2] + i]) * SS_THIRD;
   }
-  if (sim->anchor_face[a] < 0) return;
-  const double slide = sim->slide_frac;
-  const int measure = sim->measure_anchors;
-  const double *a0 = sim->anchor_pos + 3 * a;
+  const int face = P->anchor_face[a];
+  if (face < 0) return;
+  const double slide = P->slide;
+  const int measure = P->measure;
+  const int home = P->anchor_face0[a];
+  const double *a0 = P->anchor_pos + 3 * a;
+  double *uv = P->anchor_uv + 2 * a;
   double target[3];
   ss_walk_result res = {0};
-  res.face = sim->anchor_face[a];
-  res.uv[0] = sim->anchor_uv[2 * a];
-  res.uv[1] = sim->anchor_uv[2 * a + 1];
+  res.face = face;
+  res.uv[0] = uv[0];
+  res.uv[1] = uv[1];
   int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    const int home = sim->m->anchor_face0[a];
-    if (walks && sim->tether_frac > 0.0 && home >= 0 && sim->anchor_face[a] == home &&
-        ss_slide_in_face(fr, home, sim->anchor_uv + 2 * a, target, measure, &res)) {
+    if (P->walks && P->tether > 0.0 && home >= 0 && face == home &&
+        ss_slide_in_face(fr, home, uv, target, measure, &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most
        * of the time). Walked out onto a neighbour, the tether below would
@@ -237,108 +345,54 @@ static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int 
        * 19k quadruped, with 1.1-2.1 crossings each. The walk's alone:
        * projection and n-ring jump where they jump (their snags are what
        * they are compared for). */
-    } else if (walks) /* the walk itself, not through the mover */
-      walk_anchor(sim, walker, fr, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
-    else if (walker)
-      ss_mover_walk_with(sim->mover, walker, sim->anchor_face[a], sim->anchor_uv + 2 * a, target,
-                         &res);
-    else
-      ss_mover_move(sim->mover, sim->anchor_face[a], sim->anchor_uv + 2 * a, target, &res);
+    } else {
+      if (P->walks) /* the walk itself, not through the mover */
+        walk_anchor(P, walker, face, uv, target, &res);
+      else if (walker)
+        ss_mover_walk_with(P->sim->mover, walker, face, uv, target, &res);
+      else
+        ss_mover_move(P->sim->mover, face, uv, target, &res);
+      c->steps += res.steps;
+      c->boundary += res.stop == SS_STOP_BOUNDARY;
+      c->crease += res.stop == SS_STOP_CREASE;
+      c->step_limit += res.stop == SS_STOP_STEP_LIMIT;
+    }
     if (measure) {
       double pull2 = 0.0;
       for (int i = 0; i < 3; i++) pull2 += (target[i] - a0[i]) * (target[i] - a0[i]);
-      sim->anchor_pull[a] += sqrt(pull2);
-      sim->anchor_path[a] += res.length;
+      P->sim->anchor_pull[a] += sqrt(pull2);
+      P->sim->anchor_path[a] += res.length;
     }
-    c->steps += res.steps;
   }
-  if (sim->tether_frac > 0.0 && res.face == sim->m->anchor_face0[a]) {
+  if (P->tether > 0.0 && res.face == home) {
     /* The tether of an anchor in its home face (most anchors, most of the
      * time): tether_frac of the way home in the face's own (u, v), which is
-     * affine in space. It is the step below in exact arithmetic (the chord
-     * lies in the face's plane, so turning it into the tangent plane keeps
-     * it; the target lies inside the face, so it is its own closest point),
-     * without two positions, the normal, two square roots and a closest-point
-     * search: 28% fewer instructions in the anchor stage (callgrind, 19k
-     * quadruped, 4 substeps x 2 iterations). */
-    const double *uv0 = sim->m->anchor_uv0 + 2 * a;
-    const double du = sim->tether_frac * (uv0[0] - res.uv[0]);
-    const double dv = sim->tether_frac * (uv0[1] - res.uv[1]);
+     * affine in space. It is the step of tether_from_afar in exact
+     * arithmetic (the chord lies in the face's plane, so turning it into the
+     * tangent plane keeps it; the target lies inside the face, so it is its
+     * own closest point), without two positions, the normal, two square
+     * roots and a closest-point search: 28% fewer instructions in the anchor
+     * stage (callgrind, 19k quadruped, 4 substeps x 2 iterations). */
+    const double *uv0 = P->anchor_uv0 + 2 * a;
+    const double du = P->tether * (uv0[0] - res.uv[0]);
+    const double dv = P->tether * (uv0[1] - res.uv[1]);
     if (du != 0.0 || dv != 0.0) {
       if (measure) {
         const double *e = ss_frames_edges(fr, res.face);
         const double x = du * e[0] + dv * e[3], y = du * e[1] + dv * e[4], z = du * e[2] + dv * e[5];
-        sim->anchor_pull[a] += sqrt(x * x + y * y + z * z);
+        P->sim->anchor_pull[a] += sqrt(x * x + y * y + z * z);
       }
       res.uv[0] += du;
       res.uv[1] += dv;
       moved = 1;
     }
-  } else if (sim->tether_frac > 0.0 && sim->m->anchor_face0[a] >= 0) {
-    /* the tether: walk back along the surface towards where the anchor was
-     * bound (always the walk, whatever the method: it cannot jump a gap) */
-    double here[3], home[3];
-    ss_anchor_position(fr, res.face, res.uv, here);
-    ss_anchor_position(fr, sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a, home);
-    /* The step: tether_frac of the way, along the surface: the chord to
-     * home turned into the body's tangent plane here (kept at its length).
-     * The chord itself dives into the body where home is far round it, and
-     * half a turn round a capsule it points straight in: an anchor there
-     * walked nowhere (twist: 6 anchors half a turn from home for good). */
-    double d[3], d2 = 0.0, dn = 0.0;
-    const double *n = fr->normal + 3 * res.face;
-    for (int i = 0; i < 3; i++) {
-      d[i] = home[i] - here[i];
-      d2 += d[i] * d[i];
-      dn += d[i] * n[i];
-    }
-    double t2 = 0.0;
-    for (int i = 0; i < 3; i++) {
-      d[i] -= dn * n[i];
-      t2 += d[i] * d[i];
-    }
-    const double scale = t2 > 0.0 ? sim->tether_frac * sqrt(d2 / t2) : 0.0;
-    double pull2 = 0.0;
-    for (int i = 0; i < 3; i++) {
-      target[i] = here[i] + scale * d[i];
-      pull2 += (target[i] - here[i]) * (target[i] - here[i]);
-    }
-    const int h = sim->m->anchor_face0[a];
-    if (pull2 > 0.0 && share_corner(sim->m->btopo, res.face, h)) {
-      /* Next to home (its face shares a corner with the home face): the
-       * rest of the way in the home face's own frame. A bind point is often
-       * a body vertex (a skin copied from the body), where the faces around
-       * meet at angles: walking onto it, the face the walk ends in - and the
-       * plane it projects on - would flip with the last bits of the skin's
-       * position, and Newton and quasi-Newton (or a copied and a bound skin)
-       * would part ways within frames (0.4 edge lengths on quadruped). */
-      home_stretch(fr, h, target, res.uv);
-      res.face = h;
-      if (measure) sim->anchor_pull[a] += sqrt(pull2);
-      moved = 1;
-    } else if (pull2 > 0.0) {
-      const int face = res.face;
-      const double uv[2] = {res.uv[0], res.uv[1]};
-      ss_walk_result back;
-      walk_anchor(sim, walker, fr, face, uv, target, &back);
-      res.face = back.face;
-      res.uv[0] = back.uv[0];
-      res.uv[1] = back.uv[1];
-      if (measure) {
-        sim->anchor_pull[a] += sqrt(pull2);
-        sim->anchor_path[a] += back.length;
-      }
-      c->steps += back.steps;
-      moved = 1;
-    }
+  } else if (P->tether > 0.0 && home >= 0) {
+    moved |= tether_from_afar(P, a, walker, &res, c);
   }
-  sim->anchor_face[a] = res.face;
-  sim->anchor_uv[2 * a] = res.uv[0];
-  sim->anchor_uv[2 * a + 1] = res.uv[1];
+  P->anchor_face[a] = res.face;
+  uv[0] = res.uv[0];
+  uv[1] = res.uv[1];
   c->moved += moved;
-  c->boundary += res.stop == SS_STOP_BOUNDARY;
-  c->crease += res.stop == SS_STOP_CREASE;
-  c->step_limit += res.stop == SS_STOP_STEP_LIMIT;
 }
 
 /* Moves the anchors of free points (vertices, barycenters with a spring)
@@ -348,21 +402,19 @@ static inline void move_anchor(ss_sim *sim, const ss_frames *fr, int walks, int 
  * thread count. */
 static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   if (sim->slide_frac <= 0.0 && sim->tether_frac <= 0.0) return;
-  const int nanchor = sim->m->nanchor;
-  /* once, not per anchor (calls into mover.c) */
-  const ss_frames *fr = ss_mover_frames(sim->mover);
-  const int walks = ss_mover_method(sim->mover) == SS_METHOD_WALK;
+  const anchor_pass P = anchor_pass_of(sim);
+  const int nanchor = P.nanchor;
   anchor_counts c = {0, 0, 0, 0, 0};
 #ifdef _OPENMP
   if (sim->nthread > 1 && ss_mover_method(sim->mover) != SS_METHOD_NRING) {
     long long moved = 0, steps = 0, boundary = 0, crease = 0, step_limit = 0;
     /* in chunks taken as threads free up: anchors differ in cost (a walk
      * across faces, the tether's way home), so equal halves finished apart */
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(sim->nthread) \
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(sim->nthread) firstprivate(P) \
     reduction(+ : moved, steps, boundary, crease, step_limit)
     for (int a = 0; a < nanchor; a++) {
       anchor_counts ct = {0, 0, 0, 0, 0};
-      move_anchor(sim, fr, walks, a, sim->walkers[omp_get_thread_num()], &ct);
+      move_anchor(&P, a, P.sim->walkers[omp_get_thread_num()], &ct);
       moved += ct.moved, steps += ct.steps, boundary += ct.boundary;
       crease += ct.crease, step_limit += ct.step_limit;
     }
@@ -371,7 +423,7 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   } else
 #endif
   {
-    for (int a = 0; a < nanchor; a++) move_anchor(sim, fr, walks, a, NULL, &c);
+    for (int a = 0; a < nanchor; a++) move_anchor(&P, a, NULL, &c);
   }
   st->anchors_moved += (int)c.moved;
   st->walk_steps += (int)c.steps;
