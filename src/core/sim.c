@@ -34,6 +34,8 @@
 #include "ss_err.h"
 #include "ss_vec.h"
 #include "closest.h" /* the tether's home stretch */
+#include "isa.h"
+#include "walk_step.h"
 #include "skin_sim/ss_settings.h"
 
 static const char *const solver_names[] = {"newton", "quasi-newton"};
@@ -303,7 +305,8 @@ static int tether_from_afar(const anchor_pass *P, int a, ss_walker *walker, ss_w
 /* Moves anchor a (if it holds a free point) with walker (NULL: one thread;
  * the walk then takes walkers[0], projection and n-ring the mover's own
  * scratch). */
-static inline void move_anchor(const anchor_pass *P, int a, ss_walker *walker, anchor_counts *c) {
+static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_walker *walker,
+                                                anchor_counts *c) {
   const ss_frames *fr = P->fr;
   if (a + SS_WALK_PREFETCH < P->nanchor) {
     ss_frames_prefetch(fr, P->anchor_face[a + SS_WALK_PREFETCH]);
@@ -335,7 +338,7 @@ static inline void move_anchor(const anchor_pass *P, int a, ss_walker *walker, a
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
     if (P->walks && P->tether > 0.0 && home >= 0 && face == home &&
-        ss_slide_in_face(fr, home, uv, target, measure, &res)) {
+        ss_slide_in_face_inline(fr, home, uv, target, measure, &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most
        * of the time). Walked out onto a neighbour, the tether below would
@@ -395,6 +398,12 @@ static inline void move_anchor(const anchor_pass *P, int a, ss_walker *walker, a
   c->moved += moved;
 }
 
+/* Anchors [a0, a1) with walker (NULL: one thread), in each instruction set
+ * (isa.h): the pass's arithmetic is the leash's slide for most anchors. */
+SS_ISA_VARIANTS(anchor_range, (const anchor_pass *P, int a0, int a1, ss_walker *walker, anchor_counts *c),
+                const anchor_pass Q = *P; /* a value, never addressed in the loop */
+                for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c);)
+
 /* Moves the anchors of free points (vertices, barycenters with a spring)
  * towards the skin points they hold. Each anchor's move is independent of
  * the others', so with threads the walks (and projections) share the
@@ -403,18 +412,21 @@ static inline void move_anchor(const anchor_pass *P, int a, ss_walker *walker, a
 static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   if (sim->slide_frac <= 0.0 && sim->tether_frac <= 0.0) return;
   const anchor_pass P = anchor_pass_of(sim);
-  const int nanchor = P.nanchor;
+  const int nanchor = P.nanchor, isa = sim->isa;
   anchor_counts c = {0, 0, 0, 0, 0};
 #ifdef _OPENMP
   if (sim->nthread > 1 && ss_mover_method(sim->mover) != SS_METHOD_NRING) {
     long long moved = 0, steps = 0, boundary = 0, crease = 0, step_limit = 0;
     /* in chunks taken as threads free up: anchors differ in cost (a walk
      * across faces, the tether's way home), so equal halves finished apart */
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(sim->nthread) firstprivate(P) \
+    enum { CHUNK = 1024 };
+    const int nchunk = (nanchor + CHUNK - 1) / CHUNK;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(sim->nthread) \
     reduction(+ : moved, steps, boundary, crease, step_limit)
-    for (int a = 0; a < nanchor; a++) {
+    for (int k = 0; k < nchunk; k++) {
       anchor_counts ct = {0, 0, 0, 0, 0};
-      move_anchor(&P, a, P.sim->walkers[omp_get_thread_num()], &ct);
+      const int a1 = (k + 1) * CHUNK < nanchor ? (k + 1) * CHUNK : nanchor;
+      SS_ISA_CALL(isa, anchor_range, (&P, k * CHUNK, a1, P.sim->walkers[omp_get_thread_num()], &ct));
       moved += ct.moved, steps += ct.steps, boundary += ct.boundary;
       crease += ct.crease, step_limit += ct.step_limit;
     }
@@ -423,7 +435,7 @@ static void move_anchors(ss_sim *sim, ss_sim_stats *st) {
   } else
 #endif
   {
-    for (int a = 0; a < nanchor; a++) move_anchor(&P, a, NULL, &c);
+    SS_ISA_CALL(isa, anchor_range, (&P, 0, nanchor, NULL, &c));
   }
   st->anchors_moved += (int)c.moved;
   st->walk_steps += (int)c.steps;
