@@ -306,7 +306,7 @@ static int tether_from_afar(const anchor_pass *P, int a, ss_walker *walker, ss_w
  * the walk then takes walkers[0], projection and n-ring the mover's own
  * scratch). */
 static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_walker *walker,
-                                                anchor_counts *c) {
+                                                anchor_counts *c, const int walks, const int measure) {
   const ss_frames *fr = P->fr;
   if (a + SS_WALK_PREFETCH < P->nanchor) {
     ss_frames_prefetch(fr, P->anchor_face[a + SS_WALK_PREFETCH]);
@@ -325,7 +325,6 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
   const int face = P->anchor_face[a];
   if (face < 0) return;
   const double slide = P->slide;
-  const int measure = P->measure;
   const int home = P->anchor_face0[a];
   const double *a0 = P->anchor_pos + 3 * a;
   double *uv = P->anchor_uv + 2 * a;
@@ -337,7 +336,7 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
   int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
   if (slide > 0.0) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    if (P->walks && P->tether > 0.0 && home >= 0 && face == home &&
+    if (walks && P->tether > 0.0 && home >= 0 && face == home &&
         ss_slide_in_face_inline(fr, home, uv, target, measure, &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most
@@ -349,7 +348,7 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
        * projection and n-ring jump where they jump (their snags are what
        * they are compared for). */
     } else {
-      if (P->walks) /* the walk itself, not through the mover */
+      if (walks) /* the walk itself, not through the mover */
         walk_anchor(P, walker, face, uv, target, &res);
       else if (walker)
         ss_mover_walk_with(P->sim->mover, walker, face, uv, target, &res);
@@ -402,7 +401,10 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
  * (isa.h): the pass's arithmetic is the leash's slide for most anchors. */
 SS_ISA_VARIANTS(anchor_range, (const anchor_pass *P, int a0, int a1, ss_walker *walker, anchor_counts *c),
                 const anchor_pass Q = *P; /* a value, never addressed in the loop */
-                for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c);)
+                if (Q.walks && !Q.measure) /* the usual pass: without its branches */
+                  for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, 1, 0);
+                else
+                  for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, Q.walks, Q.measure);)
 
 /* Moves the anchors of free points (vertices, barycenters with a spring)
  * towards the skin points they hold. Each anchor's move is independent of
