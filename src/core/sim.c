@@ -306,7 +306,8 @@ static int tether_from_afar(const anchor_pass *P, int a, ss_walker *walker, ss_w
  * the walk then takes walkers[0], projection and n-ring the mover's own
  * scratch). */
 static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_walker *walker,
-                                                anchor_counts *c, const int walks, const int measure) {
+                                                anchor_counts *c, const int walks, const int measure,
+                                                const int leashed) {
   const ss_frames *fr = P->fr;
   if (a + SS_WALK_PREFETCH < P->nanchor) {
     ss_frames_prefetch(fr, P->anchor_face[a + SS_WALK_PREFETCH]);
@@ -333,10 +334,11 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
   res.face = face;
   res.uv[0] = uv[0];
   res.uv[1] = uv[1];
-  int moved = slide > 0.0; /* glued (slide 0) and at home: not moved */
-  if (slide > 0.0) {
+  const int slides = leashed || slide > 0.0, tethered = leashed || P->tether > 0.0;
+  int moved = slides; /* glued (slide 0) and at home: not moved */
+  if (slides) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    if (walks && P->tether > 0.0 && home >= 0 && face == home &&
+    if (walks && tethered && home >= 0 && face == home &&
         ss_slide_in_face_inline(fr, home, uv, target, measure, &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most
@@ -366,7 +368,7 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
       P->sim->anchor_path[a] += res.length;
     }
   }
-  if (P->tether > 0.0 && res.face == home) {
+  if (tethered && res.face == home) {
     /* The tether of an anchor in its home face (most anchors, most of the
      * time): tether_frac of the way home in the face's own (u, v), which is
      * affine in space. It is the step of tether_from_afar in exact
@@ -388,7 +390,7 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
       res.uv[1] += dv;
       moved = 1;
     }
-  } else if (P->tether > 0.0 && home >= 0) {
+  } else if (tethered && home >= 0) {
     moved |= tether_from_afar(P, a, walker, &res, c);
   }
   P->anchor_face[a] = res.face;
@@ -401,10 +403,11 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
  * (isa.h): the pass's arithmetic is the leash's slide for most anchors. */
 SS_ISA_VARIANTS(anchor_range, (const anchor_pass *P, int a0, int a1, ss_walker *walker, anchor_counts *c),
                 const anchor_pass Q = *P; /* a value, never addressed in the loop */
-                if (Q.walks && !Q.measure) /* the usual pass: without its branches */
-                  for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, 1, 0);
+                /* the usual pass (the walk on a leash, not measured): without its branches */
+                if (Q.walks && !Q.measure && Q.slide > 0.0 && Q.tether > 0.0)
+                  for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, 1, 0, 1);
                 else
-                  for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, Q.walks, Q.measure);)
+                  for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, Q.walks, Q.measure, 0);)
 
 /* Moves the anchors of free points (vertices, barycenters with a spring)
  * towards the skin points they hold. Each anchor's move is independent of
