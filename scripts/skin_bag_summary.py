@@ -5,7 +5,7 @@ usage: skin_bag_summary.py BAG
 
 Prints frames in (kinematic_mesh), frames out (skin_mesh), how many skin_mesh
 stamps match a kinematic_mesh stamp, ms per frame from skin_stats (median and
-95th percentile of total_ms), the last counters (rejected, dropped, resets),
+95th percentile of total_ms), the last counters (rejected, dropped, skipped, resets),
 and the end-to-end latency: the time the recorder received each skin_mesh
 minus its header stamp (the joint state's stamp), median and 95th percentile.
 Needs Debian's python3 with python3-rosbag and the package's generated
@@ -56,10 +56,13 @@ def main():
     print("latency:          median %.1f ms, 95th percentile %.1f ms (joint state stamp to skin_mesh at the recorder)"
           % (pct(lat, 50), pct(lat, 95)))
     if last is not None:
-        print("inputs rejected:  %d, dropped: %d, resets: %d; last step: %d iterations, residual %.2g, "
-              "max slide %.1f mm, %d anchors stopped at creases"
-              % (last.inputs_rejected, last.inputs_dropped, last.resets, last.iterations,
-                 last.residual, 1e3 * last.max_slide, last.anchors_at_crease))
+        # skipped: received while the node was busy and never stepped (it stepped a
+        # newer one): frames in without a frame out, that dropped (lost before the
+        # node) does not count
+        print("inputs rejected:  %d, dropped: %d, skipped: %d, resets: %d; last step: %d iterations, "
+              "residual %.2g, max slide %.1f mm, %d anchors stopped at creases"
+              % (last.inputs_rejected, last.inputs_dropped, last.inputs_skipped, last.resets,
+                 last.iterations, last.residual, 1e3 * last.max_slide, last.anchors_at_crease))
     return 0 if skin else 1
 
 

@@ -37,6 +37,11 @@ check "the demo moved: ${nin:-0} kinematic_mesh in ${seconds} s" "[ ${nin:-0} -g
 set -- $nout
 check "every skin_mesh of the demo (since the recording began) carries the stamp of a kinematic_mesh (${2:-0} of ${1:-0})" \
   "[ ${1:-0} -gt 0 ] && [ ${1:-0} -eq ${2:-0} ]"
+# every recorded input is answered, or counted by the node (rejected, dropped, skipped),
+# or was still in flight when the recording stopped (two at most)
+counted=$(sed -n 's/^inputs rejected: *\([0-9]*\), dropped: \([0-9]*\), skipped: \([0-9]*\), resets.*/\1 + \2 + \3/p' "$D/summary.log")
+check "every kinematic_mesh without its skin_mesh is counted by the node (${nin:-0} in, ${2:-0} answered, counted: ${counted:-none})" \
+  "[ -n '$counted' ] && [ $(( ${nin:-0} - ${2:-0} )) -le \$(( $counted + 2 )) ]"
 
 # 2. two replays through fresh skin nodes; a probe waits until the last recorded frame
 #    has been stepped (a slow build steps from its queue long after the player ends)
