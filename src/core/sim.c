@@ -338,7 +338,7 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
   int moved = slides; /* glued (slide 0) and at home: not moved */
   if (slides) {
     for (int i = 0; i < 3; i++) target[i] = a0[i] + slide * (p[i] - a0[i]);
-    if (walks && tethered && home >= 0 && face == home &&
+    if (walks && tethered && face == home && /* face >= 0 here */
         ss_slide_in_face_inline(fr, home, uv, target, measure, &res)) {
       /* On the leash, in its home face and sliding to a point within its
        * reach: the home face's point nearest the target (most anchors, most

@@ -407,12 +407,7 @@ static inline SS_ALWAYS_INLINE void walk(ss_walker *walker, const ss_topo *topo,
    * are those of dot3 and face_point. */
   double pu = uv[0], pv = uv[1];
   clamp_uv(&pu, &pv);
-  res->face = face;
-  res->uv[0] = pu;
-  res->uv[1] = pv;
-  res->stop = SS_STOP_INSIDE;
-  res->steps = 0;
-  res->length = 0.0;
+  result_in_face(res, face, pu, pv, 0.0); /* where it stays if it cannot walk */
   const double ax = target[0], ay = target[1], az = target[2];
   if (!finite2(ax, ay) || !finite2(az, 0.0)) return;
 

@@ -47,6 +47,18 @@ static inline double canonical_length(const double *e, double du, double dv) {
   return sqrt(x * x + y * y + z * z);
 }
 
+/* The result of a walk or slide that ends in `face` at (u, v) without
+ * crossing an edge (the walk's start, the slide's end). */
+static inline SS_ALWAYS_INLINE void result_in_face(ss_walk_result *res, int face, double u, double v,
+                                                   double length) {
+  res->face = face;
+  res->uv[0] = u;
+  res->uv[1] = v;
+  res->stop = SS_STOP_INSIDE;
+  res->steps = 0;
+  res->length = length;
+}
+
 /* The ray of a walk step from canonical point (pu, pv) of the face whose
  * record is w towards world point a: its canonical direction (du, dv). The
  * arithmetic and its order are those of dot3 and face_point. */
@@ -123,12 +135,7 @@ static inline SS_ALWAYS_INLINE int ss_slide_in_face_inline(const ss_frames *fr, 
     nearest_in_face(w + 3, !(qu >= 0.0), sum > 0.0 && rest < sum, !(qv >= 0.0), &qu, &qv);
     clamp_uv(&qu, &qv);
   }
-  res->face = face;
-  res->uv[0] = qu;
-  res->uv[1] = qv;
-  res->stop = SS_STOP_INSIDE;
-  res->steps = 0;
-  res->length = measure ? canonical_length(w + 3, qu - pu, qv - pv) : 0.0;
+  result_in_face(res, face, qu, qv, measure ? canonical_length(w + 3, qu - pu, qv - pv) : 0.0);
   return 1;
 }
 
