@@ -167,9 +167,11 @@ def plot_stability(rows, out):
     with open(os.path.join(out, "stability.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
-    fig, axes = plt.subplots(1, 6, figsize=(28, 0.42 * len(scenes) + 1.8))
+    fig, axes = plt.subplots(1, 8, figsize=(36, 0.42 * len(scenes) + 1.8))
     keys = [("snags", "snags (count)"), ("failures", "failed frames"),
             ("inverted_faces_max", "inverted faces (most in a frame)"),
+            ("faces_turned_max", "faces turned, plain count (most in a frame)"),
+            ("hug_far_max", "vertices over an edge off (most in a frame)"),
             ("inside_max", "inside the body (edge lengths)"),
             ("hug_rms", "hug RMS (edge lengths)"),
             ("error_vs_truth", "error vs truth (edge lengths)")]
@@ -184,7 +186,8 @@ def plot_stability(rows, out):
             for j, v in enumerate(row):
                 if v is None or math.isnan(v):
                     continue
-                txt = ("%d" % v) if key in ("snags", "failures", "inverted_faces_max") else ("%.3f" % v)
+                txt = ("%d" % v) if key in ("snags", "failures", "inverted_faces_max", "faces_turned_max",
+                                            "hug_far_max") else ("%.3f" % v)
                 ax.text(j, i, txt, ha="center", va="center", fontsize=7,
                         color="white" if vmax > 0 and v > 0.6 * vmax else "black")
         ax.set_xticks(range(len(METHODS)))

@@ -170,6 +170,9 @@ typedef struct rosc_skin_mesh {
   size_t n_positions;
   const uint32_t *triangles;   /* (n_triangles) = (n_faces x 3) vertex indices */
   size_t n_triangles;
+  const uint32_t *rigid_part;  /* (n_rigid_part) = (n_vertices) or none (NULL, 0): see
+                                  msg/SkinMesh.msg */
+  size_t n_rigid_part;
 } rosc_skin_mesh;
 
 /* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg). */
@@ -183,6 +186,9 @@ typedef struct rosc_skin_stats {
   uint32_t inputs_rejected, inputs_dropped, resets;
   uint32_t inputs_skipped, failures;
   float latency_ms;
+  uint32_t triangles_simulated, triangles_carried, iterations_per_substep;
+  float step_budget_ms;
+  uint32_t faces_turned, vertices_far;
 } rosc_skin_stats;
 
 /* sensor_msgs/JointState. Arrays may be empty (NULL, 0). */

@@ -146,8 +146,10 @@ void ss_input_slide_color(double d, double scale, float rgba[4]);
  *   step took more than twice the input period (the node cannot keep up).
  * - WARN: no input in the window; some inputs rejected; inputs dropped
  *   (lost before the callback) or skipped (the node fell behind); the skin
- *   was reset (the input's time jumped or went backwards, or ~reset); or the
- *   mean step took more than SS_HEALTH_BUDGET (0.8) of the input period.
+ *   was reset (the input's time jumped or went backwards, or ~reset); steps
+ *   ran below the settings' work to fit a real-time budget (accuracy traded
+ *   for time); or the mean step took more than SS_HEALTH_BUDGET (0.8) of the
+ *   input period.
  * - OK otherwise. Step times are compared only when the period is known. */
 #define SS_HEALTH_BUDGET 0.8
 enum { SS_HEALTH_OK = 0, SS_HEALTH_WARN = 1, SS_HEALTH_ERROR = 2 };
@@ -157,6 +159,8 @@ typedef struct ss_input_window {
   uint32_t rejected, dropped, skipped, resets, failures;
   double step_ms_mean;  /* mean processing time per stepped mesh, ms (0 if none) */
   double period_ms;     /* the input's period, ms (0: unknown) */
+  uint32_t lowered;     /* steps run with fewer substeps or iterations than the settings'
+                           (a real-time budget traded accuracy for time) */
 } ss_input_window;
 /* Returns SS_HEALTH_OK / WARN / ERROR for w, with a sentence naming the worst
  * reason (or "stepping normally") in msg (may be NULL). */

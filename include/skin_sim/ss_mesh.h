@@ -18,6 +18,8 @@
 
 #include "ss_common.h"
 
+#include <stdint.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -86,6 +88,27 @@ typedef struct ss_weld {
 int ss_weld_create(ss_weld **out, int nvert, const double *pos, int nface, const int *faces,
                    double weld_tol, char *err, int err_sz);
 void ss_weld_destroy(ss_weld *weld);
+
+/* ---- rigid pieces ----------------------------------------------------------
+ * A robot's body is mostly rigid: each link's visual meshes move with that
+ * link alone, and a skin piece over such a mesh has nothing to simulate. A
+ * PIECE is a set of faces connected through shared vertices (seam copies
+ * joined through vert_weld, when not NULL: (nvert) welded id of each vertex,
+ * as ss_weld's). rigid_part (nvert) says what each vertex moves with: k > 0,
+ * rigidly with body part k (a link or bone it is skinned to alone); 0, a
+ * blend of several (it deforms). A piece all of whose vertices move with one
+ * part k > 0 moves rigidly: its faces get mask 0 (mask: nface, in and out;
+ * faces already 0 stay 0), so that a skin built with that face mask carries
+ * it with the body exactly and simulates the rest. Counts go to out (may be
+ * NULL). Returns SS_OK, SS_E_ARG (NULL arrays, negative counts) or
+ * SS_E_NOMEM. Allocates and frees its own scratch. */
+typedef struct ss_rigid_count {
+  int npiece;          /* pieces of the mesh */
+  int npiece_carried;  /* of which rigid */
+  int nface_carried;   /* their faces, all given mask 0 */
+} ss_rigid_count;
+int ss_mesh_rigid_pieces(int nvert, int nface, const int *faces, const int *vert_weld,
+                         const uint32_t *rigid_part, unsigned char *mask, ss_rigid_count *out);
 
 #ifdef __cplusplus
 }

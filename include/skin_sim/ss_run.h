@@ -99,6 +99,13 @@ typedef struct ss_run_stats {
   int body_folds_max;              /* most body faces folded over by the pose in a frame: turned
                                       more than 90 degrees against a neighbour they faced the same
                                       way as at rest (the rig's crease artefacts, the skin's input) */
+  int faces_turned_max;            /* most skin faces turned more than 90 degrees against the body
+                                      under them in a frame, counted plainly: slivers, faces over
+                                      folds and outside the simulated region too
+                                      (ss_sim_count_off_body) */
+  int hug_far_max;                 /* most skin vertices farther than one mean edge length from the
+                                      body surface in a frame */
+  int triangles_carried;           /* skin faces carried rigidly with the body (not simulated) */
   double inside_max;               /* deepest skin vertex under the body surface, mean edge lengths */
   double slide_max, slide_max_m;   /* farthest anchor from where it was bound during the motion:
                                       mean edge lengths, metres */

@@ -329,6 +329,14 @@ void ss_sim_anchor_positions(const ss_sim *sim, double *out);
  * ss_sim_body_nvert x 3 values (callers receiving meshes check this). */
 int ss_sim_body_nvert(const ss_sim *sim);
 int ss_sim_body_nface(const ss_sim *sim);
+/* What a user sees go wrong, counted plainly in the current state: skin
+ * faces turned more than 90 degrees against the body under them (the body
+ * face holding the face's barycenter anchor, else its corners' anchors),
+ * against how they lay at rest, slivers and faces over sharp turns included;
+ * and skin vertices farther than one mean rest edge length from their anchor
+ * on the body (an upper bound of their distance to the body). Either pointer
+ * may be NULL. O(faces + vertices), allocates nothing. */
+void ss_sim_count_off_body(const ss_sim *sim, int *faces_turned, int *vertices_far);
 /* Body topology, as built at create (for metrics that need it). */
 const ss_topo *ss_sim_body_topo(const ss_sim *sim);
 

@@ -23,6 +23,7 @@
 #ifndef SKIN_SIM_SSA_AVATAR_H
 #define SKIN_SIM_SSA_AVATAR_H
 
+#include <stdint.h>
 #include <stdio.h>
 
 #include "ss_common.h"
@@ -399,6 +400,13 @@ int ssa_avatar_pose_anim_toward_rest(ssa_avatar *av, int anim, double t, double 
 int ssa_avatar_region_mask(const ssa_avatar *av, int n, const char *const *names,
                            unsigned char *mask, char *err, int err_sz);
 
+/* What each vertex moves with, for ss_mesh_rigid_pieces: part (nvert) gets
+ * 1 + the target (link or node) of a vertex whose every weight is on bones
+ * of that one target (a URDF's visual mesh bound to its link, a character's
+ * vertex skinned to one bone alone), 0 for a vertex blended between targets.
+ * Returns the number of vertices with a part, or SS_E_ARG. */
+int ssa_avatar_rigid_parts(const ssa_avatar *av, uint32_t *part);
+
 /* ================================================================ the built-in mannequin */
 
 /* The mannequin's URDF (static text, the same as urdf/mannequin.urdf in the
@@ -423,7 +431,10 @@ int ssa_avatar_mannequin(ssa_avatar **out, int target_tris, char *err, int err_s
 
 /* Scripted motions of the mannequin: "arms" (arms swing down into the
  * torso, pressing the armpits), "elbows" (deep elbow bends), "twist" (torso
- * and neck twist), "all" (the three together, shifted in phase). */
+ * and neck twist), "all" (the three together, shifted in phase); and one for
+ * any robot: "sweep" (every joint that moves on its own swings about zero,
+ * 0.6 rad or 3 cm each way, each in a phase of its own, within its limits,
+ * eased in over the first second; a period of 4 s). */
 int ssa_motion_builtin_count(void);
 /* Name of built-in motion i, or NULL. */
 const char *ssa_motion_builtin_name(int i);

@@ -88,6 +88,23 @@ static void set_dominant(ssa_avatar *av) {
   }
 }
 
+int ssa_avatar_rigid_parts(const ssa_avatar *av, uint32_t *part) {
+  if (!av || !part) return SS_E_ARG;
+  int n = 0;
+  for (int v = 0; v < av->nvert; v++) {
+    int target = -1, one = 1;
+    for (int k = av->w_start[v]; k < av->w_start[v + 1] && one; k++) {
+      if (!(av->w_weight[k] > 0.0)) continue;
+      int t = av->bone_target[av->w_bone[k]];
+      if (target < 0) target = t;
+      else one = t == target;
+    }
+    part[v] = one && target >= 0 ? (uint32_t)target + 1u : 0u;
+    n += part[v] != 0;
+  }
+  return n;
+}
+
 int ssa_avatar_pose_joints_at(ssa_avatar *av, const double *root_pose, const double *q,
                               double *out) {
   if (!av || !out || av->kind != SSA_AVATAR_ROBOT || !av->robot) return SS_E_ARG;

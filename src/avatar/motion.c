@@ -7,9 +7,10 @@
 #include "skin_sim/ssa_avatar.h"
 #include "ssa_util.h"
 
-#define NBUILTIN 4
-static const char *builtin_names[NBUILTIN] = {"arms", "elbows", "twist", "all"};
-static const double builtin_period[NBUILTIN] = {4.0, 3.0, 3.0, 12.0};
+#define NBUILTIN 5
+#define SWEEP 4
+static const char *builtin_names[NBUILTIN] = {"arms", "elbows", "twist", "all", "sweep"};
+static const double builtin_period[NBUILTIN] = {4.0, 3.0, 3.0, 12.0, 4.0};
 
 int ssa_motion_builtin_count(void) { return NBUILTIN; }
 
@@ -35,8 +36,20 @@ static void put(const ssa_robot *r, double *q, const char *name, double v) {
 static const char *const builtin_joints[] = {"l_shoulder_abduct", "r_shoulder_abduct", "l_elbow",
                                              "r_elbow", "torso_twist", "neck_twist", "head_nod"};
 
+/* sweep moves every joint a robot has that moves on its own (not fixed, not a mimic). */
+static int sweeps(const ssa_robot *r, int j) {
+  int t = r->joint_type[j];
+  return r->joint_mimic[j] < 0 &&
+         (t == SSA_JOINT_REVOLUTE || t == SSA_JOINT_CONTINUOUS || t == SSA_JOINT_PRISMATIC);
+}
+
 int ssa_motion_builtin_coverage(int i, const ssa_robot *robot) {
   if (i < 0 || i >= NBUILTIN || !robot) return 0;
+  if (i == SWEEP) {
+    int n = 0;
+    for (int j = 0; j < robot->njoint; j++) n += sweeps(robot, j);
+    return n;
+  }
   int first = 0, last = 7; /* all */
   if (i == 0) last = 2;
   if (i == 1) last = 4; /* elbows also holds the shoulders */
@@ -52,6 +65,22 @@ static double bump(double t, double period) { return 0.5 - 0.5 * cos(2.0 * SSA_P
 int ssa_motion_builtin_eval(int i, double t, const ssa_robot *robot, double *q) {
   if (i < 0 || i >= NBUILTIN || !robot || !q || !isfinite(t)) return SS_E_ARG;
   memset(q, 0, sizeof(double) * (size_t)robot->njoint);
+  if (i == SWEEP) {
+    /* any robot: each joint swings about zero, 0.6 rad (or 3 cm) each way, in a
+     * phase of its own, within its limits; eased in over the first second */
+    double ease = t <= 0.0 ? 0.0 : t >= 1.0 ? 1.0 : bump(0.5 * t, 1.0);
+    for (int j = 0; j < robot->njoint; j++) {
+      if (!sweeps(robot, j)) continue;
+      double amp = robot->joint_type[j] == SSA_JOINT_PRISMATIC ? 0.03 : 0.6;
+      double v = ease * amp * sin(2.0 * SSA_PI * t / builtin_period[SWEEP] + 0.9 * j);
+      if (robot->joint_has_limits[j]) {
+        double lo = robot->joint_lower[j], hi = robot->joint_upper[j], m = 0.02 * (hi - lo);
+        v = v < lo + m ? lo + m : v > hi - m ? hi - m : v;
+      }
+      q[j] = v;
+    }
+    return SS_OK;
+  }
   int arms = i == 0 || i == 3, elbows = i == 1 || i == 3, twist = i == 2 || i == 3;
   if (arms) {
     /* from the T pose (0) down past hanging (1.57) into the torso (1.75) and back */

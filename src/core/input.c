@@ -288,6 +288,12 @@ int ss_input_health(const ss_input_window *w, char *msg, int msg_sz)
              (unsigned)w->skipped);
     return SS_HEALTH_WARN;
   }
+  if (w->lowered > 0) {
+    snprintf(msg, n, "accuracy traded for time: %u of %u steps with fewer substeps or iterations "
+             "than the settings' to fit the step budget", (unsigned)w->lowered,
+             (unsigned)w->stepped);
+    return SS_HEALTH_WARN;
+  }
   if (period > 0.0 && step > SS_HEALTH_BUDGET * period) {
     snprintf(msg, n, "step %.1f ms over %.0f%% of the input period %.1f ms", step,
              100.0 * SS_HEALTH_BUDGET, period);

@@ -672,7 +672,9 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
   double t_start = ss_now_ms();
   sim->st = st;
   if (sim->measure_anchors) clear_anchor_measures(sim);
-  int substeps = sim->set.substeps;
+  /* a skin whose every vertex follows the body (a rigid robot's, carried) has
+   * nothing between the poses to resolve: one substep */
+  int substeps = sim->m->ndof > 0 ? sim->set.substeps : 1;
   double h = dt / substeps;
   const size_t nb3 = 3 * (size_t)sim->m->nbvert;
   int status = SS_OK;

@@ -193,6 +193,9 @@ static int measure_frame(run_meas *m, const ss_sim *sim, const double *pos,
   }
   if (inverted > stats->inverted_faces_max) stats->inverted_faces_max = inverted;
   if (over_folds > stats->inverted_over_folds_max) stats->inverted_over_folds_max = over_folds;
+  int turned = 0, far = 0;
+  ss_sim_count_off_body(sim, &turned, NULL);
+  if (turned > stats->faces_turned_max) stats->faces_turned_max = turned;
   for (int v = 0; v < m->skin_nvert; v++) {
     int face;
     double uv[2], c[3];
@@ -203,12 +206,14 @@ static int measure_frame(run_meas *m, const ss_sim *sim, const double *pos,
     m->hug_sum2 += d * d;
     m->hug_count++;
     if (d > stats->hug_max) stats->hug_max = d;
+    far += d > 1.0;
     /* below the surface: behind the closest face's plane */
     ss_anchor_position(m->fr, face, uv, c);
     const double *nf = m->fr->normal + 3 * face;
     double depth = -((p[0] - c[0]) * nf[0] + (p[1] - c[1]) * nf[1] + (p[2] - c[2]) * nf[2]) / edge;
     if (depth > stats->inside_max) stats->inside_max = depth;
   }
+  if (far > stats->hug_far_max) stats->hug_far_max = far;
   const int *new_face = ss_sim_anchor_faces(sim);
   const double *new_uv = ss_sim_anchor_uv(sim);
   const double *pull = ss_sim_anchor_pull(sim), *path = ss_sim_anchor_path(sim);

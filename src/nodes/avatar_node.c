@@ -52,6 +52,7 @@ typedef struct body {
   double *pose;       /* (nvert x 3) */
   float *pos_out;     /* (nvert x 3) */
   uint32_t *tri_out;  /* (nface x 3) */
+  uint32_t *rigid_out; /* (nvert) what each vertex moves with (ssa_avatar_rigid_parts) */
 } body;
 
 typedef struct node {
@@ -66,7 +67,7 @@ typedef struct node {
   int queue;              /* ~queue_size */
 } node;
 
-static uint32_t hash_topology(int nvert, int nface, const int *faces)
+static uint32_t hash_topology(int nvert, int nface, const int *faces, const uint32_t *rigid)
 {
   uint32_t h = 2166136261u; /* FNV-1a */
   uint32_t vals[2] = {(uint32_t)nvert, (uint32_t)nface};
@@ -74,6 +75,9 @@ static uint32_t hash_topology(int nvert, int nface, const int *faces)
     for (int k = 0; k < 4; k++) { h ^= (vals[i] >> (8 * k)) & 255u; h *= 16777619u; }
   for (size_t i = 0; i < 3 * (size_t)nface; i++)
     for (int k = 0; k < 4; k++) { h ^= ((uint32_t)faces[i] >> (8 * k)) & 255u; h *= 16777619u; }
+  /* what moves rigidly is part of the topology: the skin node carries those pieces */
+  for (size_t i = 0; i < (size_t)nvert; i++)
+    for (int k = 0; k < 4; k++) { h ^= (rigid[i] >> (8 * k)) & 255u; h *= 16777619u; }
   return h ? h : 1u;
 }
 
@@ -161,6 +165,8 @@ static void on_joints(const rosc_joint_state *m, void *user)
   out.n_positions = n3;
   out.triangles = b->tri_out;
   out.n_triangles = 3 * (size_t)b->av->nface;
+  out.rigid_part = b->rigid_out;
+  out.n_rigid_part = (size_t)b->av->nvert;
   if (rosc_publish_skin_mesh(nd->pub_mesh, &out) == ROSC_OK) nd->out++;
 
   rosc_skin_stats s;
@@ -181,6 +187,7 @@ static void on_avatar_warning(void *user, const char *msg)
 static void body_free(body *b)
 {
   free(b->q); free(b->q_try); free(b->pose); free(b->pos_out); free(b->tri_out);
+  free(b->rigid_out);
   ssa_avatar_destroy(b->av);
   memset(b, 0, sizeof *b);
 }
@@ -196,9 +203,11 @@ static int body_finish(body *b, const body *old)
   b->pose = malloc(3 * (size_t)av->nvert * sizeof(double));
   b->pos_out = malloc(3 * (size_t)av->nvert * sizeof(float));
   b->tri_out = malloc(3 * (size_t)av->nface * sizeof(uint32_t));
-  if (!b->q || !b->q_try || !b->pose || !b->pos_out || !b->tri_out) return 0;
+  b->rigid_out = malloc((size_t)av->nvert * sizeof(uint32_t));
+  if (!b->q || !b->q_try || !b->pose || !b->pos_out || !b->tri_out || !b->rigid_out) return 0;
   for (size_t i = 0; i < 3 * (size_t)av->nface; i++) b->tri_out[i] = (uint32_t)av->faces[i];
-  b->topology_id = hash_topology(av->nvert, av->nface, av->faces);
+  ssa_avatar_rigid_parts(av, b->rigid_out);
+  b->topology_id = hash_topology(av->nvert, av->nface, av->faces, b->rigid_out);
   if (old && old->robot)
     for (int j = 0; j < b->robot->njoint; j++) {
       int k = ssa_robot_joint_index(old->robot, b->robot->joint_name[j]);

@@ -1,7 +1,8 @@
 /* motion_node: scripted joint_states for the demo mannequin (glue only).
  *
  * Publishes sensor_msgs/JointState on joint_states at ~rate Hz for one of the
- * built-in motions (~motion: arms, elbows, twist, all; ssa_motion_builtin_*),
+ * built-in motions (~motion: arms, elbows, twist, all for the mannequin; sweep for any
+ * robot; ssa_motion_builtin_*),
  * so demos need no joystick or GUI. The robot is robot_description when set
  * (joints it lacks are left out), else the mannequin's own URDF. Stamps are
  * regular: the start time plus i / rate (re-based on the clock if the loop
@@ -37,7 +38,7 @@ int main(int argc, char **argv)
                  "a double (or an int)");
   int mi = ssa_motion_builtin_index(motion);
   if (ok && mi < 0) {
-    ROSC_ERROR("~motion: unknown motion '%s' (arms, elbows, twist, all)", motion);
+    ROSC_ERROR("~motion: unknown motion '%s' (arms, elbows, twist, all, sweep)", motion);
     ok = 0;
   }
   if (ok && (!(rate > 0.0) || rate > 1000.0)) {

@@ -35,6 +35,7 @@
  * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
 #include "node_params.h"
 #include "rosc/rosc.h"
+#include "skin_sim/ss_budget.h"
 #include "skin_sim/ss_input.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_sim.h"
@@ -59,6 +60,8 @@ typedef struct params {
   double box[6];      /* xmin ymin zmin xmax ymax zmax */
   char frame_id[ROSC_FRAME_ID_MAX]; /* "" : the input's frame; else the outputs' frame */
   char tf_prefix[128];              /* "" : none; else "PREFIX/" before the outputs' frame */
+  double step_budget; /* s: 0 the input's period; < 0 none (the settings' substeps and
+                         iterations always) */
 } params;
 
 typedef struct mailbox {
@@ -69,6 +72,8 @@ typedef struct mailbox {
   size_t npos, cap_pos;
   uint32_t *tri;
   size_t ntri, cap_tri;
+  uint32_t *rigid;      /* rigid_part: what each vertex moves with (nrigid 0: unknown) */
+  size_t nrigid, cap_rigid;
 } mailbox;
 
 /* Received meshes waiting to be stepped: a ring of ~queue_size slots; when it is
@@ -91,7 +96,12 @@ typedef struct node {
   int *vert_weld;         /* (nvert) skin vertex of each body vertex */
   int *faces;             /* (nface x 3) as received */
   uint32_t *tri_out;      /* (nface x 3) */
-  unsigned char *mask;    /* (nface) or NULL */
+  unsigned char *mask;    /* (nface) 1: simulated face (~mask_box, rigid pieces carried) */
+  unsigned char *carried; /* (nvert) 1: in a rigid piece, published as received */
+  int nface_sim, nface_carried; /* skin triangles simulated and carried rigidly */
+  ss_budget budget;       /* ~step_budget: the substeps and iterations in force */
+  double budget_ms;       /* the budget of the last step (0: none) */
+  int faces_turned, vertices_far; /* ss_sim_count_off_body after the last step */
   int nanchor;
   int *face0;             /* (nanchor) anchors as bound at create */
   double *uv0;            /* (nanchor x 2) */
@@ -121,7 +131,7 @@ typedef struct node {
   unsigned long steps_multi; /* of the ss_sim_step calls, those on more than one thread */
   struct { unsigned long in, processed, nstep_ms; double step_ms_sum;
            uint32_t rejected, dropped, skipped, resets, failures;
-           unsigned long steps, steps_multi; } win; /* at the window start */
+           unsigned long steps, steps_multi; long long lowered; } win; /* at the window start */
 } node;
 
 /* ------------------------------------------------------------------ parameters */
@@ -155,6 +165,11 @@ static int get_params(params *p)
   ok &= get_double("~marker_rate", &p->marker_rate, 10.0);
   ok &= get_double("~slide_scale", &p->slide_scale, 0.05);
   ok &= get_int("~queue_size", &p->queue_size, 1);
+  ok &= get_double("~step_budget", &p->step_budget, 0.0);
+  if (!isfinite(p->step_budget)) {
+    ROSC_ERROR("~step_budget must be a number of seconds (0: the input's period, < 0: none)");
+    ok = 0;
+  }
   ok &= param_range("~queue_size", p->queue_size, 1, 1000);
   ok &= param_range("~max_split", p->max_split, 1, 1000);
   if (!(p->max_step > 0.0)) {
@@ -204,7 +219,8 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   }
   mailbox *b = &q->slot[(q->head + q->count) % q->cap];
   if (!grow((void **)&b->pos, &b->cap_pos, m->n_positions, sizeof(float)) ||
-      !grow((void **)&b->tri, &b->cap_tri, m->n_triangles, sizeof(uint32_t))) {
+      !grow((void **)&b->tri, &b->cap_tri, m->n_triangles, sizeof(uint32_t)) ||
+      !grow((void **)&b->rigid, &b->cap_rigid, m->n_rigid_part, sizeof(uint32_t))) {
     ROSC_ERROR_THROTTLE(2.0, "out of memory for a mesh of %zu values", m->n_positions);
     nd->dropped++;
     if (disc) nd->carry_disc = disc;
@@ -212,6 +228,8 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   }
   if (m->n_positions) memcpy(b->pos, m->positions, m->n_positions * sizeof(float));
   if (m->n_triangles) memcpy(b->tri, m->triangles, m->n_triangles * sizeof(uint32_t));
+  if (m->n_rigid_part) memcpy(b->rigid, m->rigid_part, m->n_rigid_part * sizeof(uint32_t));
+  b->nrigid = m->n_rigid_part;
   b->npos = m->n_positions;
   b->ntri = m->n_triangles;
   b->header = m->header;
@@ -238,6 +256,8 @@ static void free_sim(node *nd)
   nd->vert_weld = NULL;
   nd->nweld = 0;
   free(nd->faces); free(nd->tri_out); free(nd->mask); free(nd->face0); free(nd->uv0);
+  free(nd->carried);
+  nd->carried = NULL;
   free(nd->slide); free(nd->body); free(nd->body_prev); free(nd->body_sub);
   free(nd->pos_out); free(nd->mk_pts); free(nd->mk_col);
   nd->faces = NULL; nd->tri_out = NULL; nd->mask = NULL; nd->face0 = NULL; nd->uv0 = NULL;
@@ -260,9 +280,10 @@ static int create_sim(node *nd, const mailbox *b)
   nd->pos_out = malloc(n3 * sizeof(float));
   nd->mk_pts = malloc(3 * f3 * sizeof(float));
   nd->mk_col = malloc(4 * f3 * sizeof(float));
-  if (nd->p.have_box) nd->mask = malloc((size_t)nf);
+  nd->mask = malloc((size_t)nf);
+  nd->carried = calloc((size_t)nv, 1);
   if (!nd->faces || !nd->tri_out || !nd->body || !nd->body_prev || !nd->body_sub ||
-      !nd->pos_out || !nd->mk_pts || !nd->mk_col || (nd->p.have_box && !nd->mask)) {
+      !nd->pos_out || !nd->mk_pts || !nd->mk_col || !nd->mask || !nd->carried) {
     ROSC_ERROR("out of memory for a skin of %d vertices", nv);
     free_sim(nd);
     return 0;
@@ -273,8 +294,8 @@ static int create_sim(node *nd, const mailbox *b)
   }
   for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
   ss_sim_settings set = nd->p.set;
-  set.face_mask = NULL;
-  if (nd->mask) {
+  memset(nd->mask, 1, (size_t)nf);
+  if (nd->p.have_box) {
     const double *bx = nd->p.box;
     int nin = 0;
     for (int f = 0; f < nf; f++) {
@@ -287,14 +308,31 @@ static int create_sim(node *nd, const mailbox *b)
       nin += in;
     }
     ROSC_INFO("~mask_box: %d of %d faces simulated", nin, nf);
-    set.face_mask = nd->mask;
   }
   char err[ERR_SZ] = "";
   double t0 = 0, t1 = 0;
   rosc_wall_now_s(&t0);
   /* the skin is the body welded: seam copies are one skin vertex, so no seam can open */
   ss_weld *weld = NULL;
+  ss_rigid_count rigid = {0, 0, 0};
   int st = ss_weld_create(&weld, nv, nd->body, nf, nd->faces, nd->p.weld_tol, err, sizeof err);
+  if (st == SS_OK && b->nrigid) {
+    /* pieces that move rigidly with one link are carried with it, not simulated */
+    unsigned char *rigid_mask = malloc((size_t)nf);
+    st = rigid_mask ? SS_OK : SS_E_NOMEM;
+    if (st == SS_OK) {
+      memset(rigid_mask, 1, (size_t)nf);
+      st = ss_mesh_rigid_pieces(nv, nf, nd->faces, weld->vert_weld, b->rigid, rigid_mask, &rigid);
+    }
+    if (st != SS_OK) snprintf(err, sizeof err, "rigid pieces: out of memory");
+    for (int f = 0; st == SS_OK && f < nf; f++)
+      if (!rigid_mask[f]) {
+        nd->mask[f] = 0;
+        for (int k = 0; k < 3; k++) nd->carried[nd->faces[3 * f + k]] = 1;
+      }
+    free(rigid_mask);
+  }
+  set.face_mask = nd->mask;
   if (st == SS_OK) {
     ss_sim_mesh skin = {weld->nweld, weld->pos, nf, weld->faces};
     st = ss_sim_create(&nd->sim, nv, nd->body, nf, nd->faces, &skin, &set, err, sizeof err);
@@ -313,6 +351,9 @@ static int create_sim(node *nd, const mailbox *b)
   }
   nd->nvert = nv;
   nd->nface = nf;
+  nd->nface_carried = rigid.nface_carried;
+  nd->nface_sim = 0;
+  for (int f = 0; f < nf; f++) nd->nface_sim += nd->mask[f] != 0;
   nd->nanchor = ss_sim_nanchors(nd->sim);
   nd->face0 = malloc((size_t)nd->nanchor * sizeof(int));
   nd->uv0 = malloc(2 * (size_t)nd->nanchor * sizeof(double));
@@ -326,8 +367,13 @@ static int create_sim(node *nd, const mailbox *b)
   memcpy(nd->uv0, ss_sim_anchor_uv(nd->sim), 2 * (size_t)nd->nanchor * sizeof(double));
   memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
   nd->topology_id = b->topology_id;
-  ROSC_INFO("skin created: %d vertices (%d received, welded at ~weld_tol %g), %d triangles, "
-            "%d anchors, %d unknowns (topology %u, %.1f ms)", nd->nweld, nv, nd->p.weld_tol, nf,
+  ss_budget_init(&nd->budget, nd->p.set.substeps, nd->p.set.iterations);
+  nd->faces_turned = nd->vertices_far = 0;
+  ROSC_INFO("skin created: %d vertices (%d received, welded at ~weld_tol %g), %d triangles: "
+            "%d simulated, %d carried rigidly (%d of %d pieces move with one link)%s; %d anchors, "
+            "%d unknowns (topology %u, %.1f ms)", nd->nweld, nv, nd->p.weld_tol, nf, nd->nface_sim,
+            nd->nface_carried, rigid.npiece_carried, rigid.npiece,
+            b->nrigid ? "" : " [the input says nothing of rigid parts: all may deform]",
             nd->nanchor, ss_sim_ndof(nd->sim), (unsigned)b->topology_id, 1e3 * (t1 - t0));
   return 1;
 }
@@ -354,9 +400,11 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   /* in the body's layout: every seam copy from its welded skin vertex */
   const double *x = ss_sim_skin_positions(nd->sim);
   size_t n3 = 3 * (size_t)nd->nvert;
-  for (int v = 0; v < nd->nvert; v++)
-    for (int d = 0; d < 3; d++)
-      nd->pos_out[3 * (size_t)v + d] = (float)x[3 * (size_t)nd->vert_weld[v] + d];
+  /* every seam copy from its welded skin vertex; a rigid piece's as received */
+  for (int v = 0; v < nd->nvert; v++) {
+    const double *src = nd->carried[v] ? nd->body + 3 * (size_t)v : x + 3 * (size_t)nd->vert_weld[v];
+    for (int d = 0; d < 3; d++) nd->pos_out[3 * (size_t)v + d] = (float)src[d];
+  }
   rosc_skin_mesh out;
   memset(&out, 0, sizeof out);
   out.header = *hdr;
@@ -391,6 +439,12 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   rosc_time now_ros;
   if (rosc_now(&now_ros) == ROSC_OK)
     s.latency_ms = (float)(1e-6 * (double)(rosc_time_to_ns(now_ros) - rosc_time_to_ns(hdr->stamp)));
+  s.triangles_simulated = (uint32_t)nd->nface_sim;
+  s.triangles_carried = (uint32_t)nd->nface_carried;
+  s.iterations_per_substep = (uint32_t)nd->budget.iterations;
+  s.step_budget_ms = (float)nd->budget_ms;
+  s.faces_turned = (uint32_t)nd->faces_turned;
+  s.vertices_far = (uint32_t)nd->vertices_far;
   rosc_publish_skin_stats(nd->pub_stats, &s);
 
   if (nd->p.marker_rate == 0.0) return;
@@ -422,6 +476,34 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   rosc_publish_marker(nd->pub_marker, &mk);
 }
 
+/* Puts the run settings in force where they differ from the skin's (its
+ * substeps, iterations and safety_residual: from the next step, nothing
+ * allocated). */
+static void apply_run(node *nd, const ss_sim_settings *run)
+{
+  const ss_sim_settings *cur = ss_sim_get_settings(nd->sim);
+  if (cur->substeps == run->substeps && cur->iterations == run->iterations &&
+      cur->safety_residual == run->safety_residual)
+    return;
+  ss_sim_settings want = *cur;
+  want.substeps = run->substeps;
+  want.iterations = run->iterations;
+  want.safety_residual = run->safety_residual;
+  char err[ERR_SZ] = "";
+  int recreate = 0;
+  if (ss_sim_set_settings(nd->sim, &want, &recreate, err, sizeof err) != SS_OK || recreate)
+    ROSC_WARN_THROTTLE(5.0, "step budget: cannot change substeps or iterations: %s", err);
+}
+
+/* The wall time a step may take, ms: ~step_budget, or the input's period (0: none
+ * yet, or none asked for). */
+static double step_budget_ms(const node *nd)
+{
+  if (nd->p.step_budget > 0.0) return 1e3 * nd->p.step_budget;
+  if (nd->p.step_budget < 0.0) return 0.0;
+  return 1e-3 * (double)nd->stream.period_us;
+}
+
 static void process(node *nd, const mailbox *b)
 {
   char err[ERR_SZ] = "";
@@ -439,6 +521,14 @@ static void process(node *nd, const mailbox *b)
     snprintf(why, sizeof why, "topology changed without a new topology_id (%s)", err);
     if (b->disc) nd->carry_disc = b->disc;
     reject(nd, "skin_sim.topology", why);
+    return;
+  }
+  if (b->nrigid && b->nrigid != b->npos / 3) {
+    char why[128];
+    snprintf(why, sizeof why, "rigid_part has %zu values for %zu vertices (0 or one a vertex)",
+             b->nrigid, b->npos / 3);
+    if (b->disc) nd->carry_disc = b->disc;
+    reject(nd, "skin_sim.rigid_part", why);
     return;
   }
   /* the step covers whole input periods since the skin's clock, in the substeps of
@@ -481,6 +571,14 @@ static void process(node *nd, const mailbox *b)
     size_t n3 = 3 * (size_t)nd->nvert;
     for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
     nsplit = plan.substeps;
+    /* the work in force: the budget's substeps and iterations; a step that
+     * catches up several periods gets no extra iterations for being late */
+    nd->budget_ms = step_budget_ms(nd);
+    ss_sim_settings run = nd->p.set;
+    run.substeps = nd->budget.substeps;
+    run.iterations = nd->budget.iterations;
+    if (plan.periods > 1) run.safety_residual = 0.0;
+    apply_run(nd, &run);
     for (int k = 1; k <= nsplit; k++) {
       const double *pose = nd->body;
       if (k < nsplit) {
@@ -519,6 +617,7 @@ static void process(node *nd, const mailbox *b)
     memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
     nd->skin_ns = plan.skin_ns;
     nd->prev_periods = plan.periods;
+    ss_sim_count_off_body(nd->sim, &nd->faces_turned, &nd->vertices_far);
   }
   /* SS_TIME_SAME: nothing to step; the state is published again */
   rosc_wall_now_s(&t1);
@@ -530,6 +629,17 @@ static void process(node *nd, const mailbox *b)
     if (ms > nd->step_ms_max) nd->step_ms_max = ms;
   }
   publish(nd, &b->header, &acc, 1e3 * (t1 - t0), acc.substeps);
+  if (kind == SS_TIME_STEP && nsplit > 0) {
+    /* the budget judges the whole of a step, publishing included */
+    double t2 = t1;
+    rosc_wall_now_s(&t2);
+    int before_s = nd->budget.substeps, before_i = nd->budget.iterations;
+    if (ss_budget_update(&nd->budget, 1e3 * (t2 - t0), nd->budget_ms))
+      ROSC_LOG_THROTTLE(ROSC_LOG_INFO, 1.0, "~step_budget %.1f ms: %d x %d -> %d substeps x %d "
+                        "iterations (the settings' %d x %d)", nd->budget_ms, before_s, before_i,
+                        nd->budget.substeps, nd->budget.iterations, nd->p.set.substeps,
+                        nd->p.set.iterations);
+  }
 }
 
 /* ------------------------------------------------------------------ services, health */
@@ -591,6 +701,8 @@ static void on_reconfigure(rosc_dr_value *v, const int *changed, size_t n, void 
                 refactor ? " (masses, springs and matrices rebuilt and refactored)" : "");
     }
   }
+  if (want.substeps != nd->p.set.substeps || want.iterations != nd->p.set.iterations)
+    ss_budget_init(&nd->budget, want.substeps, want.iterations);
   nd->p.set = want;
   for (size_t i = 0; i < n && i < (size_t)nset; i++) dr_value(&t[i], &nd->p.set, &v[i]);
 }
@@ -658,6 +770,7 @@ static void diagnose(node *nd)
   unsigned long nstep = nd->nstep_ms - nd->win.nstep_ms;
   w.step_ms_mean = nstep ? (nd->step_ms_sum - nd->win.step_ms_sum) / (double)nstep : 0.0;
   w.period_ms = 1e-3 * (double)nd->stream.period_us;
+  w.lowered = (uint32_t)(nd->budget.lowered_steps - nd->win.lowered);
   char msg[256];
   int level = ss_input_health(&w, msg, sizeof msg);
   char v[16][32];
@@ -665,7 +778,7 @@ static void diagnose(node *nd)
   snprintf(v[1], sizeof v[1], "%.2f", w.step_ms_mean);
   snprintf(v[2], sizeof v[2], "%.2f", nd->step_ms_max);
   snprintf(v[3], sizeof v[3], "%.2f", w.period_ms);
-  snprintf(v[4], sizeof v[4], "%.2f", SS_HEALTH_BUDGET * w.period_ms);
+  snprintf(v[4], sizeof v[4], "%.2f", nd->budget_ms);
   snprintf(v[5], sizeof v[5], "%u", (unsigned)w.arrived);
   snprintf(v[6], sizeof v[6], "%u", (unsigned)w.stepped);
   snprintf(v[7], sizeof v[7], "%u", (unsigned)w.rejected);
@@ -679,22 +792,36 @@ static void diagnose(node *nd)
    * computer: mostly one): how many of the window's skin steps ran on more */
   snprintf(v[14], sizeof v[14], "%lu of %lu", nd->steps_multi - nd->win.steps_multi,
            nd->steps - nd->win.steps);
-  rosc_kv kv[15 + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
+  char wv[6][64];
+  snprintf(wv[0], sizeof wv[0], "%d x %d of %d x %d", nd->budget.substeps, nd->budget.iterations,
+           nd->p.set.substeps, nd->p.set.iterations);
+  snprintf(wv[1], sizeof wv[1], "%u", (unsigned)w.lowered);
+  snprintf(wv[2], sizeof wv[2], "%d", nd->nface_sim);
+  snprintf(wv[3], sizeof wv[3], "%d", nd->nface_carried);
+  snprintf(wv[4], sizeof wv[4], "%d", nd->faces_turned);
+  snprintf(wv[5], sizeof wv[5], "%d", nd->vertices_far);
+  enum { NKV = 21 };
+  rosc_kv kv[NKV + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
                   {"step time max (ms)", v[2]}, {"input period (ms)", v[3]},
                   {"step budget (ms)", v[4]},   {"inputs received", v[5]},
                   {"inputs processed", v[6]},   {"inputs rejected", v[7]},
                   {"inputs dropped", v[8]},     {"inputs skipped", v[9]},
                   {"resets", v[10]},            {"failures", v[11]},
                   {"resets total", v[12]},      {"skin vertices", v[13]},
-                  {"skin steps on more than one thread", v[14]}};
+                  {"skin steps on more than one thread", v[14]},
+                  {"substeps x iterations in force", wv[0]},
+                  {"steps below the settings' work (budget)", wv[1]},
+                  {"triangles simulated", wv[2]}, {"triangles carried rigidly", wv[3]},
+                  {"skin faces turned against the body", wv[4]},
+                  {"skin vertices over an edge from the body", wv[5]}};
   /* the core's warnings over the skin's life (since it was last created) */
   char wkey[SS_NWARNING][48], wval[SS_NWARNING][24];
   const ss_warning *warn = nd->sim ? ss_sim_warnings(nd->sim) : NULL; /* no skin yet: 0 */
   for (int k = 0; k < SS_NWARNING; k++) {
     snprintf(wkey[k], sizeof wkey[k], "skin steps %s (since created)", ss_warning_name(k));
     snprintf(wval[k], sizeof wval[k], "%lld", warn ? warn[k].number : 0LL);
-    kv[15 + k].key = wkey[k];
-    kv[15 + k].value = wval[k];
+    kv[NKV + k].key = wkey[k];
+    kv[NKV + k].value = wval[k];
   }
   rosc_diag_update(nd->diag, level, msg, kv, sizeof kv / sizeof kv[0]);
   nd->win.in = nd->frames_in;
@@ -708,6 +835,7 @@ static void diagnose(node *nd)
   nd->win.failures = nd->failures;
   nd->win.steps = nd->steps;
   nd->win.steps_multi = nd->steps_multi;
+  nd->win.lowered = nd->budget.lowered_steps;
   nd->step_ms_max = 0.0;
 }
 

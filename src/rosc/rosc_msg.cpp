@@ -74,13 +74,15 @@ template <> struct Msg<rosc_skin_mesh> {
   using Cb = rosc_skin_mesh_cb;
   static int to_ros(const rosc_skin_mesh &c, Ros &m)
   {
-    if (!array_ok(c.positions, c.n_positions) || !array_ok(c.triangles, c.n_triangles))
+    if (!array_ok(c.positions, c.n_positions) || !array_ok(c.triangles, c.n_triangles) ||
+        !array_ok(c.rigid_part, c.n_rigid_part))
       return ROSC_E_INVALID;
     int st = header_to_ros(c.header, m.header);
     if (st != ROSC_OK) return st;
     m.topology_id = c.topology_id;
     assign_array(m.positions, c.positions, c.n_positions);
     assign_array(m.triangles, c.triangles, c.n_triangles);
+    assign_array(m.rigid_part, c.rigid_part, c.n_rigid_part);
     return ROSC_OK;
   }
   static const char *from_ros(const Ros &m, rosc_skin_mesh &c, rosc_sub &)
@@ -91,6 +93,8 @@ template <> struct Msg<rosc_skin_mesh> {
     c.n_positions = m.positions.size();
     c.triangles = m.triangles.data();
     c.n_triangles = m.triangles.size();
+    c.rigid_part = m.rigid_part.data();
+    c.n_rigid_part = m.rigid_part.size();
     return nullptr;
   }
 };
@@ -115,6 +119,12 @@ void copy_stats(const A &a, B &b)
   b.inputs_skipped = a.inputs_skipped;
   b.failures = a.failures;
   b.latency_ms = a.latency_ms;
+  b.triangles_simulated = a.triangles_simulated;
+  b.triangles_carried = a.triangles_carried;
+  b.iterations_per_substep = a.iterations_per_substep;
+  b.step_budget_ms = a.step_budget_ms;
+  b.faces_turned = a.faces_turned;
+  b.vertices_far = a.vertices_far;
 }
 
 template <> struct Msg<rosc_skin_stats> {

@@ -301,7 +301,7 @@ static void test_time_wild(void)
 static void test_health(void)
 {
   char msg[128];
-  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3};
+  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3, 0};
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
   CHECK(strcmp(msg, "stepping normally") == 0);
   w.step_ms_mean = 30.0; /* over 80% of the period */
@@ -322,6 +322,10 @@ static void test_health(void)
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
   CHECK(strstr(msg, "reset 1") != NULL);
   w.resets = 0;
+  w.lowered = 12; /* a step budget traded accuracy for time */
+  CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "accuracy traded for time: 12 of 30") != NULL);
+  w.lowered = 0;
   w.rejected = 3; /* some rejected, some stepped */
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_WARN);
   CHECK(strstr(msg, "3 inputs rejected") != NULL);
@@ -333,7 +337,7 @@ static void test_health(void)
   w.failures = 1; /* a failure outranks everything */
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_ERROR);
   CHECK(strstr(msg, "failed") != NULL);
-  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0};
+  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0};
   CHECK(ss_input_health(&none, NULL, 0) == SS_HEALTH_WARN);
   CHECK(ss_input_health(&none, msg, sizeof msg) == SS_HEALTH_WARN);
   CHECK(strstr(msg, "no kinematic_mesh") != NULL);

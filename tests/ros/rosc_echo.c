@@ -120,6 +120,8 @@ typedef struct mesh_copy {
   size_t npos;
   uint32_t *tri;
   size_t ntri;
+  uint32_t *rigid;
+  size_t nrigid;
 } mesh_copy;
 
 typedef struct joints_copy {
@@ -154,11 +156,14 @@ static void mesh_copy_set(mesh_copy *c, const rosc_skin_mesh *m)
   c->pos = dup_bytes(m->positions, m->n_positions * sizeof(float));
   c->ntri = m->n_triangles;
   c->tri = dup_bytes(m->triangles, m->n_triangles * sizeof(uint32_t));
+  c->nrigid = m->n_rigid_part;
+  c->rigid = dup_bytes(m->rigid_part, m->n_rigid_part * sizeof(uint32_t));
 }
 static void mesh_copy_free(mesh_copy *c)
 {
   free(c->pos);
   free(c->tri);
+  free(c->rigid);
 }
 
 static void joints_copy_set(joints_copy *c, const rosc_joint_state *m)
@@ -317,6 +322,11 @@ static void make_messages(outbox *o)
     m->npos = 3 * nv;
     m->tri = tri;
     m->ntri = 3 * nt;
+    /* rigid_part: one a vertex in odd sets, none (unknown) in even ones */
+    m->nrigid = i % 2 ? nv : 0;
+    m->rigid = malloc((nv > 0 ? nv : 1) * sizeof(uint32_t));
+    if (m->rigid == NULL) abort();
+    for (size_t v = 0; v < nv; ++v) m->rigid[v] = (uint32_t)(v % 3 == 0 ? 0u : 1u + v % 7);
 
     /* SkinStats */
     rosc_skin_stats *s = &o->stats[i];
@@ -338,6 +348,12 @@ static void make_messages(outbox *o)
     s->inputs_skipped = 7u * (uint32_t)i + 1u;
     s->failures = 4294967294u - (uint32_t)i;
     s->latency_ms = 0.5f + 3.25f * (float)i;
+    s->triangles_simulated = 19000u + (uint32_t)i;
+    s->triangles_carried = 4294967295u - 3u * (uint32_t)i;
+    s->iterations_per_substep = 2u + (uint32_t)i;
+    s->step_budget_ms = 33.3f + (float)i;
+    s->faces_turned = 11u * (uint32_t)i;
+    s->vertices_far = 13u * (uint32_t)i + 1u;
 
     /* JointState: names (UTF-8, empty name), arrays of different lengths */
     joints_copy *j = &o->joints[i];
@@ -415,12 +431,15 @@ static int publish_all(outbox *o, int i, rosc_pub *pm, rosc_pub *ps, rosc_pub *p
 {
   int st = 0;
   rosc_skin_mesh m;
+  memset(&m, 0, sizeof m);
   m.header = o->mesh[i].h;
   m.topology_id = o->mesh[i].topo;
   m.positions = o->mesh[i].pos;
   m.n_positions = o->mesh[i].npos;
   m.triangles = o->mesh[i].tri;
   m.n_triangles = o->mesh[i].ntri;
+  m.rigid_part = o->mesh[i].nrigid ? o->mesh[i].rigid : NULL;
+  m.n_rigid_part = o->mesh[i].nrigid;
   st |= rosc_publish_skin_mesh(pm, &m);
   st |= rosc_publish_skin_stats(ps, &o->stats[i]);
   rosc_joint_state j;
@@ -468,6 +487,9 @@ static void compare(const char *path, const outbox *o, const inbox *b)
               "%s: mesh %d positions (%zu vs %zu floats)", path, i, s->npos, r->npos);
     CHECK_MSG(s->ntri == r->ntri && same_bytes(s->tri, r->tri, s->ntri * sizeof(uint32_t)),
               "%s: mesh %d triangles", path, i);
+    CHECK_MSG(s->nrigid == r->nrigid &&
+              same_bytes(s->rigid, r->rigid, s->nrigid * sizeof(uint32_t)),
+              "%s: mesh %d rigid_part (%zu vs %zu values)", path, i, s->nrigid, r->nrigid);
   }
   for (int i = 0; i < b->n_stats; ++i) {
     rosc_skin_stats s = o->stats[i], r = b->stats[i];

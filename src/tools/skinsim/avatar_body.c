@@ -12,6 +12,7 @@ int avatar_args_given(const avatar_args *a) {
 }
 
 #ifdef SS_HAVE_AVATAR
+#include "skin_sim/ss_mesh.h"
 #include "skin_sim/ssa_avatar.h"
 
 #define AVATAR_FPS 30.0
@@ -25,6 +26,7 @@ struct avatar_body {
   double *q_rest;      /* (robot njoint) the joints at frame 0 */
   int anim;            /* asset animation, or -1 */
   unsigned char *face_mask;
+  int carried;         /* skin faces of pieces carried rigidly (not simulated) */
   double *rest;        /* (nvert x 3) the pose of frame 0: where the skin starts */
 };
 
@@ -166,6 +168,35 @@ static int open_region(avatar_body *ab, const char *region, char *err, int err_s
   return status;
 }
 
+/* Skin pieces that move rigidly with one link or bone (a robot's visual
+ * meshes) are carried with it instead of simulated (ss_mesh_rigid_pieces),
+ * within --region's mask. */
+static int carry_rigid(avatar_body *ab, char *err, int err_sz) {
+  const int nv = ab->av->nvert, nf = ab->av->nface;
+  uint32_t *part = malloc(sizeof(uint32_t) * (size_t)nv);
+  unsigned char *mask = ab->face_mask ? ab->face_mask : malloc((size_t)nf);
+  ss_weld *weld = NULL;
+  int status = part && mask ? SS_OK : SS_E_NOMEM;
+  if (!ab->face_mask && mask) memset(mask, 1, (size_t)nf);
+  if (!status && ssa_avatar_rigid_parts(ab->av, part) > 0) {
+    status = ss_weld_create(&weld, nv, ab->rest, nf, ab->av->faces, -1.0, err, err_sz);
+    ss_rigid_count count = {0, 0, 0};
+    if (!status)
+      status = ss_mesh_rigid_pieces(nv, nf, ab->av->faces, weld->vert_weld, part, mask, &count);
+    ab->carried = count.nface_carried;
+  }
+  if (status == SS_E_NOMEM) snprintf(err, (size_t)err_sz, "out of memory");
+  if (mask && !ab->face_mask) {
+    if (!status && ab->carried > 0) ab->face_mask = mask;
+    else free(mask);
+  }
+  ss_weld_destroy(weld);
+  free(part);
+  return status;
+}
+
+int avatar_body_carried(const avatar_body *ab) { return ab ? ab->carried : 0; }
+
 int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
                      const unsigned char **face_mask, char *err, int err_sz) {
   *out = NULL;
@@ -255,6 +286,7 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
     if (status) snprintf(err, (size_t)err_sz, "posing the avatar at time 0 failed (%s)",
                          ss_status_string(status));
   }
+  if (!status) status = carry_rigid(ab, err, err_sz);
   if (status) {
     avatar_body_close(ab);
     return status;
@@ -284,4 +316,5 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   return SS_E_UNSUPPORTED;
 }
 void avatar_body_close(avatar_body *ab) { (void)ab; }
+int avatar_body_carried(const avatar_body *ab) { (void)ab; return 0; }
 #endif

@@ -9,7 +9,7 @@
 typedef struct avatar_args {
   const char *avatar;       /* "demo" (the built-in mannequin) or NULL */
   const char *urdf, *mesh;  /* a URDF, and optionally its body mesh */
-  const char *motion;       /* a CSV file, or a built-in motion name (arms, elbows, twist, all) */
+  const char *motion;       /* a CSV file, or a built-in motion name (arms, elbows, twist, all, sweep) */
   const char *asset;        /* a rigged character file */
   const char *anim;         /* its animation: name or index (default 0) */
   const char *region;       /* comma-separated links (or asset nodes) to simulate; NULL: all */
@@ -38,5 +38,9 @@ int avatar_args_given(const avatar_args *args);
 int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
                      const unsigned char **face_mask, char *err, int err_sz);
 void avatar_body_close(avatar_body *ab);
+/* Skin faces carried rigidly with their link or bone rather than simulated:
+ * the pieces whose vertices all move with one (ss_mesh_rigid_pieces), left
+ * out of *face_mask. */
+int avatar_body_carried(const avatar_body *ab);
 
 #endif

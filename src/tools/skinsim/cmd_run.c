@@ -199,6 +199,7 @@ int cmd_run(int argc, char **argv) {
   measure_result res;
   int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, truth, out_dir ? write_frame : NULL,
                            &writer, progress_update, &bar, &res, err, sizeof err);
+  res.st.triangles_carried = avatar_body_carried(ab);
   const ss_run_stats st = res.st;
   progress_end(&bar);
   ss_scene_destroy(scene);
@@ -230,10 +231,12 @@ int cmd_run(int argc, char **argv) {
            100.0 * st.walk_share, st.iterations_mean, st.snags, st.failures, st.hug_rms,
            st.hug_max, st.min_area_ratio, st.max_area_ratio, st.final_hash);
   if (!json_path || strcmp(json_path, "-") != 0)
-    printf("inverted faces max %d (%d more over body folds; body faces folded max %d), inside "
-           "max %.3f edges, slide max %.3f edges (%.4g m)\n",
-           st.inverted_faces_max, st.inverted_over_folds_max, st.body_folds_max, st.inside_max,
-           st.slide_max, st.slide_max_m);
+    printf("inverted faces max %d (%d more over body folds; body faces folded max %d; turned "
+           "plainly max %d), inside max %.3f edges, slide max %.3f edges (%.4g m), vertices over "
+           "an edge from the body max %d; triangles %d simulated, %d carried rigidly\n",
+           st.inverted_faces_max, st.inverted_over_folds_max, st.body_folds_max,
+           st.faces_turned_max, st.inside_max, st.slide_max, st.slide_max_m, st.hug_far_max,
+           st.region_faces, st.triangles_carried);
   if (s.settle > 0.0 && (!json_path || strcmp(json_path, "-") != 0))
     printf("rest return after %.3g s settle (%d frames): rms %.4f max %.4f edges (%.4g m), "
            "anchors at most %.4f edges from home\n",

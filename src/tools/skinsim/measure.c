@@ -142,6 +142,10 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_num(j, "mean_edge_length", st->mean_edge_length);
   json_int(j, "inverted_faces_max", st->inverted_faces_max);
   json_int(j, "inverted_over_folds_max", st->inverted_over_folds_max);
+  json_int(j, "faces_turned_max", st->faces_turned_max);
+  json_int(j, "hug_far_max", st->hug_far_max);
+  json_int(j, "triangles_simulated", st->region_faces);
+  json_int(j, "triangles_carried", st->triangles_carried);
   json_int(j, "body_folds_max", st->body_folds_max);
   json_num(j, "inside_max", st->inside_max);
   json_num(j, "slide_max", st->slide_max);
