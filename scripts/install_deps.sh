@@ -15,7 +15,7 @@ PKGS=(
   clang libclang-rt-14-dev
   libdiagnostic-updater-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
-  python3-rosdep2 python3-diagnostic-updater
+  python3-rosdep2 python3-diagnostic-updater python3-tf2-msgs
 )
 # rosdep: skin_sim's keys Debian's rosdep database lacks (assimp, suitesparse) or maps to
 # development packages it does not need (rviz, robot_state_publisher), listed before

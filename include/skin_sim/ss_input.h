@@ -133,9 +133,34 @@ double ss_input_slide(int n, const int *face, const double *uv, const int *face0
                       const double *uv0, const double *body_pos, int body_nvert,
                       const int *body_faces, int body_nface, double *out);
 
-/* A colour for a slide distance d: blue (0) through green to red (d >= scale),
- * opaque; rgba gets 4 floats in [0, 1]. scale <= 0 or d not finite: blue. */
+/* A colour for a slide distance d: light blue (0) through green to red (d >= scale),
+ * each hue a third white, opaque; rgba gets 4 floats in [0, 1]. scale <= 0 or d not
+ * finite: blue. */
 void ss_input_slide_color(double d, double scale, float rgba[4]);
+
+/* A colour for how a piece of skin's area compares with its rest area (ratio = now /
+ * rest): blue where compressed (fully at half its rest area or less), light grey at
+ * rest, red where stretched (fully at twice or more); opaque. ratio <= 0 or not finite:
+ * grey. */
+void ss_input_stretch_color(double ratio, float rgba[4]);
+
+/* Each vertex's area ratio: the area of the faces around it now over their area at rest
+ * (pos, rest: nvert x 3; faces: nface x 3; ratio: nvert; area: nvert x 2 scratch). A
+ * vertex in no face, or whose faces have no rest area, gets 1. */
+void ss_input_vertex_area_ratio(int nvert, const double *pos, const double *rest, int nface,
+                                const int *faces, double *area, double *ratio);
+
+/* Shades colours so that a mesh's shape reads in a viewer that does not light it (rviz
+ * draws a TRIANGLE_LIST marker unlit): each vertex's rgb (rgba: nvert x 4, alpha kept) is
+ * multiplied by a light term from its normal (the area-weighted normal of its faces;
+ * normal: nvert x 3 scratch) and a fixed light from above, in front and a little to the
+ * side (+x, -y, +z of the mesh's frame, SS_SHADE_LIGHT): 1 facing the light, down to
+ * SS_SHADE_AMBIENT facing away (half-Lambert, squared). A vertex in no face keeps its
+ * colour. pos: nvert x 3; faces: nface x 3. */
+#define SS_SHADE_LIGHT {1.0, -0.6, 0.8}
+#define SS_SHADE_AMBIENT 0.25
+void ss_input_shade(int nvert, const double *pos, int nface, const int *faces, double *normal,
+                    float *rgba);
 
 /* ---- health over a window (for /diagnostics) -------------------------------
  *

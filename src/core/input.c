@@ -4,6 +4,7 @@
  * node, which rejects a bad SkinMesh before it reaches ss_sim, and for any
  * other caller receiving meshes as float arrays. */
 #include "skin_sim/ss_input.h"
+#include "ss_vec.h"
 
 #include <limits.h>
 #include <math.h>
@@ -238,14 +239,93 @@ void ss_input_slide_color(double d, double scale, float rgba[4])
   double t = (scale > 0.0 && isfinite(d)) ? d / scale : 0.0;
   if (t < 0.0) t = 0.0;
   if (t > 1.0) t = 1.0;
-  /* blue -> green -> red; a little grey keeps the skin's shading readable */
+  /* blue -> green -> red, light (a third white) so that shading (ss_input_shade) reads
+   * on every hue: saturated blue is too dark to show it */
   double r, g, b;
   if (t < 0.5) { r = 0.0; g = 2.0 * t; b = 1.0 - 2.0 * t; }
   else { r = 2.0 * t - 1.0; g = 2.0 - 2.0 * t; b = 0.0; }
-  rgba[0] = (float)(0.15 + 0.85 * r);
-  rgba[1] = (float)(0.15 + 0.85 * g);
-  rgba[2] = (float)(0.15 + 0.85 * b);
+  rgba[0] = (float)(0.35 + 0.65 * r);
+  rgba[1] = (float)(0.35 + 0.65 * g);
+  rgba[2] = (float)(0.35 + 0.65 * b);
   rgba[3] = 1.0f;
+}
+
+void ss_input_stretch_color(double ratio, float rgba[4])
+{
+  /* log2 of the ratio: -1 (half the area) blue, 0 grey, +1 (twice) red */
+  double t = (ratio > 0.0 && isfinite(ratio)) ? log2(ratio) : 0.0;
+  if (t < -1.0) t = -1.0;
+  if (t > 1.0) t = 1.0;
+  const double grey = 0.8;
+  double r = grey, g = grey, b = grey;
+  if (t < 0.0) { r = grey * (1.0 + t); g = r; b = grey + (1.0 - grey) * -t; }
+  else { r = grey + (1.0 - grey) * t; g = grey * (1.0 - t); b = g; }
+  rgba[0] = (float)r;
+  rgba[1] = (float)g;
+  rgba[2] = (float)b;
+  rgba[3] = 1.0f;
+}
+
+/* The area vector of triangle (a, b, c): half the cross product of its edges. */
+static void tri_area_vec(const double *a, const double *b, const double *c, double out[3])
+{
+  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  out[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
+  out[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
+  out[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
+}
+
+static int face_ok(const int *f, int nvert)
+{
+  return f[0] >= 0 && f[1] >= 0 && f[2] >= 0 && f[0] < nvert && f[1] < nvert && f[2] < nvert;
+}
+
+void ss_input_vertex_area_ratio(int nvert, const double *pos, const double *rest, int nface,
+                                const int *faces, double *area, double *ratio)
+{
+  for (int v = 0; v < 2 * nvert; v++) area[v] = 0.0;
+  for (int f = 0; f < nface; f++) {
+    const int *t = faces + 3 * (size_t)f;
+    if (!face_ok(t, nvert)) continue;
+    double a[3], a0[3];
+    tri_area_vec(pos + 3 * (size_t)t[0], pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[2], a);
+    tri_area_vec(rest + 3 * (size_t)t[0], rest + 3 * (size_t)t[1], rest + 3 * (size_t)t[2], a0);
+    double now = sqrt(dot3(a, a)), at_rest = sqrt(dot3(a0, a0));
+    for (int k = 0; k < 3; k++) {
+      area[2 * (size_t)t[k]] += now;
+      area[2 * (size_t)t[k] + 1] += at_rest;
+    }
+  }
+  for (int v = 0; v < nvert; v++) {
+    double now = area[2 * (size_t)v], at_rest = area[2 * (size_t)v + 1];
+    ratio[v] = at_rest > 0.0 && isfinite(now / at_rest) ? now / at_rest : 1.0;
+  }
+}
+
+void ss_input_shade(int nvert, const double *pos, int nface, const int *faces, double *normal,
+                    float *rgba)
+{
+  const double light_in[3] = SS_SHADE_LIGHT;
+  double len = sqrt(dot3(light_in, light_in));
+  const double light[3] = {light_in[0] / len, light_in[1] / len, light_in[2] / len};
+  for (size_t i = 0; i < 3 * (size_t)nvert; i++) normal[i] = 0.0;
+  for (int f = 0; f < nface; f++) {
+    const int *t = faces + 3 * (size_t)f;
+    if (!face_ok(t, nvert)) continue;
+    double a[3];
+    tri_area_vec(pos + 3 * (size_t)t[0], pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[2], a);
+    for (int k = 0; k < 3; k++)
+      for (int d = 0; d < 3; d++) normal[3 * (size_t)t[k] + d] += a[d];
+  }
+  for (int v = 0; v < nvert; v++) {
+    const double *n = normal + 3 * (size_t)v;
+    double nn = sqrt(dot3(n, n));
+    if (!(nn > 0.0) || !isfinite(nn)) continue;
+    double h = 0.5 + 0.5 * dot3(n, light) / nn; /* half-Lambert: 0 facing away, 1 facing */
+    double shade = SS_SHADE_AMBIENT + (1.0 - SS_SHADE_AMBIENT) * h * h;
+    for (int c = 0; c < 3; c++) rgba[4 * (size_t)v + c] = (float)(shade * rgba[4 * (size_t)v + c]);
+  }
 }
 
 /* ------------------------------------------------------------------ health */

@@ -3,8 +3,10 @@
  * Subscribes kinematic_mesh (skin_sim/SkinMesh, the moving body), steps an
  * ss_sim for the time between stamps and publishes, with the input's stamp and
  * frame: skin_mesh (SkinMesh), skin_stats (SkinStats) and, at ~marker_rate,
- * skin_marker (visualization_msgs/Marker TRIANGLE_LIST coloured by how far
- * the skin has slid from where it was bound).
+ * skin_marker (visualization_msgs/Marker TRIANGLE_LIST for rviz, coloured by
+ * ~marker_color: how far the skin has slid from where it was bound, how far it
+ * is stretched, or one colour; shaded from its normals, as rviz draws such a
+ * marker unlit).
  *
  * The skin is the received body welded at ~weld_tol (seam copies are one skin
  * vertex), published in the body's own vertex layout, every copy from its
@@ -55,6 +57,8 @@ typedef struct params {
   int max_split;
   double marker_rate; /* Hz; 0 off; < 0 every frame */
   double slide_scale; /* m: red at this slide */
+  int marker_color;   /* MARKER_SLIDE, MARKER_STRETCH or MARKER_ONE (~marker_color) */
+  float marker_rgb[3];/* MARKER_ONE: the colour */
   int queue_size;
   int have_box;
   double box[6];      /* xmin ymin zmin xmax ymax zmax */
@@ -63,6 +67,9 @@ typedef struct params {
   double step_budget; /* s: 0 the input's period; < 0 none (the settings' substeps and
                          iterations always) */
 } params;
+
+/* ~marker_color: what colours skin_marker */
+enum { MARKER_SLIDE = 0, MARKER_STRETCH = 1, MARKER_ONE = 2 };
 
 typedef struct mailbox {
   rosc_header header;
@@ -109,6 +116,8 @@ typedef struct node {
   double *body, *body_prev, *body_sub; /* (nvert x 3) */
   float *pos_out;         /* (nvert x 3) */
   float *mk_pts, *mk_col; /* (nface x 3 x 3), (nface x 3 x 4) */
+  float *mk_vcol;         /* (nweld x 4) colour of each skin vertex; NULL until a marker */
+  double *mk_work;        /* (nweld x 3) normals, area sums */
   ss_input_stream stream; /* every arrival: seq gaps, the input's period, real jumps */
   int64_t skin_ns;        /* the skin's clock (whole input periods from its creation) */
   int prev_periods;       /* input periods of the last step (0: none since creation) */
@@ -164,6 +173,21 @@ static int get_params(params *p)
   ok &= get_int("~max_split", &p->max_split, 8);
   ok &= get_double("~marker_rate", &p->marker_rate, 10.0);
   ok &= get_double("~slide_scale", &p->slide_scale, 0.05);
+  ok &= get_string("~marker_color", buf, sizeof buf, "slide");
+  p->marker_color = MARKER_SLIDE;
+  if (strcmp(buf, "stretch") == 0) {
+    p->marker_color = MARKER_STRETCH;
+  } else if (strcmp(buf, "slide") != 0) {
+    float *c = p->marker_rgb;
+    char tail = 0;
+    if (sscanf(buf, "%f %f %f %c", c, c + 1, c + 2, &tail) != 3 || !(c[0] >= 0.0f && c[0] <= 1.0f) ||
+        !(c[1] >= 0.0f && c[1] <= 1.0f) || !(c[2] >= 0.0f && c[2] <= 1.0f)) {
+      ROSC_ERROR("~marker_color: '%s' is not slide, stretch or a colour 'R G B' (each in [0, 1])",
+                 buf);
+      ok = 0;
+    }
+    p->marker_color = MARKER_ONE;
+  }
   ok &= get_int("~queue_size", &p->queue_size, 1);
   ok &= get_double("~step_budget", &p->step_budget, 0.0);
   if (!isfinite(p->step_budget)) {
@@ -259,10 +283,10 @@ static void free_sim(node *nd)
   free(nd->carried);
   nd->carried = NULL;
   free(nd->slide); free(nd->body); free(nd->body_prev); free(nd->body_sub);
-  free(nd->pos_out); free(nd->mk_pts); free(nd->mk_col);
+  free(nd->pos_out); free(nd->mk_pts); free(nd->mk_col); free(nd->mk_vcol); free(nd->mk_work);
   nd->faces = NULL; nd->tri_out = NULL; nd->mask = NULL; nd->face0 = NULL; nd->uv0 = NULL;
   nd->slide = NULL; nd->body = NULL; nd->body_prev = NULL; nd->body_sub = NULL;
-  nd->pos_out = NULL; nd->mk_pts = NULL; nd->mk_col = NULL;
+  nd->pos_out = NULL; nd->mk_pts = NULL; nd->mk_col = NULL; nd->mk_vcol = NULL; nd->mk_work = NULL;
   nd->nvert = nd->nface = nd->nanchor = 0;
 }
 
@@ -379,6 +403,8 @@ static int create_sim(node *nd, const mailbox *b)
 }
 
 /* ------------------------------------------------------------------ output */
+static void publish_marker(node *nd, const rosc_header *hdr);
+
 static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc,
                     double total_ms, int substeps)
 {
@@ -455,13 +481,52 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   rosc_pub_num_subscribers(nd->pub_marker, &nsub);
   if (nsub == 0) return;
   nd->last_marker_wall = now;
+  publish_marker(nd, hdr);
+}
+
+/* skin_marker: the skin as a TRIANGLE_LIST in the body's layout, a colour per corner.
+ * Colours are made per skin (welded) vertex, so every seam copy gets its vertex's:
+ * ~marker_color's colour times a light term from the vertex's normal (rviz draws the
+ * marker unlit; without it the skin is a flat silhouette). */
+static void publish_marker(node *nd, const rosc_header *hdr)
+{
+  int nw = nd->nweld;
+  if (!nd->mk_vcol) { /* once per skin; freed with it (free_sim) */
+    nd->mk_vcol = malloc(4 * (size_t)nw * sizeof(float));
+    nd->mk_work = malloc(3 * (size_t)nw * sizeof(double));
+    if (!nd->mk_vcol || !nd->mk_work) {
+      free(nd->mk_vcol); free(nd->mk_work);
+      nd->mk_vcol = NULL; nd->mk_work = NULL;
+      ROSC_ERROR_THROTTLE(5.0, "out of memory for skin_marker's colours (%d vertices)", nw);
+      return;
+    }
+  }
+  const double *x = ss_sim_skin_positions(nd->sim);
+  const int *skin_faces = ss_sim_skin_faces(nd->sim); /* the body's faces, welded */
+  float *vc = nd->mk_vcol;
+  if (nd->p.marker_color == MARKER_STRETCH) {
+    double *ratio = nd->mk_work + 2 * (size_t)nw; /* the last third; area sums the first two */
+    ss_input_vertex_area_ratio(nw, x, ss_sim_skin_rest(nd->sim), nd->nface, skin_faces,
+                               nd->mk_work, ratio);
+    for (int w = 0; w < nw; w++) ss_input_stretch_color(ratio[w], vc + 4 * (size_t)w);
+  } else {
+    for (int w = 0; w < nw; w++) {
+      float *c = vc + 4 * (size_t)w;
+      if (nd->p.marker_color == MARKER_ONE) {
+        c[0] = nd->p.marker_rgb[0]; c[1] = nd->p.marker_rgb[1]; c[2] = nd->p.marker_rgb[2];
+        c[3] = 1.0f;
+      } else { /* vertex anchors come first: anchor w belongs to skin vertex w */
+        ss_input_slide_color(nd->slide[w], nd->p.slide_scale, c);
+      }
+    }
+  }
+  ss_input_shade(nw, x, nd->nface, skin_faces, nd->mk_work, vc);
   for (int f = 0; f < nd->nface; f++) {
     for (int k = 0; k < 3; k++) {
       int v = nd->faces[3 * f + k];
       size_t c = 3 * (size_t)f + (size_t)k;
       for (int d = 0; d < 3; d++) nd->mk_pts[3 * c + d] = nd->pos_out[3 * (size_t)v + d];
-      /* vertex anchors come first: anchor w belongs to skin (welded) vertex w */
-      ss_input_slide_color(nd->slide[nd->vert_weld[v]], nd->p.slide_scale, nd->mk_col + 4 * c);
+      memcpy(nd->mk_col + 4 * c, vc + 4 * (size_t)nd->vert_weld[v], 4 * sizeof(float));
     }
   }
   rosc_marker mk;

@@ -91,14 +91,63 @@ static void test_slide(void)
   CHECK_NEAR(worst, sqrt(0.3125), 1e-12);
   CHECK(ss_input_slide(0, NULL, NULL, NULL, NULL, body, 4, faces, 2, NULL) == 0.0);
   float c[4];
-  ss_input_slide_color(0.0, 0.02, c);
-  CHECK(c[2] > 0.9f && c[0] < 0.2f && c[3] == 1.0f);
-  ss_input_slide_color(0.05, 0.02, c);
-  CHECK(c[0] > 0.9f && c[2] < 0.2f);
+  ss_input_slide_color(0.0, 0.02, c); /* blue, a third white */
+  CHECK(c[2] > 0.99f && fabsf(c[0] - 0.35f) < 1e-6f && c[0] == c[1] && c[3] == 1.0f);
+  ss_input_slide_color(0.01, 0.02, c); /* half the scale: green */
+  CHECK(c[1] > 0.99f && c[0] == c[2] && c[0] < 0.36f);
+  ss_input_slide_color(0.05, 0.02, c); /* beyond the scale: red */
+  CHECK(c[0] > 0.99f && fabsf(c[2] - 0.35f) < 1e-6f && c[1] == c[2]);
   ss_input_slide_color(NAN, 0.02, c);
   CHECK(c[2] > 0.9f);
   ss_input_slide_color(0.01, 0.0, c);
   CHECK(c[2] > 0.9f);
+}
+
+/* The marker's colours: stretch, area ratios and the light term that makes the shape read */
+static void test_marker_colors(void)
+{
+  float c[4];
+  ss_input_stretch_color(1.0, c); /* at rest: grey */
+  CHECK(fabsf(c[0] - c[1]) < 1e-6f && fabsf(c[1] - c[2]) < 1e-6f && c[0] > 0.5f && c[3] == 1.0f);
+  ss_input_stretch_color(2.0, c); /* twice its area: red */
+  CHECK(c[0] > 0.99f && c[1] < 0.01f && c[2] < 0.01f);
+  ss_input_stretch_color(0.25, c); /* below half: blue */
+  CHECK(c[2] > 0.99f && c[0] < 0.01f);
+  ss_input_stretch_color(0.0, c);
+  CHECK(fabsf(c[0] - c[2]) < 1e-6f);
+  ss_input_stretch_color(NAN, c);
+  CHECK(fabsf(c[0] - c[2]) < 1e-6f);
+
+  /* two triangles of a unit square; the second stretched to twice its area; vertex 4 in no face */
+  const double rest[15] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 5, 5, 5};
+  const double pos[15] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 2, 0, 5, 5, 5};
+  const int faces[6] = {0, 1, 2, 0, 2, 3};
+  double area[10], ratio[5];
+  ss_input_vertex_area_ratio(5, pos, rest, 2, faces, area, ratio);
+  CHECK_NEAR(ratio[1], 1.0, 1e-12);  /* only in the first face */
+  CHECK_NEAR(ratio[3], 2.0, 1e-12);  /* only in the second */
+  CHECK_NEAR(ratio[0], 1.5, 1e-12);  /* both: (0.5 + 1) / (0.5 + 0.5) */
+  CHECK_NEAR(ratio[4], 1.0, 1e-12);  /* in no face */
+
+  /* shading: a face towards the light is brighter than one away from it, never black,
+   * never brighter than its colour; a vertex in no face keeps its colour */
+  const double tri[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 9, 9, 9};
+  const int up[3] = {0, 1, 2}, down[3] = {0, 2, 1};
+  float rgba[16];
+  double nrm[12];
+  for (int i = 0; i < 16; i++) rgba[i] = 0.5f;
+  ss_input_shade(4, tri, 1, up, nrm, rgba);
+  float lit = rgba[0];
+  CHECK(lit > 0.3f && lit <= 0.5f && rgba[3] == 0.5f && rgba[12] == 0.5f);
+  CHECK(rgba[0] == rgba[4] && rgba[4] == rgba[8]); /* one normal: one shade */
+  for (int i = 0; i < 16; i++) rgba[i] = 0.5f;
+  ss_input_shade(4, tri, 1, down, nrm, rgba);
+  CHECK(rgba[0] < lit && rgba[0] >= (float)(0.5 * SS_SHADE_AMBIENT) - 1e-6f);
+  /* a degenerate face: colours unchanged */
+  const double flat[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0};
+  for (int i = 0; i < 12; i++) rgba[i] = 0.5f;
+  ss_input_shade(3, flat, 1, up, nrm, rgba);
+  CHECK(rgba[0] == 0.5f && rgba[4] == 0.5f);
 }
 
 /* A regular 30 Hz stream (stamps rounded to ns: 33333333 or 33333334 apart) */
@@ -268,6 +317,7 @@ int main(void)
   test_time();
   test_split();
   test_slide();
+  test_marker_colors();
   test_stream();
   test_plan();
   test_time_wild();

@@ -28,5 +28,12 @@ check "demo.launch use_gui:=true: joint_state_publisher_gui instead of the motio
 check "record.launch bag:=x.bag" "[ \"\$(nodes '$src/launch/record.launch' bag:=/tmp/x.bag)\" = '/record ' ]"
 check "replay.launch bag:=x.bag: skin node and player" \
   "[ \"\$(nodes '$src/launch/replay.launch' bag:=/tmp/x.bag)\" = '/skin_sim /play ' ]"
+u="$src/urdf/mannequin.urdf"
+check "robot.launch urdf:=X: joint_state_publisher_gui, robot_state_publisher, avatar, skin_sim, rviz" \
+  "[ \"\$(nodes '$src/launch/robot.launch' urdf:=$u)\" = '/joint_state_publisher_gui /robot_state_publisher /avatar /skin_sim /rviz ' ]"
+check "robot.launch urdf:=X rviz:=false: joint_state_publisher instead of the sliders, no rviz" \
+  "[ \"\$(nodes '$src/launch/robot.launch' urdf:=$u rviz:=false)\" = '/joint_state_publisher /robot_state_publisher /avatar /skin_sim ' ]"
+check "robot.launch urdf:=X joints:=none: the robot's own joint_states" \
+  "[ \"\$(nodes '$src/launch/robot.launch' urdf:=$u joints:=none)\" = '/robot_state_publisher /avatar /skin_sim /rviz ' ]"
 check "skin.launch" "[ \"\$(nodes '$src/launch/skin.launch')\" = '/skin_sim ' ]"
 exit $fail

@@ -49,6 +49,8 @@ refused skin_split_dbl "~max_split must be an int, but is the double 2.5" "$skin
 refused skin_queue0 "~queue_size = 0 is out of range \[1, 1000\]" "$skin" _queue_size:=0
 refused skin_split0 "~max_split = 0 is out of range \[1, 1000\]" "$skin" _max_split:=0
 refused skin_bary "~barycenters must be a bool, but is the int 3" "$skin" _barycenters:=3
+refused skin_color "~marker_color: 'purple' is not slide, stretch or a colour 'R G B' (each in \[0, 1\])" "$skin" _marker_color:=purple
+refused skin_color_range "~marker_color: '1 2 0' is not slide" "$skin" _marker_color:="1 2 0"
 refused avatar_queue "~queue_size must be an int, but is the string 'abc'" \
   "$avatar" _avatar:=mannequin _tris:=3000 _queue_size:=abc
 refused avatar_queue0 "~queue_size = 0 is out of range \[1, 1000\]" \

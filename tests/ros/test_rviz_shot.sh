@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # rviz shows the skin: the headless demo (demo.launch rviz:=false) runs, rviz is started
 # under Xvfb with the shipped config rviz/skin_sim.rviz, a screenshot is taken with
-# ImageMagick's `import`, and the skin marker's colours (saturated blue/green/red on a
-# grey background) must cover a visible part of it. The screenshot is kept as
-# BUILD_DIR/rviz_skin.png. Skipped (77) when xvfb-run, import or rviz is missing.
+# ImageMagick's `import`, and the skin marker's colour (one orange, ~marker_color, on a
+# grey background) must cover a visible part of it, shaded: the brightness of those
+# pixels must spread (rviz draws the marker unlit; a flat colour is a silhouette).
+# The screenshot is kept as BUILD_DIR/rviz_skin.png. Skipped (77) when xvfb-run, import
+# or rviz is missing.
 # Usage: test_rviz_shot.sh BUILD_DIR [SOURCE_DIR].
 set -u
 bld="$1"
@@ -16,7 +18,9 @@ ros_env_setup "$bld" || exit $?
 fail=0
 check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 D="$ROS_ENV_DIR"
-ros_env_bg demo roslaunch "$src/launch/demo.launch" rviz:=false tris:=3000 marker_rate:=10
+# one colour (orange), so that any spread of the marker's brightness is its shading
+ros_env_bg demo roslaunch "$src/launch/demo.launch" rviz:=false tris:=3000 marker_rate:=10 \
+  marker_color:="1 0.5 0.2"
 dpid=$ROS_ENV_LAST_PID
 check "demo.launch starts" "ros_env_wait_node /skin_sim 30 $dpid"
 shot="$D/shot.png"
@@ -42,5 +46,14 @@ if [ -s "$shot" ]; then
   n=$(eval "$count_cmd" 2> /dev/null || echo 0)
   echo "coloured pixels in the 3D view: $n (screenshot: $bld/rviz_skin.png)"
   check "the skin marker covers a visible part of the view ($n pixels)" "[ ${n:-0} -gt 3000 ]"
+  # brightness (the largest channel) of the marker's pixels: 10th and 90th percentiles
+  spread=$(convert "$shot" -crop 760x700+264+40 +repage -depth 8 rgb:- | /usr/bin/python3 -c '
+import sys
+b = sys.stdin.buffer.read()
+v = sorted(max(b[i:i + 3]) for i in range(0, len(b) - 2, 3) if max(b[i:i + 3]) - min(b[i:i + 3]) > 79)
+print("%.3f %.3f" % (v[len(v) // 10] / 255, v[9 * len(v) // 10] / 255) if v else "0 0")')
+  echo "marker brightness, 10th / 90th percentile: $spread"
+  check "the skin is shaded: its brightness spreads by more than 0.15 ($spread)" \
+    "/usr/bin/python3 -c 'import sys; a, b = map(float, sys.argv[1:3]); sys.exit(0 if b - a > 0.15 else 1)' $spread"
 fi
 exit $fail
