@@ -7,7 +7,8 @@
 #   bash bench/ros_realtime.sh BUILD_DIR [SECONDS] [BODIES] [HOGS] [BUDGET]
 #
 #   SECONDS  measured per run after a warm-up of 5 s (default 20)
-#   BODIES   comma-separated (default solo,quadruped,pieces,mannequin19k):
+#   BODIES   comma-separated (default solo,quadruped,pieces,mannequin19k); BODY:N runs
+#            that body beside N hogs only, whatever HOGS says:
 #            solo          ../shared/data's Solo URDF (per-link OBJ meshes), motion sweep
 #            quadruped     bench/make_robot.py quadruped (~15k triangles, 51 pieces), sweep
 #            pieces        bench/make_robot.py pieces (~50k triangles, 1,349 pieces), sweep
@@ -15,6 +16,9 @@
 #                          piece), motion all
 #   HOGS     comma-separated hog counts (default 0,1,2)
 #   BUDGET   skin_sim_node's ~step_budget in s (default 0: the input's period; -1: none)
+#
+# NODES_FROM=OTHER_BUILD_DIR runs avatar_node and skin_sim_node of another build (an
+# earlier commit, for a before/after in one run); motion_node stays this build's.
 #
 # Per run it prints one row: inputs (kinematic_mesh published), answered (skin
 # steps whose stamp is an input's, as a share of inputs), latency (skin_stats:
@@ -53,8 +57,9 @@ run_one() { # body hogs
   (
     ros_env_setup "$bld" > /dev/null 2>&1 || { echo "$body: no ROS master"; exit 1; }
     [ -n "$urdf" ] && ros_env_set_robot_description "$urdf"
-    ros_env_bg avatar "$(ros_env_node_exe avatar_node)" "${avatar_args[@]}"
-    ros_env_bg skin "$(ros_env_node_exe skin_sim_node)" _step_budget:="$budget" _marker_rate:=0
+    local nodes="${NODES_FROM:-$bld}/devel/lib/skin_sim"
+    ros_env_bg avatar "$nodes/avatar_node" "${avatar_args[@]}"
+    ros_env_bg skin "$nodes/skin_sim_node" _step_budget:="$budget" _marker_rate:=0
     ros_env_wait_node /avatar 60 > /dev/null && ros_env_wait_node /skin_sim 60 > /dev/null \
       || { echo "$body: nodes did not come up"; tail -5 "$ROS_ENV_DIR"/*.log; exit 1; }
     local hog_pids=()
@@ -65,7 +70,7 @@ run_one() { # body hogs
       /skin_stats > "$ROS_ENV_DIR/record.log" 2>&1
     kill "${hog_pids[@]}" 2> /dev/null
     local create
-    create=$(grep -o 'skin created:.*' "$ROS_ENV_DIR/skin.log" | tail -1 | grep -oE '[0-9.]+ ms\)' | tr -d ')')
+    create=$(grep -o 'skin created:.*' "$ROS_ENV_DIR/skin.log" | tail -1 | grep -oE '[0-9.]+ ms\)' | grep -oE '[0-9.]+')
     /usr/bin/python3 - "$ROS_ENV_DIR/run.bag" "$body" "$nhog" "${create:-?}" <<'PY'
 import sys
 import rosbag
@@ -83,7 +88,7 @@ lat = sorted(m.latency_ms for m in ans)
 q = lambda p: lat[min(len(lat) - 1, int(round(p * (len(lat) - 1))))] if lat else float("nan")
 work = {}
 for m in ans:
-    k = "%dx%d" % (m.substeps, m.iterations_per_substep)
+    k = "%dx%d" % (m.substeps, getattr(m, "iterations_per_substep", 0))
     work[k] = work.get(k, 0) + 1
 works = " ".join("%s:%.0f%%" % (k, 100.0 * v / len(ans))
                  for k, v in sorted(work.items(), key=lambda kv: -kv[1])[:2]) if ans else "-"
@@ -91,7 +96,8 @@ last = max(steps.values(), key=lambda m: m.header.stamp.to_nsec()) if steps else
 first = min(steps.values(), key=lambda m: m.header.stamp.to_nsec()) if steps else None
 resets = (last.resets - first.resets) if steps else 0
 skipped = (last.inputs_skipped - first.inputs_skipped) if steps else 0
-tri = "%d/%d" % (last.triangles_simulated, last.triangles_carried) if last else "-"
+tri = ("%d/%d" % (last.triangles_simulated, last.triangles_carried)
+       if last and hasattr(last, "triangles_carried") else "-")
 print("%-13s %4s %6d %8.1f%% %7.0fms %7.0fms  %-22s %6d %7d %15s %7sms"
       % (body, nhog, len(inputs), 100.0 * len(ans) / max(1, len(inputs)), q(0.5), q(0.95),
          works, resets, skipped, tri, create))
@@ -101,5 +107,6 @@ PY
 IFS=, read -r -a body_list <<< "$bodies"
 IFS=, read -r -a hog_list <<< "$hogs"
 for b in "${body_list[@]}"; do
+  if [[ "$b" == *:* ]]; then run_one "${b%%:*}" "${b##*:}"; continue; fi # BODY:HOGS alone
   for h in "${hog_list[@]}"; do run_one "$b" "$h"; done
 done

@@ -12,10 +12,12 @@
  * last three steps at the level in force exceeds SS_BUDGET_HIGH of the
  * budget, the level drops to the highest one predicted (by work, substeps x
  * (iterations + SS_BUDGET_SUBSTEP_COST)) to take at most SS_BUDGET_TARGET of
- * it; after SS_BUDGET_HOLD steps at a level whose median predicts the level
- * above under SS_BUDGET_LOW of the budget, it rises one level. The gap
- * between the two thresholds keeps it from hunting. Plain data, nothing
- * allocated. */
+ * it; after SS_BUDGET_HOLD steps at a level whose slowest recent step
+ * predicts the level above under SS_BUDGET_LOW of the budget, it rises one
+ * level. Lowering judges the median (one hiccup is not a trend), raising the
+ * slowest (on a busy computer the slow steps are the ones that make the node
+ * skip inputs), and the gap between the two thresholds keeps it from
+ * hunting. Plain data, nothing allocated. */
 #ifndef SKIN_SIM_SS_BUDGET_H
 #define SKIN_SIM_SS_BUDGET_H
 
@@ -24,9 +26,9 @@ extern "C" {
 #endif
 
 #define SS_BUDGET_WINDOW 9
-#define SS_BUDGET_HIGH 0.8          /* lower when the recent median passes this share */
-#define SS_BUDGET_TARGET 0.7        /* ... to a level predicted at most this share */
-#define SS_BUDGET_LOW 0.55          /* raise when the level above is predicted under this */
+#define SS_BUDGET_HIGH 0.75         /* lower when the recent median passes this share */
+#define SS_BUDGET_TARGET 0.6        /* ... to a level predicted at most this share */
+#define SS_BUDGET_LOW 0.6           /* raise when the level above is predicted under this */
 #define SS_BUDGET_HOLD 15           /* steps at a level before it may rise */
 #define SS_BUDGET_SUBSTEP_COST 2.0  /* a substep's own work (posing, anchors), in iterations */
 

@@ -145,6 +145,18 @@ typedef struct ss_sim_mesh {
   const int *faces;   /* (nface x 3) */
 } ss_sim_mesh;
 
+/* Where ss_sim_create binds a separate skin, before creating it: each skin
+ * vertex's closest point on the body at rest. dist (skin nvert, may be NULL)
+ * gets its distance (metres); with body_part (body nvert, as for
+ * ss_mesh_rigid_pieces; may be NULL), skin_part (skin nvert, may be NULL)
+ * gets the part the body face under it moves with (its three corners' part
+ * where they agree, else 0), so that ss_mesh_rigid_pieces on the skin finds
+ * the skin's pieces that ride one rigid link. Returns SS_OK, or SS_E_MESH /
+ * SS_E_NONFINITE / SS_E_NOMEM with a message in err. */
+int ss_sim_skin_binding(int body_nvert, const double *body_rest, int body_nface,
+                        const int *body_faces, const ss_sim_mesh *skin, const uint32_t *body_part,
+                        uint32_t *skin_part, double *dist, char *err, int err_sz);
+
 typedef struct ss_sim ss_sim;
 /* The fixed part of a sim (topology, rest data, masses, sparsity): see ss_model_create. */
 typedef struct ss_model ss_model;

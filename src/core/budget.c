@@ -39,6 +39,13 @@ void ss_budget_init(ss_budget *b, int substeps, int iterations) {
 
 int ss_budget_lowered(const ss_budget *b) { return level_of(b) > 0; }
 
+/* The slowest of the window's step times. */
+static double window_max(const ss_budget *b) {
+  double m = 0.0;
+  for (int j = 0; j < b->nms; j++) m = b->ms[j] > m ? b->ms[j] : m;
+  return m;
+}
+
 /* Median of the latest n (<= nms) step times. */
 static double recent_median(const ss_budget *b, int n) {
   double v[SS_BUDGET_WINDOW];
@@ -83,7 +90,7 @@ int ss_budget_update(ss_budget *b, double step_ms, double budget_ms) {
   if (k > 0 && b->held >= SS_BUDGET_HOLD) {
     int s, i;
     level_at(b, k - 1, &s, &i);
-    if (recent_median(b, b->nms) * work(s, i) / w < SS_BUDGET_LOW * budget_ms) {
+    if (window_max(b) * work(s, i) / w < SS_BUDGET_LOW * budget_ms) {
       set_level(b, k - 1);
       return 1;
     }

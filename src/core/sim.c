@@ -552,6 +552,23 @@ static inline void guess_position(ss_sim *sim, const ss_frames *fr_prev, int k) 
     memcpy(sim->guess + 3 * k, sim->anchor_pos + 3 * v, 3 * sizeof(double));
 }
 
+/* A vertex that follows the body: on its anchor, or for a separate skin at
+ * its rest offset from it in the anchor face's frame (carried rigidly with
+ * the face, so a rigid piece over a rigid link moves exactly with it). */
+static inline void follow(ss_sim *sim, const ss_frames *fr, int v) {
+  double *x = sim->x + 3 * v;
+  const double *a = sim->anchor_pos + 3 * v;
+  const int f = sim->anchor_face[v];
+  double t1[3], t2[3], n[3];
+  if (sim->m->follow_offset && f >= 0 &&
+      ss_sim_face_frame(ss_frames_edges(fr, f), ss_frames_edges(fr, f) + 3, t1, t2, n)) {
+    const double *o = sim->m->follow_off + 3 * v;
+    for (int i = 0; i < 3; i++) x[i] = a[i] + o[0] * t1[i] + o[1] * t2[i] + o[2] * n[i];
+    return;
+  }
+  memcpy(x, a, 3 * sizeof(double));
+}
+
 static void stage_pose(ss_sim *sim, substep *sub) {
   ss_sim_stats *st = sim->st;
   const size_t nv3 = 3 * (size_t)sim->m->nvert, nb3 = 3 * (size_t)sim->m->nbvert;
@@ -577,8 +594,9 @@ static void stage_pose(ss_sim *sim, substep *sub) {
   update_anchor_positions(sim, sim->body_sub);
   st->pose_ms += ss_now_ms() - t0;
   memcpy(sim->x_prev, sim->x, nv3 * sizeof(double));
+  const ss_frames *fr = ss_mover_frames(sim->mover);
   for (int v = 0; v < sim->m->nvert; v++)
-    if (sim->m->dof[v] < 0) memcpy(sim->x + 3 * v, sim->anchor_pos + 3 * v, 3 * sizeof(double));
+    if (sim->m->dof[v] < 0) follow(sim, fr, v);
   memcpy(sim->xfull_t, sim->x, nv3 * sizeof(double));
 }
 

@@ -29,6 +29,42 @@
 #include "sim_internal.h"
 #include "ss_err.h"
 
+/* A separate skin's vertex v, bound by closest point: its rest offset from its
+ * anchor in the anchor face's frame (ss_sim_face_frame), so that a vertex
+ * that follows the body (outside the simulated region, or on a rigid piece)
+ * keeps its height over it instead of dropping onto it. */
+static void follow_offset(ss_model *m, const double *body_rest, int v) {
+  double *off = m->follow_off + 3 * v, t1[3], t2[3], n[3], a[3];
+  off[0] = off[1] = off[2] = 0.0;
+  const int f = m->anchor_face0[v];
+  if (f < 0) return;
+  const int *c = m->btopo->face_vert + 3 * f;
+  const double *p0 = body_rest + 3 * c[0], *p1 = body_rest + 3 * c[1], *p2 = body_rest + 3 * c[2];
+  double e1[3], e2[3];
+  for (int i = 0; i < 3; i++) e1[i] = p1[i] - p0[i], e2[i] = p2[i] - p0[i];
+  if (!ss_sim_face_frame(e1, e2, t1, t2, n)) return;
+  const double *uv = m->anchor_uv0 + 2 * v;
+  for (int i = 0; i < 3; i++) a[i] = m->rest[3 * v + i] - (p0[i] + uv[0] * e1[i] + uv[1] * e2[i]);
+  off[0] = a[0] * t1[0] + a[1] * t1[1] + a[2] * t1[2];
+  off[1] = a[0] * t2[0] + a[1] * t2[1] + a[2] * t2[2];
+  off[2] = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+}
+
+int ss_sim_face_frame(const double e1[3], const double e2[3], double t1[3], double t2[3],
+                      double n[3]) {
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  if (!(ln > 0.0) || !(l1 > 0.0) || !isfinite(ln)) return 0;
+  for (int i = 0; i < 3; i++) n[i] /= ln, t1[i] = e1[i] / l1;
+  t2[0] = n[1] * t1[2] - n[2] * t1[1];
+  t2[1] = n[2] * t1[0] - n[0] * t1[2];
+  t2[2] = n[0] * t1[1] - n[1] * t1[0];
+  return 1;
+}
+
 int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
                 int err_sz) {
   int nv = sim->m->nvert, nf = sim->m->nface;
@@ -91,6 +127,7 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
         p[i] = (sim->m->rest[3 * fv[0] + i] + sim->m->rest[3 * fv[1] + i] + sim->m->rest[3 * fv[2] + i]) / 3.0;
     }
     ss_bvh_closest(bvh, body_rest, p, &sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a);
+    if (a < nv) follow_offset(sim->m, body_rest, a);
   }
   return SS_OK;
 }

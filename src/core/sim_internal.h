@@ -80,6 +80,9 @@ enum ss_vert_kind {
   X(face_rank, int, 9 * (size_t)m->nface,                                                        \
     "(nface x 9) rank of block (min, max) of corners (a, b) in column max, -1 if not free")      \
   X(hinge_rank, int, 16 * (size_t)m->nhinge_max, "(nhinge x 16) same for hinge corners")         \
+  X(follow_off, double, m->follow_offset ? 3 * (size_t)m->nvert : 0,                              \
+    "(nvert x 3) a separate skin's vertices: rest offset from their anchor in the anchor face's " \
+    "frame (along e1, across it in the face, along the normal); followers keep it")              \
   X(orient_sign, signed char, (size_t)m->nface,                                                  \
     "(nface) orient.c: rest orientation against the body, +-1, 0")                               \
   X(mface, struct ss_membrane_face, (size_t)m->nface + 1,                                          \
@@ -158,6 +161,8 @@ struct ss_model {
   int nhinge_max;             /* bound at allocation: 3 nface / 2 with bending, else 0 */
   double edge_len;            /* mean rest edge length of the skin */
   int nanchor;                /* nvert + (barycenters ? nface : 0) */
+  int follow_offset;          /* 1: a separate skin, whose followers keep their height over the
+                                 body (follow_off); 0: a copy of the body, on its anchors */
   /* sparsity: block pattern over dofs, upper triangle, CSC; the scalar
    * n x n matrix uses it directly, the 3n x 3n one expands each block. */
   int nblock;
@@ -244,6 +249,11 @@ void ss_sim_set_isa(ss_sim *sim, int isa);
 int ss_sim_model_bvh(ss_model *m, const double *body_rest);
 
 /* ---- sim_bind.c ---- */
+/* An orthonormal frame of a triangle with edges e1, e2 from its first corner:
+ * t1 along e1, t2 across it in the triangle's plane, n its unit normal (the
+ * order of ss_frames' normal). 0 (frame unset) where it is degenerate. */
+int ss_sim_face_frame(const double e1[3], const double e2[3], double t1[3], double t2[3],
+                      double n[3]);
 /* Anchors of the skin on the body at rest (copy of the body or closest point). */
 int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
                 int err_sz);

@@ -142,6 +142,7 @@ static int model_new(ss_model **out, int body_nvert, const double *body_rest, in
   m->nface = skin ? skin->nface : body_nface;
   const int nv = m->nvert, nf = m->nface;
   m->nanchor = nv + (set->barycenter_anchors ? nf : 0);
+  m->follow_offset = skin != NULL;
   /* a hinge is an edge with exactly two of the 3 nface half-edges */
   m->nhinge_max = set->bending > 0.0 ? (int)(3LL * nf / 2) : 0;
   int status = ss_topo_create(&m->btopo, body_nvert, body_rest, body_nface, body_faces, -1.0, err, err_sz);

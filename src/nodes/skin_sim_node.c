@@ -41,6 +41,7 @@
 #include "skin_sim/ss_input.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_sim.h"
+#include "skin_sim/ssa_avatar.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -66,7 +67,17 @@ typedef struct params {
   char tf_prefix[128];              /* "" : none; else "PREFIX/" before the outputs' frame */
   double step_budget; /* s: 0 the input's period; < 0 none (the settings' substeps and
                          iterations always) */
+  char skin_mesh[1024];      /* "" : the skin is the received body; else a mesh file or URI */
+  double skin_max_distance;  /* m: a ~skin_mesh vertex farther from the body is refused */
+  char package_path[1024];   /* package:// resolution (ssa_resolve_uri) */
 } params;
+
+/* ~skin_mesh as loaded at start: the file's vertices and triangles, welded */
+typedef struct skin_file {
+  ss_weld *weld;        /* NULL: no ~skin_mesh */
+  int *faces;           /* (weld->nface x 3) the file's triangles, as published */
+  uint32_t topology_id; /* of its layout, published with it */
+} skin_file;
 
 /* ~marker_color: what colours skin_marker */
 enum { MARKER_SLIDE = 0, MARKER_STRETCH = 1, MARKER_ONE = 2 };
@@ -93,15 +104,19 @@ typedef struct inbox {
 
 typedef struct node {
   params p;
+  skin_file skin;         /* ~skin_mesh, or none */
   inbox in;
   rosc_pub *pub_mesh, *pub_stats, *pub_marker;
-  /* simulation and its topology */
+  /* simulation and its topology; the body is the received mesh, the skin its copy or
+   * ~skin_mesh, published in its own vertex layout (the body's, or the file's) */
   ss_sim *sim;
-  uint32_t topology_id;
-  int nvert, nface;
+  uint32_t topology_id;   /* the input's */
+  int nbvert, nbface;     /* the body's: the input's vertices and triangles */
+  int *bfaces;            /* (nbface x 3) as received */
+  int nvert, nface;       /* the published skin's vertices and triangles */
   int nweld;              /* skin vertices: the body's welded */
-  int *vert_weld;         /* (nvert) skin vertex of each body vertex */
-  int *faces;             /* (nface x 3) as received */
+  int *vert_weld;         /* (nvert) skin (welded) vertex of each published vertex */
+  int *faces;             /* (nface x 3) published triangles */
   uint32_t *tri_out;      /* (nface x 3) */
   unsigned char *mask;    /* (nface) 1: simulated face (~mask_box, rigid pieces carried) */
   unsigned char *carried; /* (nvert) 1: in a rigid piece, published as received */
@@ -113,7 +128,7 @@ typedef struct node {
   int *face0;             /* (nanchor) anchors as bound at create */
   double *uv0;            /* (nanchor x 2) */
   double *slide;          /* (nanchor) */
-  double *body, *body_prev, *body_sub; /* (nvert x 3) */
+  double *body, *body_prev, *body_sub; /* (nbvert x 3) */
   float *pos_out;         /* (nvert x 3) */
   float *mk_pts, *mk_col; /* (nface x 3 x 3), (nface x 3 x 4) */
   float *mk_vcol;         /* (nweld x 4) colour of each skin vertex; NULL until a marker */
@@ -190,6 +205,13 @@ static int get_params(params *p)
   }
   ok &= get_int("~queue_size", &p->queue_size, 1);
   ok &= get_double("~step_budget", &p->step_budget, 0.0);
+  ok &= get_string("~skin_mesh", p->skin_mesh, sizeof p->skin_mesh, "");
+  ok &= get_double("~skin_max_distance", &p->skin_max_distance, 0.05);
+  ok &= get_string("~package_path", p->package_path, sizeof p->package_path, "");
+  if (!(p->skin_max_distance >= 0.0)) {
+    ROSC_ERROR("~skin_max_distance must be >= 0 m, got %g", p->skin_max_distance);
+    ok = 0;
+  }
   if (!isfinite(p->step_budget)) {
     ROSC_ERROR("~step_budget must be a number of seconds (0: the input's period, < 0: none)");
     ok = 0;
@@ -279,90 +301,185 @@ static void free_sim(node *nd)
   free(nd->vert_weld);
   nd->vert_weld = NULL;
   nd->nweld = 0;
-  free(nd->faces); free(nd->tri_out); free(nd->mask); free(nd->face0); free(nd->uv0);
-  free(nd->carried);
-  nd->carried = NULL;
+  free(nd->bfaces); free(nd->faces); free(nd->tri_out); free(nd->mask); free(nd->face0);
+  free(nd->uv0); free(nd->carried);
   free(nd->slide); free(nd->body); free(nd->body_prev); free(nd->body_sub);
   free(nd->pos_out); free(nd->mk_pts); free(nd->mk_col); free(nd->mk_vcol); free(nd->mk_work);
-  nd->faces = NULL; nd->tri_out = NULL; nd->mask = NULL; nd->face0 = NULL; nd->uv0 = NULL;
+  nd->bfaces = NULL; nd->faces = NULL; nd->tri_out = NULL; nd->mask = NULL; nd->face0 = NULL;
+  nd->uv0 = NULL; nd->carried = NULL;
   nd->slide = NULL; nd->body = NULL; nd->body_prev = NULL; nd->body_sub = NULL;
   nd->pos_out = NULL; nd->mk_pts = NULL; nd->mk_col = NULL; nd->mk_vcol = NULL; nd->mk_work = NULL;
-  nd->nvert = nd->nface = nd->nanchor = 0;
+  nd->nvert = nd->nface = nd->nbvert = nd->nbface = nd->nanchor = 0;
 }
 
-/* Creates the simulation with the mailbox's mesh as rest shape. 1 on success. */
+/* Reads ~skin_mesh (a file or package:// URI, through the avatar layer's guarded
+ * import) and welds it; 1 on success, else 0 after one error naming the file. */
+static int load_skin_file(node *nd)
+{
+  const params *p = &nd->p;
+  char path[4096], err[ERR_SZ] = "";
+  if (ssa_resolve_uri(p->skin_mesh, NULL, p->package_path[0] ? p->package_path : NULL, path,
+                      sizeof path, err, sizeof err) != SS_OK) {
+    ROSC_ERROR("~skin_mesh '%s': %s", p->skin_mesh, err);
+    return 0;
+  }
+  ssa_asset_opts opts = ssa_asset_default_opts();
+  ssa_asset *a = NULL;
+  int st = ssa_asset_load(&a, path, &opts, err, sizeof err);
+  if (st == SS_OK && (a->nvert <= 0 || a->nface <= 0)) {
+    snprintf(err, sizeof err, "it has no triangles");
+    st = SS_E_MESH;
+  }
+  if (st == SS_OK)
+    st = ss_weld_create(&nd->skin.weld, a->nvert, a->rest_pos, a->nface, a->faces, p->weld_tol,
+                        err, sizeof err);
+  if (st == SS_OK) {
+    nd->skin.faces = malloc(3 * (size_t)a->nface * sizeof(int));
+    if (nd->skin.faces) memcpy(nd->skin.faces, a->faces, 3 * (size_t)a->nface * sizeof(int));
+    else snprintf(err, sizeof err, "out of memory"), st = SS_E_NOMEM;
+  }
+  if (st == SS_OK) {
+    /* its own topology_id, from its layout: FNV-1a of the counts and triangles */
+    uint32_t h = 2166136261u, vals[2] = {(uint32_t)a->nvert, (uint32_t)a->nface};
+    for (int i = 0; i < 2; i++)
+      for (int k = 0; k < 4; k++) { h ^= (vals[i] >> (8 * k)) & 255u; h *= 16777619u; }
+    for (size_t i = 0; i < 3 * (size_t)a->nface; i++)
+      for (int k = 0; k < 4; k++) { h ^= ((uint32_t)a->faces[i] >> (8 * k)) & 255u; h *= 16777619u; }
+    nd->skin.topology_id = h ? h : 1u;
+    ROSC_INFO("~skin_mesh %s: %d vertices (%d after welding), %d triangles", path, a->nvert,
+              nd->skin.weld->nweld, a->nface);
+  } else {
+    ROSC_ERROR("~skin_mesh %s: %s", path, err);
+  }
+  ssa_asset_destroy(a);
+  return st == SS_OK;
+}
+
+/* The face mask of a skin over the received body: ~mask_box by face centroid (pos: the
+ * skin's own vertices in the body's rest frame). */
+static void box_mask(node *nd, int nf, const int *faces, const double *pos)
+{
+  const double *bx = nd->p.box;
+  int nin = 0;
+  for (int f = 0; f < nf; f++) {
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++)
+      for (int d = 0; d < 3; d++) c[d] += pos[3 * (size_t)faces[3 * f + k] + d] / 3.0;
+    int in = c[0] >= bx[0] && c[1] >= bx[1] && c[2] >= bx[2] && c[0] <= bx[3] && c[1] <= bx[4] &&
+             c[2] <= bx[5];
+    nd->mask[f] = (unsigned char)in;
+    nin += in;
+  }
+  ROSC_INFO("~mask_box: %d of %d faces simulated", nin, nf);
+}
+
+/* Creates the simulation with the mailbox's mesh as the body at rest: the skin is
+ * that mesh welded, or ~skin_mesh bound to it by closest point. Pieces that move
+ * rigidly with one link (rigid_part) are carried with it. 1 on success. */
 static int create_sim(node *nd, const mailbox *b)
 {
   free_sim(nd);
-  int nv = (int)(b->npos / 3), nf = (int)(b->ntri / 3);
-  size_t n3 = 3 * (size_t)nv, f3 = 3 * (size_t)nf;
+  const ss_weld *file = nd->skin.weld;
+  int nbv = (int)(b->npos / 3), nbf = (int)(b->ntri / 3);
+  int nv = file ? file->nvert : nbv, nf = file ? file->nface : nbf;
+  size_t n3 = 3 * (size_t)nv, f3 = 3 * (size_t)nf, b3 = 3 * (size_t)nbv;
+  nd->bfaces = malloc(3 * (size_t)nbf * sizeof(int));
   nd->faces = malloc(f3 * sizeof(int));
   nd->tri_out = malloc(f3 * sizeof(uint32_t));
-  nd->body = malloc(n3 * sizeof(double));
-  nd->body_prev = malloc(n3 * sizeof(double));
-  nd->body_sub = malloc(n3 * sizeof(double));
+  nd->body = malloc(b3 * sizeof(double));
+  nd->body_prev = malloc(b3 * sizeof(double));
+  nd->body_sub = malloc(b3 * sizeof(double));
   nd->pos_out = malloc(n3 * sizeof(float));
   nd->mk_pts = malloc(3 * f3 * sizeof(float));
   nd->mk_col = malloc(4 * f3 * sizeof(float));
   nd->mask = malloc((size_t)nf);
   nd->carried = calloc((size_t)nv, 1);
-  if (!nd->faces || !nd->tri_out || !nd->body || !nd->body_prev || !nd->body_sub ||
-      !nd->pos_out || !nd->mk_pts || !nd->mk_col || !nd->mask || !nd->carried) {
+  if (!nd->bfaces || !nd->faces || !nd->tri_out || !nd->body || !nd->body_prev ||
+      !nd->body_sub || !nd->pos_out || !nd->mk_pts || !nd->mk_col || !nd->mask || !nd->carried) {
     ROSC_ERROR("out of memory for a skin of %d vertices", nv);
     free_sim(nd);
     return 0;
   }
-  for (size_t i = 0; i < f3; i++) {
-    nd->faces[i] = (int)b->tri[i];
-    nd->tri_out[i] = b->tri[i];
-  }
-  for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
+  for (size_t i = 0; i < 3 * (size_t)nbf; i++) nd->bfaces[i] = (int)b->tri[i];
+  for (size_t i = 0; i < b3; i++) nd->body[i] = (double)b->pos[i];
   ss_sim_settings set = nd->p.set;
   memset(nd->mask, 1, (size_t)nf);
-  if (nd->p.have_box) {
-    const double *bx = nd->p.box;
-    int nin = 0;
-    for (int f = 0; f < nf; f++) {
-      double c[3] = {0, 0, 0};
-      for (int k = 0; k < 3; k++)
-        for (int d = 0; d < 3; d++) c[d] += nd->body[3 * (size_t)nd->faces[3 * f + k] + d] / 3.0;
-      int in = c[0] >= bx[0] && c[1] >= bx[1] && c[2] >= bx[2] && c[0] <= bx[3] &&
-               c[1] <= bx[4] && c[2] <= bx[5];
-      nd->mask[f] = (unsigned char)in;
-      nin += in;
-    }
-    ROSC_INFO("~mask_box: %d of %d faces simulated", nin, nf);
-  }
   char err[ERR_SZ] = "";
   double t0 = 0, t1 = 0;
   rosc_wall_now_s(&t0);
-  /* the skin is the body welded: seam copies are one skin vertex, so no seam can open */
   ss_weld *weld = NULL;
   ss_rigid_count rigid = {0, 0, 0};
-  int st = ss_weld_create(&weld, nv, nd->body, nf, nd->faces, nd->p.weld_tol, err, sizeof err);
-  if (st == SS_OK && b->nrigid) {
+  /* what each skin vertex moves with (rigid_part): the body vertex's, or for the file the
+   * part of the body face it is bound to; over welded skin vertices for the file */
+  uint32_t *skin_part = NULL;
+  int st = SS_OK;
+  if (!file) {
+    /* the skin is the body welded: seam copies are one skin vertex, so no seam can open */
+    if (nd->p.have_box) box_mask(nd, nf, nd->bfaces, nd->body);
+    st = ss_weld_create(&weld, nbv, nd->body, nbf, nd->bfaces, nd->p.weld_tol, err, sizeof err);
+    if (st == SS_OK && b->nrigid) {
+      skin_part = malloc((size_t)nv * sizeof(uint32_t));
+      if (skin_part) memcpy(skin_part, b->rigid, (size_t)nv * sizeof(uint32_t));
+      else st = SS_E_NOMEM;
+    }
+  } else {
+    /* the file's skin, its vertices in the layout of the file, bound to the body */
+    if (nd->p.have_box) box_mask(nd, nf, file->faces, file->pos);
+    ss_sim_mesh sm = {file->nweld, file->pos, file->nface, file->faces};
+    uint32_t *wpart = malloc((size_t)file->nweld * sizeof(uint32_t));
+    double *dist = malloc((size_t)file->nweld * sizeof(double));
+    st = wpart && dist ? SS_OK : SS_E_NOMEM;
+    if (st == SS_OK)
+      st = ss_sim_skin_binding(nbv, nd->body, nbf, nd->bfaces, &sm, b->nrigid ? b->rigid : NULL,
+                               wpart, dist, err, sizeof err);
+    int far = -1;
+    for (int w = 0; st == SS_OK && w < file->nweld; w++)
+      if (far < 0 || dist[w] > dist[far]) far = w;
+    if (st == SS_OK && far >= 0 && !(dist[far] <= nd->p.skin_max_distance)) {
+      snprintf(err, sizeof err, "~skin_mesh %.300s: its vertex %d is %.4g m from the body, "
+               "farther than ~skin_max_distance %.4g m (is it in the body's frame and rest pose?)",
+               nd->p.skin_mesh, file->weld_rep[far], dist[far], nd->p.skin_max_distance);
+      st = SS_E_MESH;
+    }
+    if (st == SS_OK && b->nrigid) skin_part = wpart, wpart = NULL;
+    free(wpart);
+    free(dist);
+  }
+  const int *vert_weld = file ? file->vert_weld : weld ? weld->vert_weld : NULL;
+  if (st == SS_OK && skin_part) {
     /* pieces that move rigidly with one link are carried with it, not simulated */
     unsigned char *rigid_mask = malloc((size_t)nf);
     st = rigid_mask ? SS_OK : SS_E_NOMEM;
     if (st == SS_OK) {
       memset(rigid_mask, 1, (size_t)nf);
-      st = ss_mesh_rigid_pieces(nv, nf, nd->faces, weld->vert_weld, b->rigid, rigid_mask, &rigid);
+      st = file ? ss_mesh_rigid_pieces(file->nweld, nf, file->faces, NULL, skin_part, rigid_mask,
+                                       &rigid)
+                : ss_mesh_rigid_pieces(nv, nf, nd->bfaces, vert_weld, skin_part, rigid_mask,
+                                       &rigid);
     }
     if (st != SS_OK) snprintf(err, sizeof err, "rigid pieces: out of memory");
     for (int f = 0; st == SS_OK && f < nf; f++)
       if (!rigid_mask[f]) {
         nd->mask[f] = 0;
-        for (int k = 0; k < 3; k++) nd->carried[nd->faces[3 * f + k]] = 1;
+        /* a received body's rigid piece is published as received */
+        if (!file)
+          for (int k = 0; k < 3; k++) nd->carried[nd->bfaces[3 * f + k]] = 1;
       }
     free(rigid_mask);
   }
+  free(skin_part);
   set.face_mask = nd->mask;
   if (st == SS_OK) {
-    ss_sim_mesh skin = {weld->nweld, weld->pos, nf, weld->faces};
-    st = ss_sim_create(&nd->sim, nv, nd->body, nf, nd->faces, &skin, &set, err, sizeof err);
-    nd->vert_weld = weld->vert_weld; /* kept */
-    nd->nweld = weld->nweld;
-    weld->vert_weld = NULL;
+    ss_sim_mesh skin = file ? (ss_sim_mesh){file->nweld, file->pos, nf, file->faces}
+                            : (ss_sim_mesh){weld->nweld, weld->pos, nf, weld->faces};
+    st = ss_sim_create(&nd->sim, nbv, nd->body, nbf, nd->bfaces, &skin, &set, err, sizeof err);
+    nd->nweld = skin.nvert;
+    nd->vert_weld = malloc((size_t)nv * sizeof(int));
+    if (st == SS_OK && !nd->vert_weld) {
+      snprintf(err, sizeof err, "out of memory");
+      st = SS_E_NOMEM;
+    }
+    if (nd->vert_weld) memcpy(nd->vert_weld, vert_weld, (size_t)nv * sizeof(int));
   }
   ss_weld_destroy(weld);
   rosc_wall_now_s(&t1);
@@ -373,6 +490,11 @@ static int create_sim(node *nd, const mailbox *b)
     reject(nd, "skin_sim.create", why);
     return 0;
   }
+  /* the published layout: the received body's, or the file's own */
+  memcpy(nd->faces, file ? nd->skin.faces : nd->bfaces, f3 * sizeof(int));
+  for (size_t i = 0; i < f3; i++) nd->tri_out[i] = (uint32_t)nd->faces[i];
+  nd->nbvert = nbv;
+  nd->nbface = nbf;
   nd->nvert = nv;
   nd->nface = nf;
   nd->nface_carried = rigid.nface_carried;
@@ -389,13 +511,14 @@ static int create_sim(node *nd, const mailbox *b)
   }
   memcpy(nd->face0, ss_sim_anchor_faces(nd->sim), (size_t)nd->nanchor * sizeof(int));
   memcpy(nd->uv0, ss_sim_anchor_uv(nd->sim), 2 * (size_t)nd->nanchor * sizeof(double));
-  memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
+  memcpy(nd->body_prev, nd->body, b3 * sizeof(double));
   nd->topology_id = b->topology_id;
   ss_budget_init(&nd->budget, nd->p.set.substeps, nd->p.set.iterations);
   nd->faces_turned = nd->vertices_far = 0;
-  ROSC_INFO("skin created: %d vertices (%d received, welded at ~weld_tol %g), %d triangles: "
+  ROSC_INFO("skin created%s%s: %d vertices (%d published, welded at ~weld_tol %g), %d triangles: "
             "%d simulated, %d carried rigidly (%d of %d pieces move with one link)%s; %d anchors, "
-            "%d unknowns (topology %u, %.1f ms)", nd->nweld, nv, nd->p.weld_tol, nf, nd->nface_sim,
+            "%d unknowns (topology %u, %.1f ms)", file ? " from ~skin_mesh " : " as the body",
+            file ? nd->p.skin_mesh : "", nd->nweld, nv, nd->p.weld_tol, nf, nd->nface_sim,
             nd->nface_carried, rigid.npiece_carried, rigid.npiece,
             b->nrigid ? "" : " [the input says nothing of rigid parts: all may deform]",
             nd->nanchor, ss_sim_ndof(nd->sim), (unsigned)b->topology_id, 1e3 * (t1 - t0));
@@ -434,7 +557,7 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   rosc_skin_mesh out;
   memset(&out, 0, sizeof out);
   out.header = *hdr;
-  out.topology_id = nd->topology_id;
+  out.topology_id = nd->skin.weld ? nd->skin.topology_id : nd->topology_id;
   out.positions = nd->pos_out;
   out.n_positions = n3;
   out.triangles = nd->tri_out;
@@ -443,7 +566,7 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
 
   double max_slide =
       ss_input_slide(nd->nanchor, ss_sim_anchor_faces(nd->sim), ss_sim_anchor_uv(nd->sim),
-                     nd->face0, nd->uv0, nd->body, nd->nvert, nd->faces, nd->nface, nd->slide);
+                     nd->face0, nd->uv0, nd->body, nd->nbvert, nd->bfaces, nd->nbface, nd->slide);
   rosc_skin_stats s;
   memset(&s, 0, sizeof s);
   s.header = *hdr;
@@ -580,7 +703,7 @@ static void process(node *nd, const mailbox *b)
   }
   int64_t now_ns = rosc_time_to_ns(b->header.stamp);
   if (nd->sim && b->topology_id == nd->topology_id &&
-      !ss_input_same_topology(b->npos, b->ntri, b->tri, nd->nvert, nd->nface, nd->faces, err,
+      !ss_input_same_topology(b->npos, b->ntri, b->tri, nd->nbvert, nd->nbface, nd->bfaces, err,
                               sizeof err)) {
     char why[ERR_SZ + 64];
     snprintf(why, sizeof why, "topology changed without a new topology_id (%s)", err);
@@ -633,7 +756,7 @@ static void process(node *nd, const mailbox *b)
     nd->skin_ns = now_ns;
     nd->prev_periods = 0;
   } else if (kind == SS_TIME_STEP) {
-    size_t n3 = 3 * (size_t)nd->nvert;
+    size_t n3 = 3 * (size_t)nd->nbvert;
     for (size_t i = 0; i < n3; i++) nd->body[i] = (double)b->pos[i];
     nsplit = plan.substeps;
     /* the work in force: the budget's substeps and iterations; a step that
@@ -913,7 +1036,9 @@ int main(int argc, char **argv)
   }
   node *nd = calloc(1, sizeof *nd);
   if (!nd) return 1;
-  if (!get_params(&nd->p)) {
+  if (!get_params(&nd->p) || (nd->p.skin_mesh[0] && !load_skin_file(nd))) {
+    ss_weld_destroy(nd->skin.weld);
+    free(nd->skin.faces);
     free(nd);
     rosc_shutdown();
     return 2;
@@ -982,6 +1107,8 @@ done:
     free(nd->in.slot[i].tri);
   }
   free(nd->in.slot);
+  ss_weld_destroy(nd->skin.weld);
+  free(nd->skin.faces);
   free(nd);
   return status;
 }

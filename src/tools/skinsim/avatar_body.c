@@ -27,6 +27,7 @@ struct avatar_body {
   int anim;            /* asset animation, or -1 */
   unsigned char *face_mask;
   int carried;         /* skin faces of pieces carried rigidly (not simulated) */
+  uint32_t *part;      /* (nvert) what each body vertex moves with (ssa_avatar_rigid_parts) */
   double *rest;        /* (nvert x 3) the pose of frame 0: where the skin starts */
 };
 
@@ -67,6 +68,7 @@ void avatar_body_close(avatar_body *ab) {
   free(ab->q);
   free(ab->q_rest);
   free(ab->face_mask);
+  free(ab->part);
   free(ab->rest);
   free(ab);
 }
@@ -173,7 +175,7 @@ static int open_region(avatar_body *ab, const char *region, char *err, int err_s
  * within --region's mask. */
 static int carry_rigid(avatar_body *ab, char *err, int err_sz) {
   const int nv = ab->av->nvert, nf = ab->av->nface;
-  uint32_t *part = malloc(sizeof(uint32_t) * (size_t)nv);
+  uint32_t *part = ab->part = malloc(sizeof(uint32_t) * (size_t)nv);
   unsigned char *mask = ab->face_mask ? ab->face_mask : malloc((size_t)nf);
   ss_weld *weld = NULL;
   int status = part && mask ? SS_OK : SS_E_NOMEM;
@@ -191,11 +193,87 @@ static int carry_rigid(avatar_body *ab, char *err, int err_sz) {
     else free(mask);
   }
   ss_weld_destroy(weld);
-  free(part);
   return status;
 }
 
 int avatar_body_carried(const avatar_body *ab) { return ab ? ab->carried : 0; }
+const uint32_t *avatar_body_rigid_parts(const avatar_body *ab) { return ab ? ab->part : NULL; }
+
+struct skin_file {
+  ss_weld *weld;
+  unsigned char *mask;
+};
+
+void skin_file_close(skin_file *sf) {
+  if (!sf) return;
+  ss_weld_destroy(sf->weld);
+  free(sf->mask);
+  free(sf);
+}
+
+int skin_file_open(skin_file **out, const char *path, const ss_body *body, const uint32_t *body_part,
+                   double max_distance, ss_sim_mesh *skin, const unsigned char **face_mask,
+                   int *carried, char *err, int err_sz) {
+  *out = NULL;
+  *face_mask = NULL;
+  *carried = 0;
+  skin_file *sf = calloc(1, sizeof *sf);
+  ssa_asset *a = NULL;
+  ssa_asset_opts opts = ssa_asset_default_opts();
+  int status = sf ? ssa_asset_load(&a, path, &opts, err, err_sz) : SS_E_NOMEM;
+  if (!status && (a->nvert <= 0 || a->nface <= 0)) {
+    snprintf(err, (size_t)err_sz, "--skin %s: it has no triangles", path);
+    status = SS_E_MESH;
+  }
+  if (!status)
+    status = ss_weld_create(&sf->weld, a->nvert, a->rest_pos, a->nface, a->faces, -1.0, err, err_sz);
+  ssa_asset_destroy(a);
+  uint32_t *part = NULL;
+  double *dist = NULL;
+  if (!status) {
+    const ss_weld *w = sf->weld;
+    *skin = (ss_sim_mesh){w->nweld, w->pos, w->nface, w->faces};
+    part = malloc(sizeof(uint32_t) * (size_t)w->nweld);
+    dist = malloc(sizeof(double) * (size_t)w->nweld);
+    status = part && dist ? SS_OK : SS_E_NOMEM;
+    if (!status)
+      status = ss_sim_skin_binding(body->nvert, body->rest, body->nface, body->faces, skin,
+                                   body_part, part, dist, err, err_sz);
+    int far = 0;
+    for (int v = 1; !status && v < w->nweld; v++)
+      if (dist[v] > dist[far]) far = v;
+    if (!status && !(dist[far] <= max_distance)) {
+      snprintf(err, (size_t)err_sz, "--skin %s: its vertex %d is %.4g m from the body, farther "
+               "than --skin-max-distance %.4g m (is it in the body's frame and rest pose?)",
+               path, w->weld_rep[far], dist[far], max_distance);
+      status = SS_E_MESH;
+    }
+    if (!status && body_part) {
+      sf->mask = malloc((size_t)w->nface);
+      ss_rigid_count count = {0, 0, 0};
+      status = sf->mask ? SS_OK : SS_E_NOMEM;
+      if (!status) {
+        memset(sf->mask, 1, (size_t)w->nface);
+        status = ss_mesh_rigid_pieces(w->nweld, w->nface, w->faces, NULL, part, sf->mask, &count);
+      }
+      *carried = count.nface_carried;
+    }
+  } else if (status != SS_E_NOMEM) {
+    char why[512];
+    snprintf(why, sizeof why, "%s", err);
+    snprintf(err, (size_t)err_sz, "--skin %s: %s", path, why);
+  }
+  if (status == SS_E_NOMEM) snprintf(err, (size_t)err_sz, "--skin %s: out of memory", path);
+  free(part);
+  free(dist);
+  if (status) {
+    skin_file_close(sf);
+    return status;
+  }
+  *face_mask = *carried > 0 ? sf->mask : NULL;
+  *out = sf;
+  return SS_OK;
+}
 
 int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
                      const unsigned char **face_mask, char *err, int err_sz) {
@@ -317,4 +395,16 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
 }
 void avatar_body_close(avatar_body *ab) { (void)ab; }
 int avatar_body_carried(const avatar_body *ab) { (void)ab; return 0; }
+const uint32_t *avatar_body_rigid_parts(const avatar_body *ab) { (void)ab; return NULL; }
+int skin_file_open(skin_file **out, const char *path, const ss_body *body, const uint32_t *body_part,
+                   double max_distance, ss_sim_mesh *skin, const unsigned char **face_mask,
+                   int *carried, char *err, int err_sz) {
+  (void)path, (void)body, (void)body_part, (void)max_distance, (void)skin;
+  *out = NULL;
+  *face_mask = NULL;
+  *carried = 0;
+  snprintf(err, (size_t)err_sz, "this skinsim was built without mesh files (assimp)");
+  return SS_E_UNSUPPORTED;
+}
+void skin_file_close(skin_file *sf) { (void)sf; }
 #endif

@@ -42,5 +42,20 @@ void avatar_body_close(avatar_body *ab);
  * the pieces whose vertices all move with one (ss_mesh_rigid_pieces), left
  * out of *face_mask. */
 int avatar_body_carried(const avatar_body *ab);
+/* What each body vertex moves with (ssa_avatar_rigid_parts), or NULL (none rigid, or
+ * no avatar). */
+const uint32_t *avatar_body_rigid_parts(const avatar_body *ab);
+
+/* --skin FILE: a skin mesh of its own (any file assimp reads, in the body's frame
+ * and units at its rest pose), welded and checked against the body: a vertex
+ * farther than max_distance from it is refused with a message naming the file.
+ * With body_part (may be NULL) the skin's pieces riding one rigid link are left
+ * out of *face_mask (over the skin's faces; NULL when none) and counted in
+ * *carried. *skin is valid until skin_file_close. */
+typedef struct skin_file skin_file;
+int skin_file_open(skin_file **out, const char *path, const ss_body *body, const uint32_t *body_part,
+                   double max_distance, ss_sim_mesh *skin, const unsigned char **face_mask,
+                   int *carried, char *err, int err_sz);
+void skin_file_close(skin_file *sf);
 
 #endif

@@ -79,6 +79,8 @@ static int check_out_dir(const char *dir) {
 
 int cmd_run(int argc, char **argv) {
   const char *scene_name = NULL, *json_path = NULL, *out_dir = NULL, *cache_opt = NULL;
+  const char *skin_path = NULL;
+  double skin_max_distance = 0.05; /* m */
   int tris = 0, reference = 0, truth = 0;
   avatar_args av = {0};
   ss_run_settings s = ss_run_default_settings();
@@ -151,6 +153,11 @@ int cmd_run(int argc, char **argv) {
       if (!(json_path = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--out") == 0) {
       if (!(out_dir = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--skin") == 0) {
+      if (!(skin_path = cli_value(argc, argv, &i))) return EXIT_USAGE;
+    } else if (strcmp(a, "--skin-max-distance") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_double(a, v, 0.0, 1e9, &skin_max_distance))
+        return EXIT_USAGE;
     } else {
       cli_error("run: unknown option '%s' (see skinsim help)", a);
       return EXIT_USAGE;
@@ -169,6 +176,11 @@ int cmd_run(int argc, char **argv) {
   }
   if (avatar && tris) {
     cli_error("--tris sizes a built-in scene; for the demo avatar use --avatar-tris");
+    return EXIT_USAGE;
+  }
+  if (skin_path && (av.region || reference)) {
+    cli_error("--skin runs its own skin: it goes with neither --region (a mask of the body's "
+              "faces) nor --reference/--truth (computed on the body's own skin)");
     return EXIT_USAGE;
   }
   if (out_dir && check_out_dir(out_dir)) return EXIT_USAGE;
@@ -193,22 +205,39 @@ int cmd_run(int argc, char **argv) {
     }
     label = av.asset ? av.asset : av.urdf ? av.urdf : "demo";
   }
+  skin_file *sf = NULL;
+  ss_sim_mesh skin_mesh;
+  int skin_carried = 0;
+  if (skin_path) {
+    int status = skin_file_open(&sf, skin_path, &body, avatar_body_rigid_parts(ab),
+                                skin_max_distance, &skin_mesh, &s.sim.face_mask, &skin_carried,
+                                err, sizeof err);
+    if (status) {
+      cli_error("%s", err);
+      avatar_body_close(ab);
+      ss_scene_destroy(scene);
+      return status == SS_E_NOMEM ? EXIT_RUN_FAILED : EXIT_USAGE;
+    }
+    s.skin = &skin_mesh;
+  }
   frame_writer writer = {out_dir, &body, ""};
   progress bar;
   progress_begin(&bar, scene_name ? scene_name : "avatar");
   measure_result res;
   int status = measure_run(&body, &s, NULL, reference ? cache_dir : NULL, truth, out_dir ? write_frame : NULL,
                            &writer, progress_update, &bar, &res, err, sizeof err);
-  res.st.triangles_carried = avatar_body_carried(ab);
+  res.st.triangles_carried = skin_path ? skin_carried : avatar_body_carried(ab);
   const ss_run_stats st = res.st;
   progress_end(&bar);
   ss_scene_destroy(scene);
   if (status) {
+    skin_file_close(sf);
     avatar_body_close(ab);
     cli_error("run failed: %s", err);
     return status == SS_E_ARG ? EXIT_USAGE : EXIT_RUN_FAILED;
   }
   if (writer.error[0]) {
+    skin_file_close(sf);
     avatar_body_close(ab);
     cli_error("%s", writer.error);
     return EXIT_RUN_FAILED;
@@ -250,6 +279,7 @@ int cmd_run(int argc, char **argv) {
     printf("error vs truth %.4g mean edge lengths (truth %016llx, %s, %.0f ms)\n",
            res.error_vs_truth, res.truth_key, res.truth_cache_hit ? "from the cache" : "computed",
            res.truth_ms);
+  skin_file_close(sf);
   avatar_body_close(ab);
   if (st.failures > 0) {
     cli_error("run failed: %lld of %d frames failed (a non-finite value, a triangle squeezed or "

@@ -30,7 +30,8 @@ static void usage(FILE *f) {
       "                              ~/.cache/skin_sim), divided by the mean edge length\n"      "        BODY is a built-in scene: --scene NAME [--tris N]\n"
 #ifdef SS_HAVE_AVATAR
       "        or an avatar:  --avatar demo [--avatar-tris N] [--motion arms|elbows|twist|all|CSV]\n"
-      "                       --urdf FILE [--mesh FILE] --motion CSV|NAME [--package-path NAME=DIR,...]\n"
+      "                       --urdf FILE [--mesh FILE] --motion CSV|sweep|NAME\n"
+      "                              [--package-path NAME=DIR,...]  (sweep: every joint swings)\n"
       "                              [--mesh-up-axis ignore|file] [--primitive-edge M]\n"
       "                       --asset FILE [--anim NAME|INDEX] [--asset-scale M]\n"
       "                       [--region LINK,...]  simulate only the skin of these links\n"
@@ -40,6 +41,11 @@ static void usage(FILE *f) {
       "                                            more memory (4096)\n"
       "                       [--strict-limits]    joint values outside the URDF limits are an\n"
       "                                            error (else clamped with one warning)\n"
+      "        [--skin FILE [--skin-max-distance M]]  a skin mesh of its own over the body (in\n"
+      "                              its frame and units at rest), bound by closest point; a\n"
+      "                              vertex farther than M (0.05 m) is refused. Skin pieces over\n"
+      "                              one rigid link (and, without --skin, the body's own) are\n"
+      "                              carried with it, not simulated (JSON triangles_carried)\n"
 #endif
 
       "  bench --out DIR [--quick] [--cache DIR] [--no-plot] [--plot-script FILE] [--python EXE]\n"
