@@ -324,6 +324,8 @@ static int load_skin_file(node *nd)
     return 0;
   }
   ssa_asset_opts opts = ssa_asset_default_opts();
+  opts.z_up = 0;           /* the skin is in the body's frame: coordinates as written */
+  opts.ignore_up_axis = 1;
   ssa_asset *a = NULL;
   int st = ssa_asset_load(&a, path, &opts, err, sizeof err);
   if (st == SS_OK && (a->nvert <= 0 || a->nface <= 0)) {

@@ -76,13 +76,14 @@ def obj(path, vf):
         for t in vf[1]: o.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
 obj(d + "/base.obj", ellipsoid((0.2, 0.1, 0.1), (0, 0, 0)))
 obj(d + "/arm.obj", ellipsoid((0.15, 0.05, 0.05), (0, 0, 0)))
-# the suit: the arm (at (0.7, 0, 0) at rest) grown 10%; and the same 1 m up
-obj(d + "/suit.obj", ellipsoid((0.165, 0.055, 0.055), (0.7, 0, 0)))
-obj(d + "/far.obj", ellipsoid((0.165, 0.055, 0.055), (0.7, 0, 1.0)))
+# the suit: the arm (at (0.7, 0, 0.1) at rest) grown 10%, its coordinates as written
+# (no up axis turned); and the same 1 m up
+obj(d + "/suit.obj", ellipsoid((0.165, 0.055, 0.055), (0.7, 0, 0.1)))
+obj(d + "/far.obj", ellipsoid((0.165, 0.055, 0.055), (0.7, 0, 1.1)))
 open(d + "/arm.urdf", "w").write("""<?xml version="1.0"?>
 <robot name="arm">
   <link name="base"><visual><geometry><mesh filename="file://%s/base.obj"/></geometry></visual></link>
-  <link name="arm"><visual><origin xyz="0.4 0 0"/><geometry><mesh filename="file://%s/arm.obj"/></geometry></visual></link>
+  <link name="arm"><visual><origin xyz="0.4 0 0.1"/><geometry><mesh filename="file://%s/arm.obj"/></geometry></visual></link>
   <joint name="swing" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0.3 0 0"/>
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>

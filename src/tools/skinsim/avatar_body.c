@@ -220,6 +220,8 @@ int skin_file_open(skin_file **out, const char *path, const ss_body *body, const
   skin_file *sf = calloc(1, sizeof *sf);
   ssa_asset *a = NULL;
   ssa_asset_opts opts = ssa_asset_default_opts();
+  opts.z_up = 0;           /* the skin is in the body's frame: coordinates as written */
+  opts.ignore_up_axis = 1;
   int status = sf ? ssa_asset_load(&a, path, &opts, err, err_sz) : SS_E_NOMEM;
   if (!status && (a->nvert <= 0 || a->nface <= 0)) {
     snprintf(err, (size_t)err_sz, "--skin %s: it has no triangles", path);
