@@ -24,8 +24,9 @@
 # steps whose stamp is an input's, as a share of inputs), latency (skin_stats:
 # ROS time at publication minus the input's stamp) median and 95th percentile,
 # the work the budget chose (substeps x iterations, as shares of the answered
-# steps), resets, skipped inputs, triangles simulated / carried, and the
-# skin's creation time from its log line.
+# steps), resets, skipped inputs, triangles simulated / carried, the skin's
+# creation time from its log line, and the most skin vertices over an edge from
+# their anchor (far) and skin faces turned against the body (turned) in a step.
 set -uo pipefail
 bld="$(cd "${1:?usage: ros_realtime.sh BUILD_DIR [SECONDS] [BODIES] [HOGS] [BUDGET]}" && pwd)"
 seconds="${2:-20}"
@@ -42,8 +43,8 @@ trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 "$src/bench/make_robot.py" pieces "$work/pieces" > /dev/null
 solo="$shared/data/urdf-solo-quadruped/example-robot-data"
 
-printf '%-13s %4s %6s %9s %9s %9s  %-22s %6s %7s %15s %9s\n' body hogs inputs answered \
-  "lat.med" "lat.p95" "work (share of steps)" resets skipped "simulated/carr." "create"
+printf '%-13s %4s %6s %9s %9s %9s  %-22s %6s %7s %15s %9s %5s %6s\n' body hogs inputs answered \
+  "lat.med" "lat.p95" "work (share of steps)" resets skipped "simulated/carr." "create" far turned
 run_one() { # body hogs
   local body="$1" nhog="$2" urdf="" avatar_args=() motion=sweep
   case "$body" in
@@ -63,14 +64,15 @@ run_one() { # body hogs
     ros_env_wait_node /avatar 60 > /dev/null && ros_env_wait_node /skin_sim 60 > /dev/null \
       || { echo "$body: nodes did not come up"; tail -5 "$ROS_ENV_DIR"/*.log; exit 1; }
     local hog_pids=()
-    for ((h = 0; h < nhog; h++)); do yes > /dev/null & hog_pids+=($!); done
+    # tracked: stopped with the master even if this run ends early
+    for ((h = 0; h < nhog; h++)); do yes > /dev/null & hog_pids+=($!); ros_env_track $!; done
     ros_env_bg motion "$(ros_env_node_exe motion_node)" _motion:="$motion" _rate:=30
     sleep 5
     /usr/lib/rosbag/record -O "$ROS_ENV_DIR/run.bag" --duration="$seconds" /avatar_stats \
       /skin_stats > "$ROS_ENV_DIR/record.log" 2>&1
     kill "${hog_pids[@]}" 2> /dev/null
     local create
-    create=$(grep -o 'skin created:.*' "$ROS_ENV_DIR/skin.log" | tail -1 | grep -oE '[0-9.]+ ms\)' | grep -oE '[0-9.]+')
+    create=$(grep -o 'skin created.*' "$ROS_ENV_DIR/skin.log" | tail -1 | grep -oE '[0-9.]+ ms\)' | grep -oE '[0-9.]+')
     /usr/bin/python3 - "$ROS_ENV_DIR/run.bag" "$body" "$nhog" "${create:-?}" <<'PY'
 import sys
 import rosbag
@@ -98,9 +100,12 @@ resets = (last.resets - first.resets) if steps else 0
 skipped = (last.inputs_skipped - first.inputs_skipped) if steps else 0
 tri = ("%d/%d" % (last.triangles_simulated, last.triangles_carried)
        if last and hasattr(last, "triangles_carried") else "-")
-print("%-13s %4s %6d %8.1f%% %7.0fms %7.0fms  %-22s %6d %7d %15s %7sms"
+far = max((getattr(m, "vertices_far", -1) for m in ans), default=-1)
+turned = max((getattr(m, "faces_turned", -1) for m in ans), default=-1)
+print("%-13s %4s %6d %8.1f%% %7.0fms %7.0fms  %-22s %6d %7d %15s %7sms %5s %6s"
       % (body, nhog, len(inputs), 100.0 * len(ans) / max(1, len(inputs)), q(0.5), q(0.95),
-         works, resets, skipped, tri, create))
+         works, resets, skipped, tri, create, far if far >= 0 else "-",
+         turned if turned >= 0 else "-"))
 PY
   )
 }
