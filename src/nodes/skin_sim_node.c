@@ -34,7 +34,7 @@
  * core from the window's figures: ss_input_health); the ~reset service
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
- * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
+ * Parameters: see doc/ros.md and launch/skin.launch. */
 #include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ss_input.h"
