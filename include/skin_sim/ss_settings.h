@@ -1,4 +1,4 @@
-/* skin_sim core: the one table of simulation settings (issue 10, point 3).
+/* skin_sim core: the one table of simulation settings.
  *
  * Every field of ss_sim_settings (but face_mask) is described once here, in
  * src/core/settings.c: its name, type, default, range, unit and help. From that
