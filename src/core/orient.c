@@ -190,8 +190,7 @@ static inline void dof_normal_begin(const ss_sim *sim, const ss_frames *fr, int 
 }
 
 /* Each face and dof its own: on the sim's threads with the same bits (once
- * per substep: 6% of a frame at 4 substeps on the 19k quadruped, which ran
- * on one core). Nothing with orient 0. */
+ * per substep, a share of a frame worth both cores). Nothing with orient 0. */
 void ss_sim_orient_begin(ss_sim *sim) {
   /* without the term nothing reads them (its energy and line model return
    * first); a new orient takes effect at the next substep, which calls this */

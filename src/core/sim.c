@@ -343,9 +343,8 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
        * reach: the home face's point nearest the target (most anchors, most
        * of the time). Walked out onto a neighbour, the tether below would
        * put it back there every substep (the home stretch): an anchor at
-       * the edge of its home face crossed the edge and was put back on it
-       * again each substep, 40% of the walk stage's anchors at 1x8 on the
-       * 19k quadruped, with 1.1-2.1 crossings each. The walk's alone:
+       * the edge of its home face would cross the edge and be put back on
+       * it again each substep, and many anchors sit there. The walk's alone:
        * projection and n-ring jump where they jump (their snags are what
        * they are compared for). */
     } else {
