@@ -5,9 +5,8 @@
  * rounds) for each set, and whether each set gives, bit for bit, what the
  * reference gives (the frame update one face at a time; the membrane in the
  * baseline build). A kernel the compiler did not vectorise for a set shows
- * there as no faster than the baseline: the frame update ran as scalar code
- * on AVX2 CPUs for a session unnoticed, on a machine with AVX-512 (README,
- * "Twelfth session").
+ * there as no faster than the baseline (GCC if-converts some loops only with
+ * AVX-512's masks, so a kernel can be scalar on AVX2 CPUs alone).
  *
  *   bench_kernels [scene] [tris] [rounds]      e.g. bench_kernels quadruped 19000 21
  */

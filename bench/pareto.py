@@ -77,7 +77,7 @@ def main():
             ax.annotate(name, (r[key], r["error"]), fontsize=8, xytext=(4, 2), textcoords="offset points")
         ax.axvline(33.3, color="gray", lw=0.8)
         one = [r for r in rows if r["substeps"] == 1 and r["iterations"] == 8]
-        if one:  # issue 9's bar: half of the error of 1 substep of 8 iterations
+        if one:  # the bar drawn: half of the error of 1 substep of 8 iterations
             ax.axhline(0.5 * one[0]["error"], color="gray", lw=0.8, ls="--")
             ax.annotate("half of 1x8's error", (ax.get_xlim()[0], 0.5 * one[0]["error"]), fontsize=7,
                         xytext=(4, 2), textcoords="offset points", color="gray")

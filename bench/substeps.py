@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Is the physics independent of the step? (issue 11, point 2). For each body,
+"""Is the physics independent of the step? For each body,
 error_vs_truth (`skinsim run --truth`, cached) at 1, 2, 4, 8, 16 substeps per
 frame, with the default solver settings and, with --newton, also with Newton
 converged (1e-6, the truth's own solver: at 16 substeps that run IS the truth,

@@ -26,7 +26,7 @@ enum ss_status {
 /* A short English name of a status code, e.g. "malformed mesh". Never NULL. */
 const char *ss_status_string(int status);
 
-/* How an anchor is moved across the body surface (DESIGN.md, "Anchor update"). */
+/* How an anchor is moved across the body surface (doc/model.md, "Anchor update"). */
 enum ss_method {
   SS_METHOD_WALK = 0,    /* the paper: 2D ray tracing face to face */
   SS_METHOD_PROJECT = 1, /* "projection springs": Euclidean closest point on the whole body */

@@ -1,5 +1,5 @@
 /* skin_sim core: reference runs and the error of a run against its reference
- * (DESIGN.md, "Accuracy").
+ * (doc/model.md, "Accuracy").
  *
  * The reference of a run configuration is the same body, skin model and
  * anchor method stepped with a much smaller time step (SS_REFERENCE_SUBSTEPS
@@ -43,7 +43,7 @@ extern "C" {
 ss_run_settings ss_reference_settings(const ss_run_settings *run);
 
 /* The TRUTH of run: one run per body, motion and physical settings that every
- * anchor method and solver setting is measured against (DESIGN.md,
+ * anchor method and solver setting is measured against (doc/model.md,
  * "Accuracy"): the paper's model at convergence, i.e. the reference of run
  * with the default `walk` anchor update (ss_mover_default_settings) and
  * exactly SS_REFERENCE_SUBSTEPS substeps, whatever the run's method, solver, iterations, tolerance and

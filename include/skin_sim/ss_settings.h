@@ -1,11 +1,12 @@
-/* skin_sim core: the one table of simulation settings (issue 10, point 3).
+/* skin_sim core: the one table of simulation settings.
  *
  * Every field of ss_sim_settings (but face_mask) is described once here, in
  * src/core/settings.c: its name, type, default, range, unit and help. From that
  * table come ss_sim_default_settings(), the core's range checks (ss_sim_create,
  * ss_sim_set_settings), the reference cache key, skinsim's flags and help, the
- * node's `~` parameters and its dynamic_reconfigure server; the launch file and
- * README's table are checked against `skinsim settings` by a test.
+ * node's `~` parameters and its dynamic_reconfigure server; the manual's tables
+ * (doc/ros.md, doc/cli.md) are generated from it (`skinsim settings --markdown`,
+ * `bash scripts/doc_tables.sh`) and the launch files are checked against it by tests.
  *
  * The name is the node's parameter (`~young`) and the dynamic_reconfigure name;
  * `cli` is skinsim's flag (`--young`) where it differs, NULL where there is none.

@@ -1,4 +1,4 @@
-/* skin_sim core: the dynamic skin (DESIGN.md, "The skin model").
+/* skin_sim core: the dynamic skin (doc/model.md, "The skin model").
  *
  * One ss_sim simulates a triangle-mesh skin sliding over a moving body mesh:
  * implicit Euler posed as the minimisation of
@@ -52,14 +52,13 @@ typedef struct ss_sim_settings {
   int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */
   double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0; default 1/30 */
   int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
-                            linearly in between); default 2: at one substep the error is
+                            linearly in between); default 4: at one substep the error is
                             the step's (Newton converged there is as far from the truth
-                            as quasi-Newton), so the budget goes into a second substep */
-  int iterations;        /* max solver iterations per substep; default 3, the real-time
-                            budget of quasi-Newton (2 x 3 costs what 1 x 8 did: ~23 ms at
-                            19k triangles on one core of a 2-core machine, 0.74 of its
-                            error against the truth); raise it (e.g. 50-500) for Newton or
-                            tight tolerances */
+                            as quasi-Newton), so the budget goes into substeps */
+  int iterations;        /* max solver iterations per substep; default 2, the real-time
+                            budget of quasi-Newton (4 x 2 fits 30 Hz at 19k triangles on
+                            one core: doc/benchmarks.md); raise it (e.g. 50-500) for Newton
+                            or tight tolerances */
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
                             lengths; default 1e-4 */
@@ -89,8 +88,7 @@ typedef struct ss_sim_settings {
                             relaxation with time constant 1/slide s, the same physics at any
                             substep count. 0 glues the skin to the body, +inf (INFINITY)
                             is frictionless (the whole way every substep). Default 30 ln 2
-                            = 20.79 /s: half the way per 1/30 s frame (the former per-substep
-                            fraction 0.5 at one substep, bit for bit) */
+                            = 20.79 /s: half the way per 1/30 s frame */
   double tether;         /* 1/s, >= 0: the connective tissue under the skin. After its slide, each
                             anchor WALKS back along the body surface (the walk, whatever the
                             method, so it cannot jump across a gap) towards the point where it
@@ -106,7 +104,8 @@ typedef struct ss_sim_settings {
                             slide carries it past the faces around it (under a steady pull
                             along a flat body the vertex anchors stay at home and the others
                             on their home face whatever the tether, 0.3 or 3 /s: a leash more
-                            than a rate; README). 0 = the paper's free sliding;
+                            than a rate; doc/model.md, "Anchor update"). 0 = the paper's
+                            free sliding;
                             default 3 */
   double orient;         /* N/m (energy per m^2 of rest skin, as young), >= 0: the skin lies face up
                             on its body. Each skin face whose area projected on the tangent plane

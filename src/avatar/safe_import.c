@@ -1,4 +1,4 @@
-/* Hostile files kept out before assimp sees them (issue 14).
+/* Hostile files kept out before assimp sees them (doc/library.md, "Files from users").
  *
  * A mesh file is what a user or a robot_description names, so it may be
  * anything: a FIFO (opening it blocks for ever), a directory, a device, a

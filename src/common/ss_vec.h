@@ -30,10 +30,9 @@ static inline void cross3(const double a[3], const double b[3], double out[3]) {
 }
 
 /* (b - a) x (c - a): triangle abc's normal, twice its area long. The edges
- * in scalars: through two arrays (a loop the compiler kept) they were
+ * in scalars: through two arrays (a loop the compiler kept) they would be
  * stored element by element and read back two at a time, a load that
- * could not be forwarded: a third of the skin normals' time (4% of a frame
- * at 4 substeps on the 19k quadruped). The operations of cross3. */
+ * cannot be forwarded. The operations of cross3. */
 static inline void tri_area_vector(const double a[3], const double b[3], const double c[3], double n[3]) {
   const double e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
   const double e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];

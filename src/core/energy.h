@@ -1,4 +1,4 @@
-/* Internal: per-element energies of the skin (DESIGN.md, "The skin model").
+/* Internal: per-element energies of the skin (doc/model.md, "The skin model").
  *
  * Each function evaluates one element on flat arrays of its vertex positions
  * and returns the element's energy; gradient and Hessian are written where the

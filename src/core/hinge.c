@@ -1,5 +1,5 @@
 /* The skin's bending energy: a dihedral-angle hinge on each interior edge
- * (DESIGN.md, "Bending"), energy = weight (theta - theta0)^2 with
+ * (doc/model.md, "Bending"), energy = weight (theta - theta0)^2 with
  * weight = k |e_rest|^2 / A_e precomputed by the caller.
  *
  * Angle: vertices (e0, e1, o0, o1), faces A = (e0, e1, o0) and B = (e1, e0, o1)
@@ -23,7 +23,7 @@
  * construction and exact where theta = theta0. The dropped term
  * 2 weight (theta - theta0) Hess(theta) is indefinite; projected to PSD it
  * would add little stiffness while costing a 12x12 eigen-decomposition per
- * hinge, and bending is off by default (DESIGN.md).
+ * hinge, and bending is off by default (doc/model.md, "Bending").
  *
  * Degenerate hinge (zero-length edge or a zero-area wing): the angle is not
  * defined; the energy is still computed from whatever atan2 returns (finite)

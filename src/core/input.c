@@ -266,16 +266,6 @@ void ss_input_stretch_color(double ratio, float rgba[4])
   rgba[3] = 1.0f;
 }
 
-/* The area vector of triangle (a, b, c): half the cross product of its edges. */
-static void tri_area_vec(const double *a, const double *b, const double *c, double out[3])
-{
-  double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  out[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
-  out[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
-  out[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
-}
-
 static int face_ok(const int *f, int nvert)
 {
   return f[0] >= 0 && f[1] >= 0 && f[2] >= 0 && f[0] < nvert && f[1] < nvert && f[2] < nvert;
@@ -288,9 +278,9 @@ void ss_input_vertex_area_ratio(int nvert, const double *pos, const double *rest
   for (int f = 0; f < nface; f++) {
     const int *t = faces + 3 * (size_t)f;
     if (!face_ok(t, nvert)) continue;
-    double a[3], a0[3];
-    tri_area_vec(pos + 3 * (size_t)t[0], pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[2], a);
-    tri_area_vec(rest + 3 * (size_t)t[0], rest + 3 * (size_t)t[1], rest + 3 * (size_t)t[2], a0);
+    double a[3], a0[3]; /* twice the areas: only their ratios are used */
+    tri_area_vector(pos + 3 * (size_t)t[0], pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[2], a);
+    tri_area_vector(rest + 3 * (size_t)t[0], rest + 3 * (size_t)t[1], rest + 3 * (size_t)t[2], a0);
     double now = sqrt(dot3(a, a)), at_rest = sqrt(dot3(a0, a0));
     for (int k = 0; k < 3; k++) {
       area[2 * (size_t)t[k]] += now;
@@ -314,7 +304,7 @@ void ss_input_shade(int nvert, const double *pos, int nface, const int *faces, d
     const int *t = faces + 3 * (size_t)f;
     if (!face_ok(t, nvert)) continue;
     double a[3];
-    tri_area_vec(pos + 3 * (size_t)t[0], pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[2], a);
+    tri_area_vector(pos + 3 * (size_t)t[0], pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[2], a);
     for (int k = 0; k < 3; k++)
       for (int d = 0; d < 3; d++) normal[3 * (size_t)t[k] + d] += a[d];
   }

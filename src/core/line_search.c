@@ -17,12 +17,11 @@
  * g_t.d) from the slopes at 0 and at the trial point (both known), kept
  * within [0.1, 0.5] of the trial step. The quasi-Newton direction from the
  * constant matrix A is mostly 3-4 times too long where the depth springs act
- * (stiff, one-sided, not in A): halving from 1 took 3.15 evaluations per
- * iteration on the 19k quadruped (the full step accepted in 1 of 700
- * searches), the memory and the secant 1.97 (the first trial refused in 2
- * of 3 searches), with the springs' model first 1.33 (refused in 16 of 417),
- * for closer to the truth at every budget measured (bench_sim / skinsim run
- * --truth, README "Speed"). */
+ * (stiff, one-sided, not in A): halving from 1 would spend two or three
+ * energy evaluations per iteration on refused trials; the step memory, the
+ * secant and the springs' model bring a search close to one evaluation, and
+ * the error against the truth falls at every budget (doc/model.md,
+ * "Solvers"; doc/benchmarks.md). */
 #include <math.h>
 
 #include "solver.h"

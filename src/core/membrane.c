@@ -1,5 +1,5 @@
 /* The skin's membrane energy: 2D Stable Neo-Hookean on each triangle, with its
- * gradient and a positive semi-definite Hessian (DESIGN.md, "Membrane").
+ * gradient and a positive semi-definite Hessian (doc/model.md, "Membrane").
  *
  * Model (Smith, de Goes, Kim, "Stable Neo-Hookean Flesh Simulation", ACM TOG
  * 2018, restricted to a surface in 3D as in Kim's HOBAK shells):

@@ -140,9 +140,8 @@ static int vertex_normal(const ss_sim *sim, const ss_frames *fr, int q, double n
 /* The depth spring: SS_ORIENT_DEPTH orient per rest area, the depth in mean
  * edge lengths (a vertex one edge length deep pays a tenth of a face turned
  * on edge). Stiffer springs cost line-search halvings in the quasi-Newton
- * solve (its constant preconditioner does not hold them): on `elbow` 3.6x
- * the time per frame at 1, 1.6x at 0.1, for no better rest return on the
- * demo avatar (measured: rest error max 0.024 / 0.029 edges at 0.3 / 0.1). */
+ * solve (its constant preconditioner does not hold them) and bring the skin
+ * home no better. */
 static double depth_weight(const ss_sim *sim, int q) {
   return SS_ORIENT_DEPTH * sim->set.orient * sim->m->vert_area[sim->m->dof_vert[q]] / (sim->m->edge_len * sim->m->edge_len);
 }
@@ -191,8 +190,7 @@ static inline void dof_normal_begin(const ss_sim *sim, const ss_frames *fr, int 
 }
 
 /* Each face and dof its own: on the sim's threads with the same bits (once
- * per substep: 6% of a frame at 4 substeps on the 19k quadruped, which ran
- * on one core). Nothing with orient 0. */
+ * per substep, a share of a frame worth both cores). Nothing with orient 0. */
 void ss_sim_orient_begin(ss_sim *sim) {
   /* without the term nothing reads them (its energy and line model return
    * first); a new orient takes effect at the next substep, which calls this */

@@ -6,8 +6,7 @@
  * and the partial sums are added in block order on one thread: the blocks
  * are the same for any thread count, so are the bits. The vector work of the
  * solver (dots, updates) and the sums of the energy's per-element terms run
- * this way: on one thread they were ~8 ms of a 34 ms frame at two threads on
- * the 19k quadruped (4 substeps of 2 iterations), the other core spinning. */
+ * this way, so that the second core works on them too instead of spinning. */
 #ifndef SKIN_SIM_PAR_H
 #define SKIN_SIM_PAR_H
 

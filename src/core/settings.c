@@ -4,7 +4,7 @@
  * THE DEFAULTS LIVE HERE: ss_sim_default_settings() and
  * ss_mover_default_settings() fill their structs from this table. To change a
  * default, change its `def` below (one line), and the node, skinsim, the launch
- * file check and README check all follow. */
+ * file check and the manual's generated tables (bash scripts/doc_tables.sh) follow. */
 #include "skin_sim/ss_settings.h"
 
 #include <errno.h>

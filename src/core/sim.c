@@ -1,5 +1,5 @@
 /* ss_sim: the dynamic skin of the paper (Kautzman, Cameron, Kim 2018,
- * sections 1 and 3; DESIGN.md, "The skin model").
+ * sections 1 and 3; doc/model.md, "The skin model").
  *
  * A step of length dt runs `substeps` substeps of h = dt / substeps, each the
  * stages below in order (ss_stage, the `stages` table before ss_sim_step):
@@ -186,8 +186,7 @@ typedef struct anchor_counts {
 /* What the anchor pass reads of the sim, read once per pass into a local
  * copy (a value, never addressed): through sim, every field was loaded again
  * for each anchor, since the stores into anchor_face and anchor_uv might
- * have changed them for all the compiler knew (5% of the pass's
- * instructions and 6% of its time at 1x8 on the 19k quadruped). */
+ * have changed them for all the compiler knew. */
 typedef struct anchor_pass {
   ss_sim *sim;
   const ss_frames *fr; /* the mover's frames */
@@ -344,9 +343,8 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
        * reach: the home face's point nearest the target (most anchors, most
        * of the time). Walked out onto a neighbour, the tether below would
        * put it back there every substep (the home stretch): an anchor at
-       * the edge of its home face crossed the edge and was put back on it
-       * again each substep, 40% of the walk stage's anchors at 1x8 on the
-       * 19k quadruped, with 1.1-2.1 crossings each. The walk's alone:
+       * the edge of its home face would cross the edge and be put back on
+       * it again each substep, and many anchors sit there. The walk's alone:
        * projection and n-ring jump where they jump (their snags are what
        * they are compared for). */
     } else {
@@ -375,8 +373,7 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
      * arithmetic (the chord lies in the face's plane, so turning it into the
      * tangent plane keeps it; the target lies inside the face, so it is its
      * own closest point), without two positions, the normal, two square
-     * roots and a closest-point search: 28% fewer instructions in the anchor
-     * stage (callgrind, 19k quadruped, 4 substeps x 2 iterations). */
+     * roots and a closest-point search. */
     const double *uv0 = P->anchor_uv0 + 2 * a;
     const double du = P->tether * (uv0[0] - res.uv[0]);
     const double dv = P->tether * (uv0[1] - res.uv[1]);
@@ -404,9 +401,8 @@ static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_
 SS_ISA_VARIANTS(anchor_range, (const anchor_pass *P, int a0, int a1, ss_walker *walker, anchor_counts *c),
                 const anchor_pass Q = *P; /* a value, never addressed in the loop */
                 /* The usual pass (the walk on a leash, not measured) with those four
-                 * facts as constants, a copy of the loop without their branches: the
-                 * walk stage 1.01 -> 0.86 ms at 1x8 on the 19k quadruped, one thread
-                 * (a copy for the free walk gained nothing: the walk is its time). */
+                 * facts as constants: a copy of the loop without their branches (the
+                 * free walk has none: the walk itself is its time). */
                 if (Q.walks && !Q.measure && Q.slide > 0.0 && Q.tether > 0.0)
                   for (int a = a0; a < a1; a++) move_anchor(&Q, a, walker, c, 1, 0, 1);
                 else
@@ -478,9 +474,9 @@ static int all_finite(const double *a, size_t n) {
  * with SS_PROBE_STEPS steps on one thread, then up to SS_PROBE_STEPS on all;
  * the rest of the period uses the faster (sum of wall-clock step times).
  * One thread goes first and the all-threads steps stop as soon as their sum
- * passes the one-thread steps': beside a CPU hog a step on two threads of
- * the demo avatar took 1.3-4.4 s against 7 ms on one, and three of them in a
- * row at the start (as the probe ran them) left the node seconds behind.
+ * passes the one-thread steps': beside a CPU hog a step on two threads can
+ * take hundreds of times as long as on one, and several of them in a row
+ * would leave a node seconds behind.
  * Each probe that one thread wins doubles the period (up to
  * SS_PROBE_PERIOD_MAX steps), so that a busy machine is not asked again
  * every 50 steps; one that all threads win sets it back. The bits do not

@@ -2,7 +2,7 @@
  * the face mask's split of vertices into free / pinned / followers, lumped
  * masses, anchor spring stiffnesses, membrane rest data and bending hinges.
  *
- * Binding (DESIGN.md, "Anchor springs"): a skin that is a copy of the body
+ * Binding (doc/model.md, "Anchor springs"): a skin that is a copy of the body
  * anchors each vertex at its own corner of the first body face using it that
  * is not a sliver (else the first at all)
  * (canonical coordinates (0,0), (1,0) or (0,1)) and each face barycenter at

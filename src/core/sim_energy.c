@@ -298,8 +298,8 @@ static inline SS_ALWAYS_INLINE double dof_residual_along(const ss_sim *sim, cons
  * measure; else its square) into *worst, and the number of NaN among them
  * into *nan. A maximum is exact in any order: in vector lanes and on the
  * sim's threads, the same bits. In each instruction set (isa.h): baseline
- * x86-64 divides two doubles at a time, and with three divisions per dof
- * this pass, nine times a frame, was 2.4% of the 19k quadruped's frame. */
+ * x86-64 divides two doubles at a time, and this pass has three divisions
+ * per dof, several times a frame. */
 static inline SS_ALWAYS_INLINE void residual_kernel(const ss_sim *sim, const double *g, int k0, int k1,
                                                     double *worst_out, int *nan_out, const int along) {
   /* in lanes of their own (an omp simd max reduction was left scalar by the

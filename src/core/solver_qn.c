@@ -133,11 +133,10 @@ static void scalar_pattern(const ss_model *m, cholmod_sparse *A) {
 /* A simplicial LDL' factor: CHOLMOD's simplicial solve does the three
  * columns in one pass over L, and no BLAS (nor its threads) is involved,
  * which keeps the result bit-for-bit reproducible (the supernodal solve,
- * through BLAS, took twice as long here: 11.8 against 5.5 ms per frame on
- * the 19k quadruped at 1 x 8). LDL' rather than LL': the LL' solves divide by
- * the diagonal at every column of both triangular passes, on their chains of
- * dependent operations; LDL' divides by D in a pass of its own (solve 5.48
- * -> 5.07 ms per frame there, 3 runs each). supernodal is read by
+ * through BLAS, is slower at these sizes, where the factor is sparse).
+ * LDL' rather than LL': the LL' solves divide by the diagonal at every
+ * column of both triangular passes, on their chains of dependent
+ * operations; LDL' divides by D in a pass of its own. supernodal is read by
  * cholmod_analyze (the model's cc), final_ll by cholmod_factorize (each
  * sim's): both cc's are set alike. (Each cholmod_common serves only this
  * solver.) */

@@ -203,8 +203,7 @@ static inline SS_ALWAYS_INLINE void frames_kernel(ss_frames *fr, const int *fv, 
        * frame_update_face's other branches. The tests joined by & (all
        * evaluated), not &&: the branches of && kept GCC from vectorising
        * the loop for AVX2 (only AVX-512's masks took them), and on an AVX2
-       * CPU the pose stage ran one face at a time (3.6 ms per frame of the
-       * 19k quadruped at 3 x 2). */
+       * CPU the pose stage would run one face at a time. */
       ok[l] = (double)((len > 0.0) & (len <= DBL_MAX) & (r11 > 0.0) & (r11 <= DBL_MAX) & (r22 > 1e-10 * r11));
     }
     for (int l = 0; l < m; l++) {

@@ -1,10 +1,9 @@
 /* Internal: the arithmetic of one ray step of the walk (walk.c), inline,
  * shared by the walk and by the anchor pass (sim.c), which runs the leash's
  * slide (ss_slide_in_face) for every anchor in each of its instruction sets
- * (isa.h): a call per anchor, and the slide compiled for SSE2 only, were 16%
- * of the anchor stage's instructions (callgrind; 3% of its time). The walk
- * itself stays in walk.c, called: inlined into the pass as well, the stage
- * took 6-8% longer. */
+ * (isa.h): a call per anchor, and the slide compiled for SSE2 only, cost the
+ * anchor stage instructions. The walk itself stays in walk.c, called: inlined
+ * into the pass as well, it made the stage slower. */
 #ifndef SKIN_SIM_WALK_STEP_H
 #define SKIN_SIM_WALK_STEP_H
 
@@ -78,9 +77,9 @@ static inline SS_ALWAYS_INLINE void ray_direction(const double *w, double pu, do
  * convex polygon to a point outside lies on an edge the point is beyond:
  * each such edge's nearest point (the projection in G, clamped to the edge),
  * the nearer of them. Selects, not branches: which edge wins is as
- * unpredictable as where a skin pulls (against the general closest point on
- * a triangle, ss_closest_point_triangle, the walk stage 15% faster at 1x8
- * and 4x2 on the 19k quadruped). e are the face's edges e1, e2. */
+ * unpredictable as where a skin pulls, so the general closest point on a
+ * triangle (ss_closest_point_triangle, which branches on the region) would
+ * mispredict. e are the face's edges e1, e2. */
 static inline SS_ALWAYS_INLINE void nearest_in_face(const double *e, int out2, int out1, int out0,
                                                     double *qu_io, double *qv_io) {
   const double qu = *qu_io, qv = *qv_io;

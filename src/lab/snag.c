@@ -1,4 +1,4 @@
-/* Snag test (DESIGN.md, "Accuracy"): an anchor update is a snag when its
+/* Snag test (doc/model.md, "Accuracy"): an anchor update is a snag when its
  * result lies further along the surface from its start than a limit (a few
  * times the pull plus an edge length).
  *

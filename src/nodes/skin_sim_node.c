@@ -25,8 +25,8 @@
  * ring of ~queue_size slots (default 1: only the newest); when it is full the
  * oldest is skipped (inputs_skipped), so nothing queues without bound.
  * roscpp's own queue holds ~queue_size + 2 (it only fills during one step, as
- * the node spins between steps; deeper, a stall filled it with up to 33 serialized
- * meshes of ~90 kB, a 3 MB high-water mark kept by the allocator: issue 14's soak);
+ * the node spins between steps; deeper, a stall would fill it with serialized
+ * meshes, a high-water mark the allocator keeps);
  * meshes lost before the callback show as gaps in header.seq and are counted as
  * inputs_dropped.
  *
@@ -34,7 +34,7 @@
  * core from the window's figures: ss_input_health); the ~reset service
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
- * Parameters: see README.md ("ROS nodes") and launch/skin.launch. */
+ * Parameters: see doc/ros.md and launch/skin.launch. */
 #include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ss_budget.h"

@@ -346,8 +346,8 @@ static void test_time_wild(void)
   CHECK(ss_input_classify_time(1, 0, 33333333, NAN, &dt) == SS_TIME_GAP);
 }
 
-/* The level of a diagnostics window from its figures (README "ROS nodes",
- * /diagnostics). */
+/* The level of a diagnostics window from its figures (doc/ros.md, "Health on
+ * /diagnostics"). */
 static void test_health(void)
 {
   char msg[128];

@@ -8,8 +8,7 @@
  * its default: on `fold` and `twist` (1000 triangles), which drift with tether 0
  * (rest error max 0.30 and 1.00 edge lengths, rms 0.29 and 0.89), the skin comes
  * home to within 0.1 edge lengths (rms 0.02) while it still slides during the
- * motion. (The default since the stopping test judges the residual across
- * the skin: see README "The dynamic skin".) */
+ * motion (doc/model.md, "Anchor update": the tether). */
 #include <math.h>
 #include <stdio.h>
 

@@ -1,4 +1,4 @@
-/* The stability suite (DESIGN.md, "Scenes where methods fail"): the dynamic
+/* The stability suite (doc/model.md, "Scenes where methods fail"): the dynamic
  * skin with the default settings over every built-in scene at its default
  * size for 200 frames. The walk never fails, never snags, keeps every
  * triangle's area ratio inside [0.05, 20] and hugs the body; projection

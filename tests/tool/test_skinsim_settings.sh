@@ -2,10 +2,13 @@
 # The one settings table (include/skin_sim/ss_settings.h, `skinsim settings`) against
 # what is written by hand elsewhere: every setting is an <arg> of launch/skin.launch
 # with the table's default, passed to the node as <param> of the right type, its
-# comment starting with the type; demo.launch and replay.launch repeat no default that
-# disagrees; README's parameter table has a row `~name` with the table's type and
-# default; and skinsim takes every flag with the table's range (a value just outside
-# is refused naming the flag, the bound inside is taken). Fails on any disagreement.
+# comment starting with the type; demo.launch, replay.launch and robot.launch repeat no
+# default that disagrees; doc/ros.md's parameter table has a row `~name` with the
+# table's type and default (that table is generated: bash scripts/doc_tables.sh; its
+# exact text is checked by test_doc_tables.sh), and every other argument of skin.launch
+# (the node's own parameters) has a row in doc/ros.md too; and skinsim takes every flag
+# with the table's range (a value just outside is refused naming the flag, the bound
+# inside is taken). Fails on any disagreement.
 set -u
 bld="$1"
 src="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -24,7 +27,7 @@ check "the table has the settings the issue names" \
 "$exe" settings > "$tmp/table.txt"
 check "skinsim settings (for people) lists them too" "grep -q '^poisson ' '$tmp/table.txt'"
 
-# launch files and README against the table
+# launch files and doc/ros.md against the table
 "$py" - "$tmp/table.tsv" "$src" <<'PY' > "$tmp/cmp.txt" 2>&1
 import csv, math, re, sys, xml.etree.ElementTree as ET
 rows = list(csv.DictReader(open(sys.argv[1]), delimiter='\t'))
@@ -57,32 +60,37 @@ for r in rows:
         bad.append('skin.launch: <param %s> needs type="double" (a default like 1 would be an int)' % n)
     if not comments.get(n, '').strip().startswith(t):
         bad.append('skin.launch: the comment of %s does not start with its type %s' % (n, t))
-for other in ('demo.launch', 'replay.launch'):
+for other in ('demo.launch', 'replay.launch', 'robot.launch'):
     r2 = ET.fromstring(open(src + '/launch/' + other).read())
     for a in r2.iter('arg'):
         for r in rows:
             if a.get('name') == r['name'] and a.get('default') is not None and \
                not same(a.get('default'), r['default']):
                 bad.append('%s: %s default %s, table %s' % (other, r['name'], a.get('default'), r['default']))
-readme = open(src + '/README.md').read()
+readme = open(src + '/doc/ros.md').read()
+names = {r['name'] for r in rows}
+for n in args:
+    if n not in names and n not in ('name', 'output') and \
+       not re.search(r'^\| `~%s` \|' % re.escape(n), readme, re.M):
+        bad.append('doc/ros.md: no row for ~%s (an argument of skin.launch)' % n)
 for r in rows:
-    m = re.search(r'^\| `~%s` \| (\w+), ([^|]*?)\s*\|' % re.escape(r['name']), readme, re.M)
-    if not m: bad.append('README: no row for ~%s' % r['name']); continue
+    m = re.search(r'^\| `~%s` \| [^|]*\| (\w+), ([^|]*?)\s*\|' % re.escape(r['name']), readme, re.M)
+    if not m: bad.append('doc/ros.md: no row for ~%s' % r['name']); continue
     t, rest = m.group(1), m.group(2)
-    if t != r['type']: bad.append('README: ~%s is %s, table %s' % (r['name'], t, r['type']))
+    if t != r['type']: bad.append('doc/ros.md: ~%s is %s, table %s' % (r['name'], t, r['type']))
     dflt = rest.strip()
     if r['unit'] and dflt.endswith(r['unit']): dflt = dflt[:-len(r['unit'])]
-    # README may round (20.79 for 30 ln 2): 1e-3 relative
+    # a page may round (20.79 for 30 ln 2): 1e-3 relative
     if not same(dflt, r['default'], 1e-3):
-        bad.append('README: ~%s default "%s", table %s' % (r['name'], rest, r['default']))
+        bad.append('doc/ros.md: ~%s default "%s", table %s' % (r['name'], rest, r['default']))
     if r['unit'] and r['unit'] not in rest:
-        bad.append('README: ~%s says no unit %s' % (r['name'], r['unit']))
+        bad.append('doc/ros.md: ~%s says no unit %s' % (r['name'], r['unit']))
 print('\n'.join(bad) if bad else 'all agree (%d settings)' % len(rows))
 sys.exit(1 if bad else 0)
 PY
 rc=$?
 cat "$tmp/cmp.txt"
-check "skin.launch, demo.launch, replay.launch and README agree with the table" "[ $rc -eq 0 ]"
+check "skin.launch, demo.launch, replay.launch, robot.launch and doc/ros.md agree with the table" "[ $rc -eq 0 ]"
 
 # skinsim's flags take the table's ranges (one range per setting)
 while IFS=$'\t' read -r name flag type def range unit live help; do

@@ -1,4 +1,4 @@
-/* skinsim bench: speed against accuracy (issue 6). Runs a sweep of
+/* skinsim bench: speed against accuracy (doc/benchmarks.md). Runs a sweep of
  * configurations over the built-in scenes and the avatars, each compared with
  * its reference (ss_reference.h, cached), writes results.csv (one row per run,
  * every field of `skinsim run --json` after the sweep's own columns) and draws

@@ -1,5 +1,5 @@
-/* skinsim bench --truth-doubling MAX: is the truth converged? (issue 11,
- * point 1). For each body of the methods sweep (the built-in scenes, the demo
+/* skinsim bench --truth-doubling MAX: is the truth converged? (doc/model.md,
+ * "Accuracy"). For each body of the methods sweep (the built-in scenes, the demo
  * avatar, the BCN asset if present: the same sizes and frames as the sweep)
  * and the default physical settings:
  *  - the truth (ss_truth_settings: walk, Newton converged, 16 substeps) and

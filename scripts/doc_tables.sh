@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Writes the manual's generated tables: in every doc/*.md, the lines between
+#   <!-- generated: skinsim settings --markdown (bash scripts/doc_tables.sh) -->
+#   <!-- end of generated table -->
+# become the output of `skinsim settings --markdown` (the one settings table,
+# src/core/settings.c). Run it after changing a setting; tests/tool/test_doc_tables.sh
+# fails while a page and the table disagree.
+#
+#   bash scripts/doc_tables.sh [BUILD_DIR]           # rewrite the pages (default build/release)
+#   bash scripts/doc_tables.sh --check [BUILD_DIR]   # exit 1, showing the difference, if any
+#                                                    # page is out of date; change nothing
+set -euo pipefail
+export PATH=/usr/bin:/bin:$PATH
+src="$(cd "$(dirname "$0")/.." && pwd)"
+check=0
+if [ "${1:-}" = "--check" ]; then check=1; shift; fi
+bld="${1:-$src/build/release}"
+exe=$(find "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
+[ -n "$exe" ] || { echo "doc_tables.sh: no skinsim under $bld (build first: bash scripts/build.sh $bld)" >&2; exit 2; }
+table=$(mktemp)
+trap 'rm -f "$table"' EXIT
+"$exe" settings --markdown > "$table"
+/usr/bin/python3 - "$table" "$check" "$src"/doc/*.md <<'PY'
+import difflib, re, sys
+table = open(sys.argv[1]).read()
+check = sys.argv[2] == "1"
+begin = "<!-- generated: skinsim settings --markdown (bash scripts/doc_tables.sh) -->"
+end = "<!-- end of generated table -->"
+block = re.compile(re.escape(begin) + r"\n.*?" + re.escape(end), re.S)
+stale = 0
+found = 0
+for page in sys.argv[3:]:
+    text = open(page).read()
+    new, n = block.subn(lambda m: begin + "\n" + table + end, text)
+    found += n
+    if new == text:
+        continue
+    stale += 1
+    if check:
+        sys.stdout.writelines(difflib.unified_diff(text.splitlines(True), new.splitlines(True),
+                                                   page, page + " (from skinsim settings --markdown)"))
+    else:
+        open(page, "w").write(new)
+        print("doc_tables.sh: wrote %s" % page)
+if found == 0:
+    print("doc_tables.sh: no generated table in doc/*.md")
+    sys.exit(1)
+if check and stale:
+    print("doc_tables.sh: %d page(s) disagree with the settings table: run bash scripts/doc_tables.sh" % stale)
+    sys.exit(1)
+print("doc_tables.sh: %d table(s) in doc/ %s" % (found, "agree with the settings table" if check else "up to date"))
+PY
