@@ -124,6 +124,11 @@ int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns,
                        int discontinuity, int prev_periods, double max_step, int max_split,
                        ss_input_plan *plan);
 
+/* A SkinMesh topology_id for a mesh's layout: FNV-1a over the vertex and
+ * triangle counts, the triangles, and (rigid_part not NULL: nvert values) what
+ * each vertex moves with; never 0. Equal layouts give equal ids. */
+uint32_t ss_input_topology_id(int nvert, int nface, const int *faces, const uint32_t *rigid_part);
+
 /* Slide: the distance between where an anchor is now and where it was bound,
  * both on the body in pose body_pos (body nvert x 3, faces nface x 3).
  * Anchors are (face, u, v) as in ss_anchor.h: n anchors now (face, uv: n and

@@ -203,6 +203,25 @@ int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns,
   return plan->kind = SS_TIME_STEP;
 }
 
+static uint32_t fnv_u32(uint32_t h, uint32_t v)
+{
+  for (int k = 0; k < 4; k++) {
+    h ^= (v >> (8 * k)) & 255u;
+    h *= 16777619u;
+  }
+  return h;
+}
+
+uint32_t ss_input_topology_id(int nvert, int nface, const int *faces, const uint32_t *rigid_part)
+{
+  uint32_t h = fnv_u32(fnv_u32(2166136261u, (uint32_t)nvert), (uint32_t)nface);
+  for (size_t i = 0; faces && i < 3 * (size_t)(nface > 0 ? nface : 0); i++)
+    h = fnv_u32(h, (uint32_t)faces[i]);
+  for (size_t i = 0; rigid_part && i < (size_t)(nvert > 0 ? nvert : 0); i++)
+    h = fnv_u32(h, rigid_part[i]);
+  return h ? h : 1u;
+}
+
 static void anchor_point(const double *pos, int nvert, const int *faces, int nface, int f,
                          const double uv[2], double out[3])
 {

@@ -32,6 +32,7 @@
  * bad parameter). */
 #include "node_params.h"
 #include "rosc/rosc.h"
+#include "skin_sim/ss_input.h"
 #include "skin_sim/ssa_avatar.h"
 
 #include <math.h>
@@ -66,20 +67,6 @@ typedef struct node {
   unsigned long clamped;  /* messages with values clamped to the limits */
   int queue;              /* ~queue_size */
 } node;
-
-static uint32_t hash_topology(int nvert, int nface, const int *faces, const uint32_t *rigid)
-{
-  uint32_t h = 2166136261u; /* FNV-1a */
-  uint32_t vals[2] = {(uint32_t)nvert, (uint32_t)nface};
-  for (int i = 0; i < 2; i++)
-    for (int k = 0; k < 4; k++) { h ^= (vals[i] >> (8 * k)) & 255u; h *= 16777619u; }
-  for (size_t i = 0; i < 3 * (size_t)nface; i++)
-    for (int k = 0; k < 4; k++) { h ^= ((uint32_t)faces[i] >> (8 * k)) & 255u; h *= 16777619u; }
-  /* what moves rigidly is part of the topology: the skin node carries those pieces */
-  for (size_t i = 0; i < (size_t)nvert; i++)
-    for (int k = 0; k < 4; k++) { h ^= (rigid[i] >> (8 * k)) & 255u; h *= 16777619u; }
-  return h ? h : 1u;
-}
 
 static void reject(node *nd, const char *why)
 {
@@ -207,7 +194,8 @@ static int body_finish(body *b, const body *old)
   if (!b->q || !b->q_try || !b->pose || !b->pos_out || !b->tri_out || !b->rigid_out) return 0;
   for (size_t i = 0; i < 3 * (size_t)av->nface; i++) b->tri_out[i] = (uint32_t)av->faces[i];
   ssa_avatar_rigid_parts(av, b->rigid_out);
-  b->topology_id = hash_topology(av->nvert, av->nface, av->faces, b->rigid_out);
+  /* what moves rigidly is part of the topology: the skin node carries those pieces */
+  b->topology_id = ss_input_topology_id(av->nvert, av->nface, av->faces, b->rigid_out);
   if (old && old->robot)
     for (int j = 0; j < b->robot->njoint; j++) {
       int k = ssa_robot_joint_index(old->robot, b->robot->joint_name[j]);

@@ -341,13 +341,7 @@ static int load_skin_file(node *nd)
     else snprintf(err, sizeof err, "out of memory"), st = SS_E_NOMEM;
   }
   if (st == SS_OK) {
-    /* its own topology_id, from its layout: FNV-1a of the counts and triangles */
-    uint32_t h = 2166136261u, vals[2] = {(uint32_t)a->nvert, (uint32_t)a->nface};
-    for (int i = 0; i < 2; i++)
-      for (int k = 0; k < 4; k++) { h ^= (vals[i] >> (8 * k)) & 255u; h *= 16777619u; }
-    for (size_t i = 0; i < 3 * (size_t)a->nface; i++)
-      for (int k = 0; k < 4; k++) { h ^= ((uint32_t)a->faces[i] >> (8 * k)) & 255u; h *= 16777619u; }
-    nd->skin.topology_id = h ? h : 1u;
+    nd->skin.topology_id = ss_input_topology_id(a->nvert, a->nface, a->faces, NULL);
     ROSC_INFO("~skin_mesh %s: %d vertices (%d after welding), %d triangles", path, a->nvert,
               nd->skin.weld->nweld, a->nface);
   } else {

@@ -310,6 +310,22 @@ static void test_plan(void)
 static void test_time_wild(void);
 static void test_health(void);
 
+/* Layout ids: equal layouts equal, any change of counts, triangles or rigid parts
+ * another id, never 0. */
+static void test_topology_id(void)
+{
+  const int faces[6] = {0, 1, 2, 2, 1, 3};
+  int other[6] = {0, 1, 2, 2, 3, 1};
+  const uint32_t part[4] = {1, 1, 2, 2}, part2[4] = {1, 1, 2, 0};
+  uint32_t a = ss_input_topology_id(4, 2, faces, NULL);
+  CHECK(a != 0 && a == ss_input_topology_id(4, 2, faces, NULL));
+  CHECK(a != ss_input_topology_id(5, 2, faces, NULL));
+  CHECK(a != ss_input_topology_id(4, 2, other, NULL));
+  CHECK(a != ss_input_topology_id(4, 2, faces, part));
+  CHECK(ss_input_topology_id(4, 2, faces, part) != ss_input_topology_id(4, 2, faces, part2));
+  CHECK(ss_input_topology_id(0, 0, NULL, NULL) != 0);
+}
+
 int main(void)
 {
   test_mesh_check();
@@ -322,6 +338,7 @@ int main(void)
   test_plan();
   test_time_wild();
   test_health();
+  test_topology_id();
   return ss_test_finish("test_input");
 }
 
