@@ -344,9 +344,10 @@ int ss_sim_body_nface(const ss_sim *sim);
  * faces turned more than 90 degrees against the body under them (the body
  * face holding the face's barycenter anchor, else its corners' anchors),
  * against how they lay at rest, slivers and faces over sharp turns included;
- * and skin vertices farther than one mean rest edge length from their anchor
- * on the body (an upper bound of their distance to the body). Either pointer
- * may be NULL. O(faces + vertices), allocates nothing. */
+ * and skin vertices farther than one mean rest edge length from the body
+ * near their anchor (its face and the faces across its edges: their distance
+ * to the body where the body closest to them is there, else a bound from
+ * above). Either pointer may be NULL. O(faces + vertices), allocates nothing. */
 void ss_sim_count_off_body(const ss_sim *sim, int *faces_turned, int *vertices_far);
 /* Body topology, as built at create (for metrics that need it). */
 const ss_topo *ss_sim_body_topo(const ss_sim *sim);

@@ -4,6 +4,7 @@
  * and vertex, so that a user's picture and the numbers agree. */
 #include <math.h>
 
+#include "closest.h"
 #include "sim_internal.h"
 
 /* Unnormalised normal of triangle (a, b, c) of flat arrays pos at indices. */
@@ -59,12 +60,26 @@ void ss_sim_count_off_body(const ss_sim *sim, int *faces_turned, int *vertices_f
     *faces_turned = turned;
   }
   if (vertices_far) {
+    /* the distance to the body near the anchor: its face and the faces across its
+     * edges, asked only of vertices farther than the bound from the anchor itself */
     int far = 0;
     const double lim2 = m->edge_len * m->edge_len;
+    const ss_topo *t = m->btopo;
+    const double *body = sim->body_prev;
     for (int v = 0; v < m->nvert; v++) {
       const double *x = sim->x + 3 * v, *a = sim->anchor_pos + 3 * v;
       double d2 = (x[0] - a[0]) * (x[0] - a[0]) + (x[1] - a[1]) * (x[1] - a[1]) +
                   (x[2] - a[2]) * (x[2] - a[2]);
+      const int f = sim->anchor_face[v];
+      if (!(d2 > lim2) || f < 0) continue;
+      for (int k = -1; k < 3 && d2 > lim2; k++) {
+        const int g = k < 0 ? f : t->face_adj[3 * f + k];
+        if (g < 0) continue;
+        const int *c = t->face_vert + 3 * g;
+        double uv[2];
+        double e2 = ss_closest_point_triangle(x, body + 3 * c[0], body + 3 * c[1], body + 3 * c[2], uv);
+        if (e2 < d2) d2 = e2;
+      }
       far += d2 > lim2;
     }
     *vertices_far = far;

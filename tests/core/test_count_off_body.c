@@ -1,6 +1,6 @@
 /* ss_sim_count_off_body: at rest nothing is turned or far; a vertex lifted
  * more than an edge off the body counts as far; a face folded over counts as
- * turned, whether or not it is a sliver; a skin built with its faces wound
+ * turned; a vertex moved along the body stays near it; a skin built with its faces wound
  * the other way round is not turned at rest. */
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
@@ -29,12 +29,18 @@ int main(void) {
   ss_sim_count_off_body(sim, &turned, &far);
   CHECK(far == 1 && turned == 0);
   /* the same vertex pushed across its neighbours in the plane (to x = 3.6):
-   * the faces between fold over */
+   * the faces between fold over; it is 1.6 edges from its anchor but on the
+   * body, so not far */
   x[3 * mid + 2] = 0.0;
   x[3 * mid + 0] = 3.6;
   CHECK(ss_sim_set_state(sim, x, NULL, err, sizeof err) == SS_OK);
   ss_sim_count_off_body(sim, &turned, &far);
   CHECK_MSG(turned >= 2, "turned %d", turned);
+  CHECK(far == 0);
+  /* and 1.2 edges above the plane there: far */
+  x[3 * mid + 2] = 1.2;
+  CHECK(ss_sim_set_state(sim, x, NULL, err, sizeof err) == SS_OK);
+  ss_sim_count_off_body(sim, &turned, &far);
   CHECK(far == 1);
   ss_sim_count_off_body(sim, NULL, NULL); /* both optional */
   ss_sim_destroy(sim);
