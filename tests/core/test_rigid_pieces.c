@@ -39,14 +39,14 @@ int main(void) {
 
   /* both pieces rigid, on different parts: both carried */
   for (int v = 0; v < nv; v++) part[v] = v < half ? 1 : 2;
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, NULL, part, mask, &cnt) == SS_OK);
   CHECK(cnt.npiece == 2 && cnt.npiece_carried == 2 && cnt.nface_carried == nf);
   for (int f = 0; f < nf; f++) CHECK(mask[f] == 0);
 
   /* one vertex of the second piece deforms (blended): only the first carried */
   part[nv - 1] = 0;
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, NULL, part, mask, &cnt) == SS_OK);
   CHECK(cnt.npiece == 2 && cnt.npiece_carried == 1 && cnt.nface_carried == halff);
   for (int f = 0; f < nf; f++) CHECK(mask[f] == (f < halff ? 0 : 1));
@@ -54,7 +54,7 @@ int main(void) {
   /* a piece spanning two parts (a joint) is simulated */
   for (int v = 0; v < nv; v++) part[v] = v < half ? 1 : 2;
   part[0] = 3;
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, NULL, part, mask, &cnt) == SS_OK);
   CHECK(cnt.npiece_carried == 1 && cnt.nface_carried == halff);
   for (int f = 0; f < nf; f++) CHECK(mask[f] == (f < halff ? 1 : 0));
@@ -65,13 +65,13 @@ int main(void) {
   int *weld = malloc(sizeof(int) * (size_t)nv);
   for (int v = 0; v < nv; v++) weld[v] = v;
   weld[half] = half - 1;
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, weld, part, mask, &cnt) == SS_OK);
   CHECK(cnt.npiece == 1 && cnt.npiece_carried == 0 && cnt.nface_carried == 0);
   for (int f = 0; f < nf; f++) CHECK(mask[f] == 1);
 
   /* faces already masked stay masked; bad arguments are refused */
-  memset(mask, 0, (size_t)nf);
+  memset(mask, 0, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, weld, part, mask, &cnt) == SS_OK);
   for (int f = 0; f < nf; f++) CHECK(mask[f] == 0);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, NULL, NULL, mask, &cnt) == SS_E_ARG);
@@ -84,7 +84,7 @@ int main(void) {
    * body moves a rigidly (rotated and translated) and stretches b; the skin
    * of a stays on the body to round-off, b is simulated (its unknowns). */
   for (int v = 0; v < nv; v++) part[v] = v < half ? 1 : 0;
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, NULL, part, mask, &cnt) == SS_OK);
   CHECK(cnt.nface_carried == halff);
   ss_sim_settings set = ss_sim_default_settings();
@@ -130,7 +130,7 @@ int main(void) {
 
   /* everything carried: no unknowns, the skin is the body */
   for (int v = 0; v < nv; v++) part[v] = v < half ? 1 : 2;
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   CHECK(ss_mesh_rigid_pieces(nv, nf, m.faces, NULL, part, mask, &cnt) == SS_OK);
   sim = NULL;
   CHECK(ss_sim_create(&sim, nv, m.pos, nf, m.faces, NULL, &set, err, sizeof err) == SS_OK);

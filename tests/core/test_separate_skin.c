@@ -42,7 +42,7 @@ int main(void) {
     CHECK(skin_part[v] == (v < gv ? 5u : 0u));
   }
   unsigned char *mask = malloc((size_t)nf);
-  memset(mask, 1, (size_t)nf);
+  memset(mask, 1, (unsigned)nf);
   ss_rigid_count cnt;
   CHECK(ss_mesh_rigid_pieces(nv, nf, faces, NULL, skin_part, mask, &cnt) == SS_OK);
   CHECK(cnt.npiece == 2 && cnt.npiece_carried == 1 && cnt.nface_carried == gf);
