@@ -1101,6 +1101,7 @@ done:
   for (int i = 0; nd->in.slot && i < nd->in.cap; i++) {
     free(nd->in.slot[i].pos);
     free(nd->in.slot[i].tri);
+    free(nd->in.slot[i].rigid);
   }
   free(nd->in.slot);
   ss_weld_destroy(nd->skin.weld);
