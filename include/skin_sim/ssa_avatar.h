@@ -441,9 +441,13 @@ int ssa_motion_builtin_eval(int i, double t, const ssa_robot *robot, double *q);
 
 /* A motion table: joint values over time. CSV format: one header row
  * "time,<joint>,<joint>,..." (the first column must be named time), then one row
- * per sample: time in seconds (strictly increasing) and one value per joint
+ * per sample: time in seconds from the motion's start (strictly increasing,
+ * each in [-SSA_MOTION_MAX_S, SSA_MOTION_MAX_S]) and one value per joint
  * (radians or metres). Commas separate; blank lines and lines starting with
  * '#' are skipped; spaces around fields are ignored. */
+#define SSA_MOTION_MAX_S 1e6 /* s (11.6 days): a bound on a motion's times, so that its
+                                frames at any rate fit in an int; past it, absolute
+                                stamps (seconds since 1970) or milliseconds */
 typedef struct ssa_motion {
   int njoint;
   char **joint_name; /* (njoint) */
@@ -454,7 +458,7 @@ typedef struct ssa_motion {
 
 /* Reads a CSV motion. Errors: SS_E_IO (unreadable), SS_E_ARG (a first column
  * not named time, a row with the wrong number of columns, a value that is not a number, times not
- * increasing, no rows), naming the file and line. */
+ * increasing, a time past SSA_MOTION_MAX_S, no rows), naming the file and line. */
 int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_sz);
 /* Writes a motion as CSV (%.17g, so it reads back bit for bit). */
 int ssa_motion_write_csv(const ssa_motion *motion, const char *path, char *err, int err_sz);

@@ -3,6 +3,7 @@
 #include "skin_sim/ss_input.h"
 #include "ss_test.h"
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -259,6 +260,7 @@ static void test_plan(void)
 }
 
 static void test_time_wild(void);
+static void test_plan_wild(void);
 static void test_health(void);
 
 int main(void)
@@ -271,6 +273,7 @@ int main(void)
   test_stream();
   test_plan();
   test_time_wild();
+  test_plan_wild();
   test_health();
   return ss_test_finish("test_input");
 }
@@ -278,6 +281,34 @@ int main(void)
 /* Regression (issue 14, found by fuzzing): a wild stamp difference overflowed
  * signed arithmetic (UBSan: 9223372036854775807 + 500 in the rounding to
  * microseconds). Any pair of stamps is now classified without UB. */
+/* Regression (issue 34, found by a harness of the stream planner): the last step's
+ * periods nudged by one at INT_MAX overflowed int (UBSan: 2147483647 + 1; 22 crafted
+ * messages killed the sanitizer-built node). Now the periods are counted in 64 bits
+ * and clamped to INT_MAX, the skin's clock advanced by as many. */
+static void test_plan_wild(void)
+{
+  ss_input_stream s;
+  memset(&s, 0, sizeof s);
+  s.period_us = 1; /* a 1 us input period */
+  ss_input_plan p;
+  /* elapsed INT_MAX + 3/8 INT_MAX periods: off 3/8 INT_MAX, tol INT_MAX / 4: one more */
+  int64_t elapsed_us = (int64_t)INT_MAX + 3 * ((int64_t)INT_MAX / 8);
+  CHECK(ss_input_plan_step(&s, 1, 0, 1000 * elapsed_us, 0, INT_MAX, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == INT_MAX);
+  CHECK(p.skin_ns == 1000 * (int64_t)INT_MAX);
+  CHECK(p.dt == 1e-6 * (double)INT_MAX);
+  /* one fewer at INT_MIN's side cannot happen (periods >= 1): the smallest nudge */
+  CHECK(ss_input_plan_step(&s, 1, 0, 1000 * ((int64_t)INT_MAX - 3 * ((int64_t)INT_MAX / 8)), 0,
+                           INT_MAX, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == INT_MAX - 1);
+  /* an input period of 290,000 years (a huge ~max_gap let it be measured) and a skin's
+   * clock at the stamps' bound: the clock advanced by one such period overflowed int64 */
+  s.period_us = (int64_t)9000000000000000; /* 9e15 us */
+  int64_t top = (int64_t)1 << 62;
+  CHECK(ss_input_plan_step(&s, 1, top - 2000000000, top, 0, 1, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods >= 1 && p.skin_ns > top - 2000000000 && isfinite(p.dt) && p.dt > 0.0);
+}
+
 static void test_time_wild(void)
 {
   double dt = -1.0;

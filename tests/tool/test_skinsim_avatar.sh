@@ -110,6 +110,11 @@ printf 'time,shoulder\n0,0\n1,1.5\n2,-1.5\n' > "$tmp/shoulder.csv"
 printf 'shoulder,wrist\n0,0\n1,1\n' > "$tmp/notime.csv"
 bad "CSV without a time column" run --urdf "$tmp/prims.urdf" --motion "$tmp/notime.csv"
 check "  ... names the column" "grep -q \"first column must be 'time'.*'shoulder'\" '$tmp/err'"
+# a motion ending at t = 1e308 s: its frame count was a float-to-int cast out of range
+# (undefined behaviour, exit 0); now refused, naming the line and the column
+printf 'time,shoulder\n0,0\n1e308,1\n' > "$tmp/endless.csv"
+bad "CSV ending at 1e308 s" run --urdf "$tmp/prims.urdf" --motion "$tmp/endless.csv"
+check "  ... names the line, the column and the bound" "grep -q \"endless.csv', line 3, column 1 (time): 1e+308 s is past the bound\" '$tmp/err'"
 run prims --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 30
 check "prims: 3244 triangles at the default 2 cm edge" "[ \"\$(field '$tmp/prims.json' triangles)\" = 3244 ]"
 run prims_coarse --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 5 --primitive-edge 0.05

@@ -247,6 +247,11 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
       }
     }
   }
+  if (!status && !(duration <= SSA_MOTION_MAX_S)) { /* an asset's animation (a CSV's is checked) */
+    snprintf(err, (size_t)err_sz, "the motion lasts %g s, past the bound of %g s", duration,
+             SSA_MOTION_MAX_S);
+    status = SS_E_ARG;
+  }
   if (!status && args->region) status = open_region(ab, args->region, err, err_sz);
   if (!status) {
     ab->rest = malloc(sizeof(double) * 3 * (size_t)ab->av->nvert);
@@ -264,6 +269,7 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   body->rest = ab->rest;
   body->faces = ab->av->faces;
   body->fps = AVATAR_FPS;
+  /* duration is finite and at most SSA_MOTION_MAX_S (checked above): the count fits */
   body->frames = duration > 0.0 ? (int)(duration * AVATAR_FPS + 0.5) : 1;
   if (body->frames < 1) body->frames = 1;
   body->pose = pose;
