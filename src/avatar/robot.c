@@ -262,6 +262,9 @@ int ssa_robot_joint_index(const ssa_robot *r, const char *name) {
 
 static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const char *base_dir,
                  const char *package_path, char *err, int err_sz) {
+  if (d->nlink > SSA_MAX_LINKS || d->njoint > SSA_MAX_LINKS)
+    return ss_fail(err, err_sz, SS_E_ARG, "%s has %d links and %d joints, over the bound of %d",
+                   what, d->nlink, d->njoint, SSA_MAX_LINKS);
   r->name = ssa_strdup(d->robot_name);
   r->root_link = d->root_link;
   r->nlink = d->nlink;
