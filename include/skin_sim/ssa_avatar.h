@@ -96,7 +96,8 @@ enum ssa_visual_kind {
  * names (relative to the URDF's folder) resolve directly. A mesh that cannot
  * be resolved is not an error here (visual_path is NULL) but is one when the
  * visuals become a body. Errors: SS_E_IO (unreadable or invalid URDF),
- * SS_E_ARG (a mimic names an unknown joint, or mimics form a cycle; more than
+ * SS_E_ARG (a mimic names an unknown joint, or mimics form a cycle; joints
+ * forming a cycle or giving a link two parents; more than
  * SSA_MAX_LINKS links or joints). */
 #define SSA_MAX_LINKS 10000 /* links (and joints) of a URDF: loads in seconds */
 int ssa_robot_load(ssa_robot **out, const char *urdf_path, const char *package_path,

@@ -115,6 +115,21 @@ check "  ... names the column" "grep -q \"first column must be 'time'.*'shoulder
 printf 'time,shoulder\n0,0\n1e308,1\n' > "$tmp/endless.csv"
 bad "CSV ending at 1e308 s" run --urdf "$tmp/prims.urdf" --motion "$tmp/endless.csv"
 check "  ... names the line, the column and the bound" "grep -q \"endless.csv', line 3, column 1 (time): 1e+308 s is past the bound\" '$tmp/err'"
+# joints forming a cycle under the root (b -> c -> b, the root's joint named last so that
+# it was the one kept): ran with exit 0 on two of the three links; now refused
+cat > "$tmp/cycle.urdf" <<'URDF'
+<robot name='cycle'>
+<link name='a'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<link name='b'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<link name='c'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<joint name='z1' type='revolute'><parent link='a'/><child link='b'/><axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='1' velocity='1'/></joint>
+<joint name='j2' type='fixed'><parent link='b'/><child link='c'/><origin xyz='0.2 0 0'/></joint>
+<joint name='j3' type='fixed'><parent link='c'/><child link='b'/><origin xyz='0.2 0 0'/></joint>
+</robot>
+URDF
+printf 'time,z1\n0,0\n1,0.5\n' > "$tmp/z1.csv"
+bad "URDF whose joints form a cycle" run --urdf "$tmp/cycle.urdf" --motion "$tmp/z1.csv" --frames 1
+check "  ... names the link and both joints" "grep -q \"link 'b' is the child of joints 'j3' and 'z1'\" '$tmp/err'"
 run prims --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 30
 check "prims: 3244 triangles at the default 2 cm edge" "[ \"\$(field '$tmp/prims.json' triangles)\" = 3244 ]"
 run prims_coarse --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 5 --primitive-edge 0.05

@@ -48,4 +48,16 @@ bad "too few tris" track --scene fold --tris 3
 bad "missing value" track --scene
 bad "unknown option" track --scene fold --bogus
 bad "unknown command" frobnicate
+# --json that cannot be written: exit 2 as an uncreatable --out, and said before the run
+# (it used to be exit 1, after the whole run); the file is not left behind
+bad "run --json into a missing folder" run --scene fold --frames 1 --json "$tmp/no/such/dir/r.json"
+check "  ... names the folder" "grep -q \"the folder '$tmp/no/such/dir' does not exist\" '$tmp/err'"
+"$exe" run --scene fold --frames 1 --json "$tmp/no/such/dir/r.json" > "$tmp/out" 2> /dev/null
+check "  ... before the run (no result line on stdout)" "[ ! -s '$tmp/out' ]"
+bad "track --json into a missing folder" track --scene fold --frames 1 --json "$tmp/no/t.json"
+mkdir -p "$tmp/ro" && chmod 555 "$tmp/ro"
+if [ "$(id -u)" != 0 ]; then
+  bad "run --json into a read-only folder" run --scene fold --frames 1 --json "$tmp/ro/r.json"
+fi
+bad "run --json naming a folder" run --scene fold --frames 1 --json "$tmp"
 exit $fail
