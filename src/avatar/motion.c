@@ -149,6 +149,13 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
                          path, line_no, k + 1);
             break;
           }
+          for (int e = 0; e < k - 1; e++)
+            if (strcmp(m->joint_name[e], name) == 0) { /* one of the two would silently win */
+              st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: columns %d and %d "
+                           "both name joint '%s'", path, line_no, e + 2, k + 1, name);
+              break;
+            }
+          if (st != SS_OK) break;
           if (!(m->joint_name[k - 1] = ssa_strdup(name))) {
             st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
             break;
