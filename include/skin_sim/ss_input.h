@@ -157,6 +157,8 @@ typedef struct ss_input_window {
   uint32_t rejected, dropped, skipped, resets, failures;
   double step_ms_mean;  /* mean processing time per stepped mesh, ms (0 if none) */
   double period_ms;     /* the input's period, ms (0: unknown) */
+  uint32_t not_stepped; /* of the processed, those that gave no skin step (the skin created
+                           again, or a stamp not past the skin's clock) */
 } ss_input_window;
 /* Returns SS_HEALTH_OK / WARN / ERROR for w, with a sentence naming the worst
  * reason (or "stepping normally") in msg (may be NULL). */

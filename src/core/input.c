@@ -291,6 +291,12 @@ int ss_input_health(const ss_input_window *w, char *msg, int msg_sz)
              (unsigned)w->skipped);
     return SS_HEALTH_WARN;
   }
+  if (w->stepped >= 3 && w->not_stepped >= w->stepped) {
+    snprintf(msg, n, "%u inputs processed, none stepped the skin: it is created again on each "
+             "(topology_id changing on every message?) or their stamps do not advance",
+             (unsigned)w->stepped);
+    return SS_HEALTH_WARN;
+  }
   if (period > 0.0 && step > SS_HEALTH_BUDGET * period) {
     snprintf(msg, n, "step %.1f ms over %.0f%% of the input period %.1f ms", step,
              100.0 * SS_HEALTH_BUDGET, period);

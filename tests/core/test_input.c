@@ -332,7 +332,7 @@ static void test_time_wild(void)
 static void test_health(void)
 {
   char msg[128];
-  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3};
+  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3, 0};
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
   CHECK(strcmp(msg, "stepping normally") == 0);
   w.step_ms_mean = 30.0; /* over 80% of the period */
@@ -364,7 +364,16 @@ static void test_health(void)
   w.failures = 1; /* a failure outranks everything */
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_ERROR);
   CHECK(strstr(msg, "failed") != NULL);
-  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0};
+  /* a topology_id changing on every message (issue 34): each input creates the skin
+   * again, none steps it; the status said OK "stepping normally" */
+  ss_input_window recreated = {10, 10, 0, 0, 0, 0, 0, 0.0, 100.0, 10};
+  CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "none stepped the skin") != NULL && strstr(msg, "topology_id") != NULL);
+  recreated.not_stepped = 9; /* one stepped: not this warning */
+  CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_OK);
+  recreated.stepped = recreated.not_stepped = 2; /* a start: the first creates */
+  CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_OK);
+  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0};
   CHECK(ss_input_health(&none, NULL, 0) == SS_HEALTH_WARN);
   CHECK(ss_input_health(&none, msg, sizeof msg) == SS_HEALTH_WARN);
   CHECK(strstr(msg, "no kinematic_mesh") != NULL);
