@@ -366,7 +366,7 @@ static void test_health(void)
   CHECK(strstr(msg, "failed") != NULL);
   /* a topology_id changing on every message (issue 34): each input creates the skin
    * again, none steps it; the status said OK "stepping normally" */
-  ss_input_window recreated = {10, 10, 0, 0, 0, 0, 0, 0.0, 100.0, 10};
+  ss_input_window recreated = {.arrived = 10, .stepped = 10, .period_ms = 100.0, .not_stepped = 10};
   CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_WARN);
   CHECK(strstr(msg, "none stepped the skin") != NULL && strstr(msg, "topology_id") != NULL);
   recreated.not_stepped = 9; /* one stepped: not this warning */
