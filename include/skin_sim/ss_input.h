@@ -191,6 +191,8 @@ typedef struct ss_input_window {
   double period_ms;     /* the input's period, ms (0: unknown) */
   uint32_t lowered;     /* steps run with fewer substeps or iterations than the settings'
                            (a real-time budget traded accuracy for time) */
+  uint32_t not_stepped; /* of the processed, those that gave no skin step (the skin created
+                           again, or a stamp not past the skin's clock) */
 } ss_input_window;
 /* Returns SS_HEALTH_OK / WARN / ERROR for w, with a sentence naming the worst
  * reason (or "stepping normally") in msg (may be NULL). */

@@ -97,7 +97,10 @@ enum ssa_visual_kind {
  * names (relative to the URDF's folder) resolve directly. A mesh that cannot
  * be resolved is not an error here (visual_path is NULL) but is one when the
  * visuals become a body. Errors: SS_E_IO (unreadable or invalid URDF),
- * SS_E_ARG (a mimic names an unknown joint, or mimics form a cycle). */
+ * SS_E_ARG (a mimic names an unknown joint, or mimics form a cycle; joints
+ * forming a cycle or giving a link two parents; more than
+ * SSA_MAX_LINKS links or joints). */
+#define SSA_MAX_LINKS 10000 /* links (and joints) of a URDF: loads in seconds */
 int ssa_robot_load(ssa_robot **out, const char *urdf_path, const char *package_path,
                    char *err, int err_sz);
 /* As ssa_robot_load, from URDF text; base_dir (may be NULL) resolves relative mesh names. */
@@ -452,9 +455,13 @@ int ssa_motion_builtin_eval(int i, double t, const ssa_robot *robot, double *q);
 
 /* A motion table: joint values over time. CSV format: one header row
  * "time,<joint>,<joint>,..." (the first column must be named time), then one row
- * per sample: time in seconds (strictly increasing) and one value per joint
+ * per sample: time in seconds from the motion's start (strictly increasing,
+ * each in [-SSA_MOTION_MAX_S, SSA_MOTION_MAX_S]) and one value per joint
  * (radians or metres). Commas separate; blank lines and lines starting with
  * '#' are skipped; spaces around fields are ignored. */
+#define SSA_MOTION_MAX_S 1e6 /* s (11.6 days): a bound on a motion's times, so that its
+                                frames at any rate fit in an int; past it, absolute
+                                stamps (seconds since 1970) or milliseconds */
 typedef struct ssa_motion {
   int njoint;
   char **joint_name; /* (njoint) */
@@ -465,7 +472,7 @@ typedef struct ssa_motion {
 
 /* Reads a CSV motion. Errors: SS_E_IO (unreadable), SS_E_ARG (a first column
  * not named time, a row with the wrong number of columns, a value that is not a number, times not
- * increasing, no rows), naming the file and line. */
+ * increasing, a time past SSA_MOTION_MAX_S, no rows), naming the file and line. */
 int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_sz);
 /* Writes a motion as CSV (%.17g, so it reads back bit for bit). */
 int ssa_motion_write_csv(const ssa_motion *motion, const char *path, char *err, int err_sz);

@@ -544,38 +544,13 @@ int ssa_asset_load(ssa_asset **out, const char *path, const ssa_asset_opts *opts
   aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   if (o.ignore_up_axis) aiSetImportPropertyInteger(props, AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, 1);
-  /* NaN would be hidden by JoinIdenticalVertices (it merges a NaN vertex into
-     another one): check positions first, then join. */
-  const struct aiScene *sc = ssa_safe_import( /* in a child: no hang, no bloat */
-      path, aiProcess_Triangulate | aiProcess_SortByPType, props, &o, &st0, err, err_sz);
+  /* in a child: no hang, no bloat; the positions checked finite there, then
+     joined (JoinIdenticalVertices would merge a NaN vertex into another) */
+  const struct aiScene *sc =
+      ssa_safe_import(path, aiProcess_Triangulate | aiProcess_SortByPType,
+                      aiProcess_JoinIdenticalVertices, props, &o, &st0, err, err_sz);
   aiReleasePropertyStore(props);
   if (!sc) return st0;
-  if (sc) {
-    for (unsigned m = 0; m < sc->mNumMeshes; m++) {
-      const struct aiMesh *me = sc->mMeshes[m];
-      for (unsigned i = 0; i < me->mNumVertices; i++)
-        if (!isfinite(me->mVertices[i].x) || !isfinite(me->mVertices[i].y) ||
-            !isfinite(me->mVertices[i].z)) {
-          int st = ss_fail(err, err_sz, SS_E_NONFINITE,
-                           "mesh file '%s': vertex %u of mesh %u ('%s') is not finite", path, i,
-                           m, me->mName.data);
-          aiReleaseImport(sc);
-          return st;
-        }
-    }
-    if (!aiApplyPostProcessing(sc, aiProcess_JoinIdenticalVertices)) {
-      /* assimp released the scene: its error string says why */
-      sc = NULL;
-    }
-  }
-  if (!sc) {
-    const char *why = aiGetErrorString();
-    char msg[512];
-    snprintf(msg, sizeof msg, "%s", why && why[0] ? why : "unknown format or broken file");
-    size_t n = strlen(msg);
-    while (n > 0 && (msg[n - 1] == '\n' || msg[n - 1] == '.' || msg[n - 1] == ' ')) msg[--n] = '\0';
-    return ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, msg);
-  }
   ssa_asset *a = calloc(1, sizeof *a);
   if (!a) {
     aiReleaseImport(sc);

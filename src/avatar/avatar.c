@@ -470,6 +470,33 @@ static int body_from_visuals(ssa_avatar *av, const ssa_avatar_opts *o, char *err
          urdf, other_up, other_up == 1 ? "" : "es", other_up == 1 ? "s" : "",
          r->visual_path[first_up], up_names[ssa_collada_up_axis(r->visual_path[first_up])],
          other_up == 1 ? "is" : "are", other_up == 1 ? "it" : "them");
+  /* meshes in millimetres or centimetres that the URDF reads as metres (no <mesh
+     scale>): a robot the size of a building; one warning, naming the first */
+  int nbig = 0, first_big = -1;
+  double big_size = 0.0;
+  for (int i = 0; st == SS_OK && i < r->nvisual; i++) {
+    const visual_part *p = parts + i;
+    if (!p->asset || !p->pos) continue;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int v = 0; v < p->nvert; v++)
+      for (int k = 0; k < 3; k++) {
+        double x = p->pos[3 * v + k] * r->visual_scale[3 * i + k];
+        lo[k] = fmin(lo[k], x);
+        hi[k] = fmax(hi[k], x);
+      }
+    double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    if (size > SSA_ASSET_SIZE_MAX && nbig++ == 0) {
+      first_big = i;
+      big_size = size;
+    }
+  }
+  if (nbig > 0)
+    warn(o, "URDF '%s': %d mesh%s over %g m across (first: '%s' of link '%s', %.3g m at scale "
+         "%g %g %g): a file in millimetres or centimetres? (<mesh scale='0.001 0.001 0.001'/> "
+         "reads millimetres)", urdf, nbig, nbig == 1 ? "" : "es", SSA_ASSET_SIZE_MAX,
+         r->visual_path[first_big], r->link_name[r->visual_link[first_big]], big_size,
+         r->visual_scale[3 * first_big], r->visual_scale[3 * first_big + 1],
+         r->visual_scale[3 * first_big + 2]);
   if (st == SS_OK && nf == 0)
     st = ss_fail(err, err_sz, SS_E_MESH, "URDF '%s' has no visual meshes or primitives to make a "
                  "body of", urdf);

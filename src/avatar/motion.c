@@ -178,6 +178,13 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
                          path, line_no, k + 1);
             break;
           }
+          for (int e = 0; e < k - 1; e++)
+            if (strcmp(m->joint_name[e], name) == 0) { /* one of the two would silently win */
+              st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: columns %d and %d "
+                           "both name joint '%s'", path, line_no, e + 2, k + 1, name);
+              break;
+            }
+          if (st != SS_OK) break;
           if (!(m->joint_name[k - 1] = ssa_strdup(name))) {
             st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading '%s'", path);
             break;
@@ -225,6 +232,13 @@ int ssa_motion_read_csv(ssa_motion **out, const char *path, char *err, int err_s
       p = c ? c + 1 : p + strlen(p);
     }
     if (st != SS_OK) break;
+    if (!(fabs(m->time[m->nframe]) <= SSA_MOTION_MAX_S)) {
+      st = ss_fail(err, err_sz, SS_E_ARG,
+                   "motion file '%s', line %d, column 1 (time): %g s is past the bound of %g s: "
+                   "absolute stamps (seconds since 1970) or milliseconds? times are seconds from "
+                   "the motion's start", path, line_no, m->time[m->nframe], SSA_MOTION_MAX_S);
+      break;
+    }
     if (m->nframe > 0 && !(m->time[m->nframe] > m->time[m->nframe - 1])) {
       st = ss_fail(err, err_sz, SS_E_ARG, "motion file '%s', line %d: time %g does not increase",
                    path, line_no, m->time[m->nframe]);

@@ -262,6 +262,9 @@ int ssa_robot_joint_index(const ssa_robot *r, const char *name) {
 
 static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const char *base_dir,
                  const char *package_path, char *err, int err_sz) {
+  if (d->nlink > SSA_MAX_LINKS || d->njoint > SSA_MAX_LINKS)
+    return ss_fail(err, err_sz, SS_E_ARG, "%s has %d links and %d joints, over the bound of %d",
+                   what, d->nlink, d->njoint, SSA_MAX_LINKS);
   r->name = ssa_strdup(d->robot_name);
   r->root_link = d->root_link;
   r->nlink = d->nlink;
@@ -295,6 +298,11 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
     if (d->joint_parent[j] < 0 || d->joint_child[j] < 0)
       return ss_fail(err, err_sz, SS_E_IO, "%s: joint '%s' connects an unknown link", what,
                      d->joint_name[j]);
+    if (r->link_joint[d->joint_child[j]] >= 0) /* a link is the child of one joint */
+      return ss_fail(err, err_sz, SS_E_ARG,
+                     "%s: link '%s' is the child of joints '%s' and '%s': the joints form a "
+                     "cycle, or give the link two parents", what, d->link_name[d->joint_child[j]],
+                     d->joint_name[r->link_joint[d->joint_child[j]]], d->joint_name[j]);
     r->link_parent[d->joint_child[j]] = d->joint_parent[j];
     r->link_joint[d->joint_child[j]] = j;
     m4_from_tqs(d->joint_origin + 7 * j, d->joint_origin + 7 * j + 3, NULL,

@@ -21,6 +21,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <math.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdint.h>
@@ -208,7 +209,7 @@ static double current_vsize(void) {
   return ok ? (double)pages * (double)sysconf(_SC_PAGESIZE) : 0.0;
 }
 
-static void child_import(int fd, const char *path, unsigned flags,
+static void child_import(int fd, const char *path, unsigned flags, unsigned post_flags,
                          const struct aiPropertyStore *props, double as_bytes, double timeout_s) {
   /* The host's handlers (a crash reporter, a fuzzer's, the sanitizers') are
    * not the child's business: a crash or a limit ends it with its signal. */
@@ -236,6 +237,26 @@ static void child_import(int fd, const char *path, unsigned flags,
   if (!sc) {
     const char *why = aiGetErrorString();
     if (!why || !why[0]) why = "unknown format or broken file";
+    child_send(fd, 1, why, strlen(why));
+    _exit(0);
+  }
+  /* every position finite (message kind 3), then the post-processing, here
+   * under the limits too (a 5M-triangle STL's JoinIdenticalVertices took ~2 GB) */
+  for (unsigned m = 0; m < sc->mNumMeshes; m++) {
+    const struct aiMesh *me = sc->mMeshes[m];
+    for (unsigned i = 0; i < me->mNumVertices; i++)
+      if (!isfinite(me->mVertices[i].x) || !isfinite(me->mVertices[i].y) ||
+          !isfinite(me->mVertices[i].z)) {
+        char why[1200];
+        snprintf(why, sizeof why, "vertex %u of mesh %u ('%.1024s') is not finite", i, m,
+                 me->mName.data);
+        child_send(fd, 3, why, strlen(why));
+        _exit(0);
+      }
+  }
+  if (post_flags && !(sc = aiApplyPostProcessing(sc, post_flags))) { /* assimp released it */
+    const char *why = aiGetErrorString();
+    if (!why || !why[0]) why = "post-processing failed";
     child_send(fd, 1, why, strlen(why));
     _exit(0);
   }
@@ -284,7 +305,7 @@ static int read_until(int fd, void *buf, size_t n, double deadline) {
   return 0;
 }
 
-const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
+const struct aiScene *ssa_safe_import(const char *path, unsigned flags, unsigned post_flags,
                                       const struct aiPropertyStore *props,
                                       const ssa_asset_opts *opts, int *status, char *err,
                                       int err_sz) {
@@ -309,7 +330,7 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
   }
   if (pid == 0) {
     close(fds[0]);
-    child_import(fds[1], path, flags, props, as_bytes, timeout_s);
+    child_import(fds[1], path, flags, post_flags, props, as_bytes, timeout_s);
     _exit(3);
   }
   close(fds[1]);
@@ -355,11 +376,14 @@ const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
     }
     return NULL;
   }
-  if (hdr[0] == 1) {
+  if (hdr[0] == 1 || hdr[0] == 3) {
     buf[len] = '\0';
     size_t n = strlen(buf);
     while (n > 0 && (buf[n - 1] == '\n' || buf[n - 1] == '.' || buf[n - 1] == ' ')) buf[--n] = '\0';
-    ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, buf);
+    if (hdr[0] == 3)
+      *status = ss_fail(err, err_sz, SS_E_NONFINITE, "mesh file '%s': %s", path, buf);
+    else
+      ss_fail(err, err_sz, SS_E_IO, "mesh file '%s' cannot be imported: %s", path, buf);
     free(buf);
     return NULL;
   }

@@ -27,14 +27,18 @@ int ssa_check_input_file(const char *path, const char *what, double max_mb, char
  * cannot hold). SS_OK or SS_E_IO / SS_E_MESH with one sentence. */
 int ssa_check_mesh_file(const char *path, const ssa_asset_opts *opts, char *err, int err_sz);
 
-/* aiImportFileExWithProperties(path, flags, NULL, props) run in a child
- * process limited to opts->import_timeout_s seconds (default 60) and
- * opts->import_mem_mb more megabytes of address space (default 4096); the
- * scene comes back over a pipe (assimp's binary format) and is read again
- * here. Returns the scene (release with aiReleaseImport) or NULL with
- * *status SS_E_IO and one sentence in err: assimp's own message, a time-out,
- * running out of memory or a crash of the importer. */
-const struct aiScene *ssa_safe_import(const char *path, unsigned flags,
+/* aiImportFileExWithProperties(path, flags, NULL, props), then (a scene whose
+ * positions are all finite) aiApplyPostProcessing(scene, post_flags) when
+ * post_flags is not 0, all run in a child process limited to
+ * opts->import_timeout_s seconds (default 60) and opts->import_mem_mb more
+ * megabytes of address space (default 4096); the scene comes back over a pipe
+ * (assimp's binary format) and is read again here, with no processing: no
+ * step of assimp on the file's content runs without the limits. Returns the
+ * scene (release with aiReleaseImport) or NULL with *status SS_E_IO and one
+ * sentence in err: assimp's own message, a time-out, running out of memory or
+ * a crash of the importer; SS_E_NONFINITE: a position not finite (checked
+ * before post-processing, which would merge a NaN vertex into another). */
+const struct aiScene *ssa_safe_import(const char *path, unsigned flags, unsigned post_flags,
                                       const struct aiPropertyStore *props,
                                       const ssa_asset_opts *opts, int *status, char *err,
                                       int err_sz);

@@ -247,6 +247,15 @@ extern "C" int ssa_urdf_parse(const char *xml, ssa_urdf_data **out, char *err, i
     } else {
       status = fill(*model, d);
     }
+    /* joints forming a cycle make a cycle of shared pointers (each link owns its
+       children), which would never be freed: the links' child lists are no longer
+       needed (the tables above are), so they are cleared */
+    if (model)
+      for (auto &kv : model->links_)
+        if (kv.second) {
+          kv.second->child_links.clear();
+          kv.second->child_joints.clear();
+        }
   } catch (const std::bad_alloc &) {
     restore_handler(previous);
     set_err(err, err_sz, "out of memory while reading the URDF");

@@ -180,7 +180,10 @@ int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns,
   int64_t elapsed_us = (int64_t)(((uint64_t)stamp_ns - (uint64_t)skin_ns + 500u) / 1000u);
   if (elapsed_us > ((int64_t)1 << 48)) /* over 8 years: no step but a jump (and no overflow) */
     return plan->kind = SS_TIME_GAP;
-  int64_t period_us = s && s->period_us > 0 ? s->period_us : elapsed_us;
+  /* a measured period over 8 years (a huge max_gap lets one through) is none: the
+   * skin's clock then moves by at most a few times 2^48 us, and never overflows */
+  int64_t period_us = s && s->period_us > 0 && s->period_us <= ((int64_t)1 << 48) ? s->period_us
+                                                                                  : elapsed_us;
   if (period_us <= 0) return plan->kind = SS_TIME_SAME; /* under half a microsecond */
   /* whole periods: the last step's while the skin's clock stays within tol =
    * max(1, k/4) periods of the stamps (one dt, no refactorisation); one more or
@@ -192,7 +195,7 @@ int ss_input_plan_step(const ss_input_stream *s, int have_skin, int64_t skin_ns,
     int64_t off_us = elapsed_us - (int64_t)prev_periods * period_us;
     int64_t a_us = off_us < 0 ? -off_us : off_us;
     if (a_us <= tol_us) k = prev_periods;
-    else if (a_us <= 2 * tol_us) k = prev_periods + (off_us > 0 ? 1 : -1);
+    else if (a_us <= 2 * tol_us) k = (int64_t)prev_periods + (off_us > 0 ? 1 : -1); /* INT_MAX + 1 */
   }
   if (k < 1) return plan->kind = SS_TIME_SAME;
   if (k > INT_MAX) k = INT_MAX;
@@ -375,6 +378,12 @@ int ss_input_health(const ss_input_window *w, char *msg, int msg_sz)
   if (w->dropped + w->skipped > 0) {
     snprintf(msg, n, "%u inputs dropped, %u skipped (falling behind)", (unsigned)w->dropped,
              (unsigned)w->skipped);
+    return SS_HEALTH_WARN;
+  }
+  if (w->stepped >= 3 && w->not_stepped >= w->stepped) {
+    snprintf(msg, n, "%u inputs processed, none stepped the skin: it is created again on each "
+             "(topology_id changing on every message?) or their stamps do not advance",
+             (unsigned)w->stepped);
     return SS_HEALTH_WARN;
   }
   if (w->lowered > 0) {

@@ -2,10 +2,9 @@
  *
  * Welding: vertices closer than weld_tol at rest get one welded id (the
  * smallest caller index among them), so that faces on either side of a UV or
- * normal seam become neighbours. Found by sorting vertices along x and
- * comparing each with the following ones while their x differ by at most
- * weld_tol (sweep and prune), joined with union-find: O(n log n) on ordinary
- * meshes, and deterministic.
+ * normal seam become neighbours. Found in cells of side weld_tol sorted
+ * lexicographically (ss_weld_ids), joined with union-find: O(n log n) whatever
+ * the mesh's orientation, and deterministic.
  *
  * Edges: the 3 nface half-edges are keyed by their welded end points
  * (low, high) and sorted; a run of equal keys is one edge. One half-edge:
@@ -18,6 +17,7 @@
 #include <string.h>
 
 #include "skin_sim/ss_mesh.h"
+#include "mesh_weld.h"
 #include "ss_err.h"
 #include "ss_vec.h"
 
@@ -74,21 +74,46 @@ static void uf_union(int *parent, int a, int b) {
   else if (b < a) parent[a] = b;
 }
 
+/* Cells of side h >= tol: two vertices within tol of each other are in the
+ * same or adjacent cells. Sorted by cell (x, y, z, then caller index), the
+ * vertices of any cell are one run, found by binary search: each vertex is
+ * compared with those after it in its own cell and with every vertex of the 13
+ * neighbour cells that sort after its own. O(n log n) plus the pairs of
+ * vertices in neighbouring cells, whatever the mesh's orientation (a sweep
+ * along x alone compared every pair of a mesh in a plane x = const). */
 typedef struct {
-  double x;
+  double c[3]; /* cell: integers as doubles, |c| <= 2^40 */
   int v;
 } weld_key;
 
-static int cmp_weld_key(const void *pa, const void *pb) {
-  const weld_key *a = pa, *b = pb;
-  if (a->x < b->x) return -1;
-  if (a->x > b->x) return 1;
-  return (a->v > b->v) - (a->v < b->v);
+static int cmp_cell(const double *a, const double *b) {
+  for (int k = 0; k < 3; k++) {
+    if (a[k] < b[k]) return -1;
+    if (a[k] > b[k]) return 1;
+  }
+  return 0;
 }
 
-/* Fills vert_weld (caller vertex -> welded id, ids dense in order of first
- * appearance) and returns the number of welded ids, or -1 out of memory. */
-static int weld(int nvert, const double *pos, double tol, int *vert_weld) {
+static int cmp_weld_key(const void *pa, const void *pb) {
+  const weld_key *a = pa, *b = pb;
+  int c = cmp_cell(a->c, b->c);
+  return c ? c : (a->v > b->v) - (a->v < b->v);
+}
+
+/* first key at or after cell c */
+static int lower_bound_cell(const weld_key *keys, int n, const double *c) {
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (cmp_cell(keys[mid].c, c) < 0) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+int ss_weld_ids(int nvert, const double *pos, double tol, int *vert_weld, long long *ncompare) {
+  if (ncompare) *ncompare = 0;
+  if (nvert <= 0) return 0;
   int *parent = malloc(sizeof(int) * (size_t)nvert);
   weld_key *keys = malloc(sizeof(weld_key) * (size_t)nvert);
   if (!parent || !keys) {
@@ -96,20 +121,45 @@ static int weld(int nvert, const double *pos, double tol, int *vert_weld) {
     free(keys);
     return -1;
   }
+  /* the cell side: tol, or more where coordinates are over 2^40 tol (cells stay
+   * exact integers), with a margin so that rounding never puts two vertices
+   * within tol two cells apart */
+  double big = 0.0;
+  for (size_t i = 0; i < 3 * (size_t)nvert; i++) big = fmax(big, fabs(pos[i]));
+  double h = fmax(tol > 0.0 ? tol : 0.0, big * 0x1p-40) * 1.0001;
+  if (!(h > 0.0) || !isfinite(h)) h = 1.0;
   for (int v = 0; v < nvert; v++) {
     parent[v] = v;
-    keys[v].x = pos[3 * v];
+    for (int k = 0; k < 3; k++) keys[v].c[k] = floor(pos[3 * (size_t)v + k] / h);
     keys[v].v = v;
   }
   qsort(keys, (size_t)nvert, sizeof *keys, cmp_weld_key);
   const double tol2 = tol * tol;
-  for (int i = 0; i < nvert; i++) {
-    const double *p = pos + 3 * keys[i].v;
-    for (int j = i + 1; j < nvert && keys[j].x - keys[i].x <= tol; j++) {
-      const double *q = pos + 3 * keys[j].v;
-      double dy = p[1] - q[1], dz = p[2] - q[2], dx = p[0] - q[0];
-      if (dx * dx + dy * dy + dz * dz <= tol2) uf_union(parent, keys[i].v, keys[j].v);
+  long long ncmp = 0;
+  for (int i = 0; i < nvert;) {
+    int end = i; /* the run of i's cell: [i, end) */
+    while (end < nvert && cmp_cell(keys[end].c, keys[i].c) == 0) end++;
+    /* the 13 neighbour cells after this one in the sort order, then the cell itself */
+    for (int d = 14; d <= 27; d++) {
+      int lo = end, hi = end;
+      if (d < 27) {
+        double c[3] = {keys[i].c[0] + (double)(d / 9 - 1), keys[i].c[1] + (double)(d / 3 % 3 - 1),
+                       keys[i].c[2] + (double)(d % 3 - 1)};
+        lo = lower_bound_cell(keys, nvert, c);
+        hi = lo;
+        while (hi < nvert && cmp_cell(keys[hi].c, c) == 0) hi++;
+      }
+      for (int a = i; a < end; a++) {
+        const double *p = pos + 3 * (size_t)keys[a].v;
+        for (int b = (d < 27 ? lo : a + 1); b < (d < 27 ? hi : end); b++) {
+          const double *q = pos + 3 * (size_t)keys[b].v;
+          double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+          ncmp++;
+          if (dx * dx + dy * dy + dz * dz <= tol2) uf_union(parent, keys[a].v, keys[b].v);
+        }
+      }
     }
+    i = end;
   }
   int nweld = 0;
   for (int v = 0; v < nvert; v++) {
@@ -118,6 +168,7 @@ static int weld(int nvert, const double *pos, double tol, int *vert_weld) {
   }
   free(parent);
   free(keys);
+  if (ncompare) *ncompare = ncmp;
   return nweld;
 }
 
@@ -195,7 +246,7 @@ int ss_topo_create(ss_topo **out, int nvert, const double *rest_pos, int nface, 
     goto nomem;
   memcpy(t->face_vert, faces, sizeof(int) * 3 * (size_t)nface);
 
-  t->nweld = weld(nvert, rest_pos, weld_tol, t->vert_weld);
+  t->nweld = ss_weld_ids(nvert, rest_pos, weld_tol, t->vert_weld, NULL);
   if (t->nweld < 0) goto nomem;
   t->weld_rep = malloc(sizeof(int) * (size_t)t->nweld);
   t->vf_start = calloc((size_t)t->nweld + 1, sizeof(int));

@@ -952,6 +952,7 @@ static void diagnose(node *nd)
   w.resets = nd->resets - nd->win.resets;
   w.failures = nd->failures - nd->win.failures;
   unsigned long nstep = nd->nstep_ms - nd->win.nstep_ms;
+  w.not_stepped = w.stepped - (uint32_t)nstep; /* created again, or no time to step */
   w.step_ms_mean = nstep ? (nd->step_ms_sum - nd->win.step_ms_sum) / (double)nstep : 0.0;
   w.period_ms = 1e-3 * (double)nd->stream.period_us;
   w.lowered = (uint32_t)(nd->budget.lowered_steps - nd->win.lowered);

@@ -1,6 +1,7 @@
 /* Bad input never crashes: each case returns an error code and one sentence
  * naming the file and the problem. Files are written by the test into a
  * temporary folder. Run it under AddressSanitizer and UBSan too. */
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -56,6 +57,33 @@ int main(void) {
   /* URDF: missing file, not XML, XML but not a robot, joint to an unknown link, bad mimic */
   EXPECT(ssa_robot_load(&r, "/nonexistent/robot.urdf", NULL, err, sizeof err), SS_E_IO,
          "/nonexistent/robot.urdf", "cannot be opened");
+  /* SSA_MAX_LINKS links load (a chain, a box on each link: the boxes' vertices share
+   * their x, which made the weld quadratic); one more is refused, the bound named */
+  for (int extra = 0; extra <= 1; extra++) {
+    const int nl = SSA_MAX_LINKS + extra;
+    size_t cap = 240 * (size_t)(nl + 2), len = 0;
+    char *big = malloc(cap);
+    len += (size_t)snprintf(big + len, cap - len, "<robot name='many'>");
+    for (int i = 0; i < nl; i++)
+      len += (size_t)snprintf(big + len, cap - len, "<link name='l%d'><visual><geometry><box "
+                              "size='0.01 0.01 0.01'/></geometry></visual></link>", i);
+    for (int i = 1; i < nl; i++)
+      len += (size_t)snprintf(big + len, cap - len,
+                              "<joint name='j%d' type='fixed'><parent link='l%d'/>"
+                              "<child link='l%d'/><origin xyz='0 0 0.01'/></joint>", i, i - 1, i);
+    snprintf(big + len, cap - len, "</robot>");
+    const char *mp = put_text("many.urdf", big);
+    if (extra) {
+      EXPECT(ssa_avatar_load_urdf(&av, mp, NULL, NULL, err, sizeof err), SS_E_ARG,
+             "many.urdf", "10001 links", "over the bound of 10000");
+    } else {
+      CHECK_MSG(ssa_avatar_load_urdf(&av, mp, NULL, NULL, err, sizeof err) == SS_OK, "%s", err);
+      CHECK(av && av->robot && av->robot->nlink == SSA_MAX_LINKS && av->nface >= 12 * nl);
+      ssa_avatar_destroy(av);
+      av = NULL;
+    }
+    free(big);
+  }
   const char *p = put_text("garbage.urdf", "this is <not xml");
   EXPECT(ssa_robot_load(&r, p, NULL, err, sizeof err), SS_E_IO, "garbage.urdf", "not a valid URDF");
   p = put_text("norobot.urdf", "<?xml version='1.0'?><world name='w'/>");

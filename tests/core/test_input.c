@@ -3,6 +3,7 @@
 #include "skin_sim/ss_input.h"
 #include "ss_test.h"
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -308,6 +309,7 @@ static void test_plan(void)
 }
 
 static void test_time_wild(void);
+static void test_plan_wild(void);
 static void test_health(void);
 
 /* Layout ids: equal layouts equal, any change of counts, triangles or rigid parts
@@ -337,6 +339,7 @@ int main(void)
   test_stream();
   test_plan();
   test_time_wild();
+  test_plan_wild();
   test_health();
   test_topology_id();
   return ss_test_finish("test_input");
@@ -345,6 +348,34 @@ int main(void)
 /* Regression (issue 14, found by fuzzing): a wild stamp difference overflowed
  * signed arithmetic (UBSan: 9223372036854775807 + 500 in the rounding to
  * microseconds). Any pair of stamps is now classified without UB. */
+/* Regression (issue 34, found by a harness of the stream planner): the last step's
+ * periods nudged by one at INT_MAX overflowed int (UBSan: 2147483647 + 1; 22 crafted
+ * messages killed the sanitizer-built node). Now the periods are counted in 64 bits
+ * and clamped to INT_MAX, the skin's clock advanced by as many. */
+static void test_plan_wild(void)
+{
+  ss_input_stream s;
+  memset(&s, 0, sizeof s);
+  s.period_us = 1; /* a 1 us input period */
+  ss_input_plan p;
+  /* elapsed INT_MAX + 3/8 INT_MAX periods: off 3/8 INT_MAX, tol INT_MAX / 4: one more */
+  int64_t elapsed_us = (int64_t)INT_MAX + 3 * ((int64_t)INT_MAX / 8);
+  CHECK(ss_input_plan_step(&s, 1, 0, 1000 * elapsed_us, 0, INT_MAX, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == INT_MAX);
+  CHECK(p.skin_ns == 1000 * (int64_t)INT_MAX);
+  CHECK(p.dt == 1e-6 * (double)INT_MAX);
+  /* one fewer at INT_MIN's side cannot happen (periods >= 1): the smallest nudge */
+  CHECK(ss_input_plan_step(&s, 1, 0, 1000 * ((int64_t)INT_MAX - 3 * ((int64_t)INT_MAX / 8)), 0,
+                           INT_MAX, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods == INT_MAX - 1);
+  /* an input period of 290,000 years (a huge ~max_gap let it be measured) and a skin's
+   * clock at the stamps' bound: the clock advanced by one such period overflowed int64 */
+  s.period_us = (int64_t)9000000000000000; /* 9e15 us */
+  int64_t top = (int64_t)1 << 62;
+  CHECK(ss_input_plan_step(&s, 1, top - 2000000000, top, 0, 1, 0.05, 8, &p) == SS_TIME_STEP);
+  CHECK(p.periods >= 1 && p.skin_ns > top - 2000000000 && isfinite(p.dt) && p.dt > 0.0);
+}
+
 static void test_time_wild(void)
 {
   double dt = -1.0;
@@ -368,7 +399,7 @@ static void test_time_wild(void)
 static void test_health(void)
 {
   char msg[128];
-  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3, 0};
+  ss_input_window w = {30, 30, 0, 0, 0, 0, 0, 5.0, 33.3, 0, 0};
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
   CHECK(strcmp(msg, "stepping normally") == 0);
   w.step_ms_mean = 30.0; /* over 80% of the period */
@@ -404,7 +435,16 @@ static void test_health(void)
   w.failures = 1; /* a failure outranks everything */
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_ERROR);
   CHECK(strstr(msg, "failed") != NULL);
-  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0};
+  /* a topology_id changing on every message (issue 34): each input creates the skin
+   * again, none steps it; the status said OK "stepping normally" */
+  ss_input_window recreated = {.arrived = 10, .stepped = 10, .period_ms = 100.0, .not_stepped = 10};
+  CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_WARN);
+  CHECK(strstr(msg, "none stepped the skin") != NULL && strstr(msg, "topology_id") != NULL);
+  recreated.not_stepped = 9; /* one stepped: not this warning */
+  CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_OK);
+  recreated.stepped = recreated.not_stepped = 2; /* a start: the first creates */
+  CHECK(ss_input_health(&recreated, msg, sizeof msg) == SS_HEALTH_OK);
+  ss_input_window none = {0, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0, 0};
   CHECK(ss_input_health(&none, NULL, 0) == SS_HEALTH_WARN);
   CHECK(ss_input_health(&none, msg, sizeof msg) == SS_HEALTH_WARN);
   CHECK(strstr(msg, "no kinematic_mesh") != NULL);

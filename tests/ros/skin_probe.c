@@ -183,9 +183,23 @@ static void send_mesh(int64_t stamp_ns, uint32_t topo, const float *pos, size_t 
 }
 
 /* Waits (spinning) until n skin meshes and n stats have arrived, at most timeout_s. */
+/* Waits until n skin_mesh and n skin_stats have come, or none has come for timeout_s
+ * (of the wall clock): a node still answering is waited for, however slow the machine
+ * (a sanitizer build beside other work), up to 600 s in all. */
 static void wait_for(got *g, int n, double timeout_s)
 {
-  for (double t = 0; t < timeout_s && (g->n < n || g->nstats < n); t += 0.02) rosc_spin_for(0.02);
+  double start = 0, last = 0, now = 0;
+  rosc_wall_now_s(&start);
+  last = start;
+  int seen = g->n + g->nstats;
+  while ((g->n < n || g->nstats < n) && now - last < timeout_s && now - start < 600.0) {
+    rosc_spin_for(0.02);
+    rosc_wall_now_s(&now);
+    if (g->n + g->nstats != seen) {
+      seen = g->n + g->nstats;
+      last = now;
+    }
+  }
   rosc_spin_for(0.2); /* anything extra shows up too */
 }
 

@@ -17,7 +17,7 @@ t0=$(ros_env_now_ms)
 # on a loaded machine)
 ros_env_bg avatar "$exe" _avatar:=mannequin _tris:=3000 _queue_size:=50
 apid=$ROS_ENV_LAST_PID
-ros_env_check "avatar node starts" "ros_env_wait_node /avatar 30 $apid"
+ros_env_check "avatar node starts" "ros_env_wait_node /avatar $ROS_ENV_START_S $apid"
 ros_env_run probe "$probe" joints; rc=$?
 ros_env_check "skin_probe joints passes (exit $rc)" "[ $rc -eq 0 ]"
 ros_env_check "avatar node still running" "kill -0 $apid"
@@ -40,7 +40,7 @@ ros_env_set_robot_description "$src/urdf/mannequin.urdf"
 ros_env_bg avatar_mesh "$exe" __name:=avatar_mesh _mesh:=package://probe_meshes/meshes/torso.obj \
   _package_path:="$ROS_ENV_DIR/pkgs" _queue_size:=50
 mpid=$ROS_ENV_LAST_PID
-ros_env_check "avatar node with robot_description and a package:// mesh starts" "ros_env_wait_node /avatar_mesh 30 $mpid"
+ros_env_check "avatar node with robot_description and a package:// mesh starts" "ros_env_wait_node /avatar_mesh $ROS_ENV_START_S $mpid"
 ros_env_run probe_mesh "$probe" joints; rc=$?
 ros_env_check "it poses that mesh for joint_states, frame pelvis (exit $rc)" "[ $rc -eq 0 ]"
 ros_env_check "it says which body it uses (the ellipsoid's 362 vertices)" "grep -q \"avatar 'mannequin': 362 vertices\" '$ROS_ENV_DIR/avatar_mesh.log'"

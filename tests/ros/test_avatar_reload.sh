@@ -22,7 +22,7 @@ ros_env_hostile_meshes "$d"
 
 ros_env_bg avatar_reload "$exe" __name:=avatar_reload _mesh:="$d/torso.obj" _queue_size:=50
 apid=$ROS_ENV_LAST_PID
-ros_env_check "avatar node starts with torso.obj" "ros_env_wait_node /avatar_reload 60 $apid"
+ros_env_check "avatar node starts with torso.obj" "ros_env_wait_node /avatar_reload $ROS_ENV_START_S $apid"
 p="$ROS_ENV_DIR/probe.log"
 timeout 600 /usr/bin/python3 "$src/tests/ros/reload_probe.py" /avatar_reload \
   mesh="$d/fifo.obj" fail mesh="$d/huge.off" fail mesh="$d/abort.off" fail \

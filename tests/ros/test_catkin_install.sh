@@ -68,7 +68,7 @@ print(n[0])'
   "${clean_env[@]}" bash -c ". '$inst/setup.bash' && exec roslaunch skin_sim demo.launch \
      rviz:=false tf:=false tris:=3000 output:=log" > "$ROS_ENV_DIR/demo.log" 2>&1 &
   ros_env_track $!
-  ros_env_wait_node /skin_sim 30 || { echo "FAIL: /skin_sim did not come up"; fail=1; }
+  ros_env_wait_node /skin_sim $ROS_ENV_START_S || { echo "FAIL: /skin_sim did not come up"; fail=1; }
   n=$("${clean_env[@]}" bash -c ". '$inst/setup.bash' && python3 -c '$count_py' 6" 2>> "$ROS_ENV_DIR/count.err")
   check "demo from the install space publishes skin_mesh (${n:-0} in 6 s)" "[ '${n:-0}' -gt 5 ]" \
     || tail -20 "$ROS_ENV_DIR/demo.log" "$ROS_ENV_DIR/count.err"

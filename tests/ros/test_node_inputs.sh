@@ -65,7 +65,7 @@ refused motion_zero "~rate = 0 Hz is out of range" "$motion" _rate:=0
 # an int where a double is wanted is fine: the skin node starts
 ros_env_bg skin_int "$skin" __name:=skin_int _stiffness:=2000 _tol:=1
 spid=$ROS_ENV_LAST_PID
-check "skin_sim_node with _stiffness:=2000 (an int) starts" "ros_env_wait_node /skin_int 30 $spid"
+check "skin_sim_node with _stiffness:=2000 (an int) starts" "ros_env_wait_node /skin_int $ROS_ENV_START_S $spid"
 ros_env_stop "$spid"
 
 # a robot of primitives with a Y_UP Collada mesh on one link
@@ -112,7 +112,7 @@ for mode in ignore file; do
   ros_env_bg "avatar_$mode" "$avatar" __name:="avatar_$mode" _mesh_up_axis:=$mode _queue_size:=50
   apid=$ROS_ENV_LAST_PID
   check "avatar_node on a robot of primitives + a mesh starts (~mesh_up_axis $mode)" \
-    "ros_env_wait_node /avatar_$mode 30 $apid"
+    "ros_env_wait_node /avatar_$mode $ROS_ENV_START_S $apid"
   /usr/bin/python3 "$D/pub.py" "$mode" 90 > "$D/pub_$mode.log" 2>&1
   stop_int "$apid"
   l="$D/avatar_$mode.log"
@@ -133,7 +133,7 @@ for mode in ignore file; do
 done
 ros_env_bg avatar_strict_on "$avatar" __name:=avatar_strict_on _strict_limits:=true _queue_size:=50
 apid=$ROS_ENV_LAST_PID
-check "avatar_node with ~strict_limits starts" "ros_env_wait_node /avatar_strict_on 30 $apid"
+check "avatar_node with ~strict_limits starts" "ros_env_wait_node /avatar_strict_on $ROS_ENV_START_S $apid"
 /usr/bin/python3 "$D/pub.py" strict 90 > "$D/pub_strict.log" 2>&1
 /usr/bin/python3 "$D/pub.py" strict2 1.0 > "$D/pub_strict2.log" 2>&1
 cat "$D/pub_strict.log" "$D/pub_strict2.log"

@@ -22,7 +22,7 @@ ros_env_bg relay "$exe" relay mesh_in:=mesh_a stats_in:=stats_a joints_in:=joint
   marker_in:=marker_a string_in:=string_a mesh_out:=mesh_b stats_out:=stats_b \
   joints_out:=joints_b marker_out:=marker_b string_out:=string_b
 relay_pid=$ROS_ENV_LAST_PID
-check "relay node registers" "ros_env_wait_node /rosc_relay 15"
+check "relay node registers" "ros_env_wait_node /rosc_relay $ROS_ENV_START_S"
 
 # 60 meshes of 19k-triangle size at 30 Hz through the relay (queues of 2): all come
 # back in order and intact; the latency is printed, not judged
@@ -81,7 +81,7 @@ ros_env_stop "$pub_pid"
 # roslaunch stops nodes with SIGINT: a rosc node (renamed with __name:=) exits 0 soon
 ros_env_bg relay_int "$exe" relay __name:=relay_int
 int_pid=$ROS_ENV_LAST_PID
-if ros_env_wait_node /relay_int 15 "$int_pid"; then
+if ros_env_wait_node /relay_int $ROS_ENV_START_S "$int_pid"; then
   kill -INT "$int_pid"
   for _ in $(seq 100); do kill -0 "$int_pid" 2> /dev/null || break; sleep 0.05; done
   if kill -0 "$int_pid" 2> /dev/null; then

@@ -22,7 +22,7 @@ D="$ROS_ENV_DIR"
 ros_env_bg demo roslaunch "$src/launch/demo.launch" rviz:=false tris:=3000 marker_rate:=10 \
   marker_color:="1 0.5 0.2"
 dpid=$ROS_ENV_LAST_PID
-check "demo.launch starts" "ros_env_wait_node /skin_sim 30 $dpid"
+check "demo.launch starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $dpid"
 shot="$D/shot.png"
 # pixels whose channels differ by more than 80 in the 3D view: the marker's colours (grid,
 # background and panels are grey)

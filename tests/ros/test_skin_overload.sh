@@ -26,7 +26,7 @@ mode=check
 
 ros_env_bg skin "$skin" _marker_rate:=0
 spid=$ROS_ENV_LAST_PID
-check "skin node starts" "ros_env_wait_node /skin_sim 30 $spid"
+check "skin node starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
 # a CPU hog beside the node, as on a busy robot computer (stopped at exit)
 ros_env_bg hog bash -c 'while :; do :; done'
 t0=$(ros_env_now_ms)

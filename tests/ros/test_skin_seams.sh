@@ -37,7 +37,7 @@ xmlrpc.client.ServerProxy(sys.argv[1]).setParam("/test", "/robot_description", o
   local apid=$ROS_ENV_LAST_PID
   ros_env_bg "skin_$name" "$skin" __name:="skin_$name" _marker_rate:=2
   local spid=$ROS_ENV_LAST_PID
-  if ! ros_env_wait_node "/avatar_$name" 60 "$apid" || ! ros_env_wait_node "/skin_$name" 30 "$spid"; then
+  if ! ros_env_wait_node "/avatar_$name" $ROS_ENV_START_S "$apid" || ! ros_env_wait_node "/skin_$name" $ROS_ENV_START_S "$spid"; then
     check "$name: avatar_node and skin_sim_node start" false
     return
   fi

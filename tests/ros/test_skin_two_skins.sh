@@ -23,7 +23,7 @@ lpid=$ROS_ENV_LAST_PID
 ros_env_bg right "$skin" __name:=skin_sim __ns:=/right kinematic_mesh:=/kinematic_mesh \
   _frame_id:=right_skin
 rpid=$ROS_ENV_LAST_PID
-ros_env_wait_node /left/skin_sim 20 "$lpid" && ros_env_wait_node /right/skin_sim 20 "$rpid" || {
+ros_env_wait_node /left/skin_sim $ROS_ENV_START_S "$lpid" && ros_env_wait_node /right/skin_sim $ROS_ENV_START_S "$rpid" || {
   check "both skin nodes start" false; exit 1; }
 # the probe reads /left's output (its own frame check fails there on purpose: not used)
 "$probe" stream 3000 10 skin_mesh:=/left/skin_mesh skin_stats:=/left/skin_stats \

@@ -9,7 +9,8 @@
 set -u
 bld="$1"
 src="$2"
-exe=$(find "$bld" -type f -name skinsim -perm -u+x | head -n 1)
+# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
+exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
 [ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
 if ! "$exe" help | grep -q -- '--asset'; then echo "skinsim built without avatars: skipped"; exit 77; fi
 shared="${SS_SHARED_DIR:-$src/../shared}"
@@ -110,6 +111,55 @@ printf 'time,shoulder\n0,0\n1,1.5\n2,-1.5\n' > "$tmp/shoulder.csv"
 printf 'shoulder,wrist\n0,0\n1,1\n' > "$tmp/notime.csv"
 bad "CSV without a time column" run --urdf "$tmp/prims.urdf" --motion "$tmp/notime.csv"
 check "  ... names the column" "grep -q \"first column must be 'time'.*'shoulder'\" '$tmp/err'"
+# a motion ending at t = 1e308 s: its frame count was a float-to-int cast out of range
+# (undefined behaviour, exit 0); now refused, naming the line and the column
+printf 'time,shoulder\n0,0\n1e308,1\n' > "$tmp/endless.csv"
+bad "CSV ending at 1e308 s" run --urdf "$tmp/prims.urdf" --motion "$tmp/endless.csv"
+check "  ... names the line, the column and the bound" "grep -q \"endless.csv', line 3, column 1 (time): 1e+308 s is past the bound\" '$tmp/err'"
+# joints forming a cycle under the root (b -> c -> b, the root's joint named last so that
+# it was the one kept): ran with exit 0 on two of the three links; now refused
+cat > "$tmp/cycle.urdf" <<'URDF'
+<robot name='cycle'>
+<link name='a'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<link name='b'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<link name='c'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<joint name='z1' type='revolute'><parent link='a'/><child link='b'/><axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='1' velocity='1'/></joint>
+<joint name='j2' type='fixed'><parent link='b'/><child link='c'/><origin xyz='0.2 0 0'/></joint>
+<joint name='j3' type='fixed'><parent link='c'/><child link='b'/><origin xyz='0.2 0 0'/></joint>
+</robot>
+URDF
+printf 'time,z1\n0,0\n1,0.5\n' > "$tmp/z1.csv"
+bad "URDF whose joints form a cycle" run --urdf "$tmp/cycle.urdf" --motion "$tmp/z1.csv" --frames 1
+check "  ... names the link and both joints" "grep -q \"link 'b' is the child of joints 'j3' and 'z1'\" '$tmp/err'"
+# inputs that ran silently wrong: a duplicated joint column (one of the two silently
+# won): exit 2 naming both columns; times as absolute stamps: exit 2 (the bound); times
+# in milliseconds (the robot seemed to stand still): one warning; a URDF mesh in
+# millimetres (a 550 m robot): one warning, as --asset gives
+printf 'time,shoulder,shoulder\n0,0,1\n1,1,0\n' > "$tmp/dup.csv"
+bad "CSV naming a joint twice" run --urdf "$tmp/prims.urdf" --motion "$tmp/dup.csv" --frames 1
+check "  ... names both columns" "grep -q \"columns 2 and 3 both name joint 'shoulder'\" '$tmp/err'"
+printf 'time,shoulder\n1764230400.0,0\n1764230400.5,1\n' > "$tmp/stamps.csv"
+bad "CSV of absolute stamps" run --urdf "$tmp/prims.urdf" --motion "$tmp/stamps.csv" --frames 1
+check "  ... says absolute stamps" "grep -q 'absolute stamps' '$tmp/err'"
+printf 'time,shoulder\n0,0\n33,0.5\n67,1\n100,1.5\n133,1\n' > "$tmp/ms.csv"
+"$exe" run --urdf "$tmp/prims.urdf" --motion "$tmp/ms.csv" --frames 1 --out "$tmp/ms_out" > /dev/null 2> "$tmp/err"; rc=$?
+check "CSV in milliseconds: runs (exit $rc) with one warning naming the column and the cause" \
+  "[ $rc -eq 0 ] && [ \$(grep -c 'warning' '$tmp/err') -eq 1 ] && grep -q \"ms.csv', column 1 (time): rows 33 s apart (median) over 133 s: times in milliseconds?\" '$tmp/err'"
+printf 'v 0 0 0\nv 300 0 0\nv 0 200 0\nv 0 0 550\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$tmp/mm_tet.obj"
+cat > "$tmp/mm.urdf" <<'URDF'
+<robot name='mm'>
+<link name='base'><visual><geometry><mesh filename='mm_tet.obj'/></geometry></visual></link>
+<link name='arm'><visual><geometry><box size='0.1 0.1 0.1'/></geometry></visual></link>
+<joint name='shoulder' type='revolute'><parent link='base'/><child link='arm'/><origin xyz='0 0 0.2'/>
+<axis xyz='0 0 1'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>
+</robot>
+URDF
+"$exe" run --urdf "$tmp/mm.urdf" --motion "$tmp/shoulder.csv" --frames 1 --out "$tmp/mm_out" > /dev/null 2> "$tmp/err"; rc=$?
+check "URDF mesh in millimetres: runs (exit $rc) with one warning naming the mesh and the link" \
+  "[ $rc -eq 0 ] && [ \$(grep -c 'warning' '$tmp/err') -eq 1 ] && grep -q \"mesh over 20 m across (first: '.*mm_tet.obj' of link 'base', 550 m at scale 1 1 1): a file in millimetres\" '$tmp/err'"
+sed 's|filename=.mm_tet.obj./>|filename="mm_tet.obj" scale="0.001 0.001 0.001"/>|' "$tmp/mm.urdf" > "$tmp/mm_scaled.urdf"
+"$exe" run --urdf "$tmp/mm_scaled.urdf" --motion "$tmp/shoulder.csv" --frames 1 --out "$tmp/mm_out2" > /dev/null 2> "$tmp/err"; rc=$?
+check "the same with <mesh scale='0.001 ...'/>: exit 0, no warning" "[ $rc -eq 0 ] && ! grep -q 'warning' '$tmp/err'"
 run prims --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 30
 check "prims: 3244 triangles at the default 2 cm edge" "[ \"\$(field '$tmp/prims.json' triangles)\" = 3244 ]"
 run prims_coarse --urdf "$tmp/prims.urdf" --motion "$tmp/shoulder.csv" --frames 5 --primitive-edge 0.05

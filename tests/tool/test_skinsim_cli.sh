@@ -3,7 +3,8 @@
 # the issue names, and one clear error (exit 2, no crash) for bad input.
 set -u
 bld="$1"
-exe=$(find "$bld" -type f -name skinsim -perm -u+x | head -n 1)
+# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
+exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
 [ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
 fail=0
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -48,4 +49,16 @@ bad "too few tris" track --scene fold --tris 3
 bad "missing value" track --scene
 bad "unknown option" track --scene fold --bogus
 bad "unknown command" frobnicate
+# --json that cannot be written: exit 2 as an uncreatable --out, and said before the run
+# (it used to be exit 1, after the whole run); the file is not left behind
+bad "run --json into a missing folder" run --scene fold --frames 1 --json "$tmp/no/such/dir/r.json"
+check "  ... names the folder" "grep -q \"the folder '$tmp/no/such/dir' does not exist\" '$tmp/err'"
+"$exe" run --scene fold --frames 1 --json "$tmp/no/such/dir/r.json" > "$tmp/out" 2> /dev/null
+check "  ... before the run (no result line on stdout)" "[ ! -s '$tmp/out' ]"
+bad "track --json into a missing folder" track --scene fold --frames 1 --json "$tmp/no/t.json"
+mkdir -p "$tmp/ro" && chmod 555 "$tmp/ro"
+if [ "$(id -u)" != 0 ]; then
+  bad "run --json into a read-only folder" run --scene fold --frames 1 --json "$tmp/ro/r.json"
+fi
+bad "run --json naming a folder" run --scene fold --frames 1 --json "$tmp"
 exit $fail

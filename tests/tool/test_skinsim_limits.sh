@@ -6,7 +6,8 @@
 set -u
 bld="$1"
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-exe=$(find "$bld" -type f -name skinsim -perm -u+x | head -n 1)
+# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
+exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
 [ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
 if ! "$exe" help | grep -q -- '--max-file-mb'; then echo "skinsim built without avatars: skipped"; exit 77; fi
 fail=0

@@ -6,7 +6,8 @@
 # Usage: test_skinsim_reference.sh BUILD_DIR [SOURCE_DIR]
 set -u
 bld="$1"
-exe=$(find "$bld" -type f -name skinsim -perm -u+x | head -n 1)
+# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
+exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
 [ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
 fail=0
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT

@@ -93,6 +93,11 @@ static int check_limits(const ssa_motion *m, const int *map, const ssa_robot *ro
   return SS_OK;
 }
 
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
 /* The robot's motion: a built-in name or a CSV file. Sets *duration. */
 static int open_motion(avatar_body *ab, const char *motion, int strict, double *duration,
                        char *err, int err_sz) {
@@ -128,6 +133,22 @@ static int open_motion(avatar_body *ab, const char *motion, int strict, double *
   status = check_limits(ab->motion, ab->map, robot, motion, strict, err, err_sz);
   if (status) return status;
   *duration = ab->motion->time[ab->motion->nframe - 1];
+  /* times in milliseconds read as seconds: rows seconds apart, a motion of minutes
+     in which the robot seems to stand still */
+  const ssa_motion *mo = ab->motion;
+  if (mo->nframe >= 3 && *duration > 60.0) {
+    double *gap = malloc(sizeof(double) * (size_t)(mo->nframe - 1));
+    if (gap) {
+      for (int i = 1; i < mo->nframe; i++) gap[i - 1] = mo->time[i] - mo->time[i - 1];
+      qsort(gap, (size_t)(mo->nframe - 1), sizeof *gap, cmp_double);
+      double med = gap[(mo->nframe - 1) / 2];
+      if (med >= 5.0)
+        fprintf(stderr, "skinsim: warning: motion file '%s', column 1 (time): rows %g s apart "
+                "(median) over %g s: times in milliseconds? (the time column is seconds from "
+                "the motion's start)\n", motion, med, *duration);
+      free(gap);
+    }
+  }
   return SS_OK;
 }
 
@@ -358,6 +379,11 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
       }
     }
   }
+  if (!status && !(duration <= SSA_MOTION_MAX_S)) { /* an asset's animation (a CSV's is checked) */
+    snprintf(err, (size_t)err_sz, "the motion lasts %g s, past the bound of %g s", duration,
+             SSA_MOTION_MAX_S);
+    status = SS_E_ARG;
+  }
   if (!status && args->region) status = open_region(ab, args->region, err, err_sz);
   if (!status) {
     ab->rest = malloc(sizeof(double) * 3 * (size_t)ab->av->nvert);
@@ -376,6 +402,7 @@ int avatar_body_open(avatar_body **out, const avatar_args *args, ss_body *body,
   body->rest = ab->rest;
   body->faces = ab->av->faces;
   body->fps = AVATAR_FPS;
+  /* duration is finite and at most SSA_MOTION_MAX_S (checked above): the count fits */
   body->frames = duration > 0.0 ? (int)(duration * AVATAR_FPS + 0.5) : 1;
   if (body->frames < 1) body->frames = 1;
   body->pose = pose;

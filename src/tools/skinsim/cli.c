@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "skin_sim/ss_anchor.h"
@@ -114,6 +115,37 @@ void json_hex(json_out *j, const char *key, unsigned long long value) {
 void json_end(json_out *j) {
   fputs(j->mode == JSON_OBJECT ? "\n}\n" : "\n", j->f);
   fflush(j->f);
+}
+
+int cli_check_json(const char *path) {
+  if (strcmp(path, "-") == 0) return 0;
+  struct stat st;
+  if (stat(path, &st) == 0) {
+    if (S_ISDIR(st.st_mode)) {
+      cli_error("--json '%s' is a folder, not a file", path);
+      return -1;
+    }
+    if (access(path, W_OK) != 0) {
+      cli_error("--json '%s' cannot be written: %s", path, strerror(errno));
+      return -1;
+    }
+    return 0;
+  }
+  char dir[4096];
+  const char *slash = strrchr(path, '/');
+  if (!slash) snprintf(dir, sizeof dir, ".");
+  else if (slash == path) snprintf(dir, sizeof dir, "/");
+  else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+  if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+    cli_error("--json '%s': the folder '%s' does not exist (skinsim creates no folder for it)",
+              path, dir);
+    return -1;
+  }
+  if (access(dir, W_OK | X_OK) != 0) {
+    cli_error("--json '%s': cannot write into the folder '%s': %s", path, dir, strerror(errno));
+    return -1;
+  }
+  return 0;
 }
 
 FILE *cli_open_json(const char *path) {

@@ -52,6 +52,10 @@ void json_null(json_out *j, const char *key);
 void json_hex(json_out *j, const char *key, unsigned long long value);
 void json_end(json_out *j);
 
+/* Checks, before a run, that the --json destination can be written: "-", an
+ * existing writable file, or a new name in an existing writable folder.
+ * 0, or -1 with a message naming the file and the cause (exit 2). */
+int cli_check_json(const char *path);
 /* Opens the --json destination: "-" is stdout. Returns NULL with a message. */
 FILE *cli_open_json(const char *path);
 void cli_close_json(FILE *f);

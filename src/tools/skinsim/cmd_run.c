@@ -183,6 +183,7 @@ int cmd_run(int argc, char **argv) {
               "faces) nor --reference/--truth (computed on the body's own skin)");
     return EXIT_USAGE;
   }
+  if (json_path && cli_check_json(json_path)) return EXIT_USAGE; /* before the run, not after */
   if (out_dir && check_out_dir(out_dir)) return EXIT_USAGE;
   char cache_dir[4096] = "";
   if (reference && measure_cache_dir(cache_opt, cache_dir, sizeof cache_dir)) return EXIT_USAGE;
@@ -244,7 +245,10 @@ int cmd_run(int argc, char **argv) {
   }
   if (json_path) {
     FILE *f = cli_open_json(json_path);
-    if (!f) return EXIT_RUN_FAILED;
+    if (!f) { /* as an uncreatable --out */
+      avatar_body_close(ab);
+      return EXIT_USAGE;
+    }
     json_out j;
     json_begin(&j, f);
     measure_fields(&j, label, &s, &res);

@@ -81,6 +81,7 @@ int cmd_track(int argc, char **argv) {
     cli_error("track needs --scene NAME (skinsim scenes lists them)");
     return EXIT_USAGE;
   }
+  if (json_path && cli_check_json(json_path)) return EXIT_USAGE; /* before the run, not after */
   char err[256] = "";
   ss_scene *scene = NULL;
   if (ss_scene_create(&scene, scene_name, tris, err, sizeof err)) {
@@ -99,7 +100,7 @@ int cmd_track(int argc, char **argv) {
   }
   if (json_path) {
     FILE *f = cli_open_json(json_path);
-    if (!f) return EXIT_RUN_FAILED;
+    if (!f) return EXIT_USAGE; /* as an uncreatable --out */
     track_json(f, scene_name, &s, &st);
     cli_close_json(f);
   }
