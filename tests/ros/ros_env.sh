@@ -324,10 +324,13 @@ ros_env_sigint() {
   wait "$pid"
 }
 
-# ros_env_launch_skin NAME QUEUE [S]: ros_env_bg NAME roslaunch skin.launch (queue_size:=QUEUE), waits for /skin_sim (S, default ROS_ENV_START_S).
+# ros_env_launch_skin NAME QUEUE [S [ARG:=VALUE...]]: ros_env_bg NAME roslaunch skin.launch (queue_size:=QUEUE and the ARGs), waits for /skin_sim (S, default ROS_ENV_START_S).
 ros_env_launch_skin() {
-  ros_env_bg "$1" roslaunch "$ROS_ENV_SRC/launch/skin.launch" output:=screen queue_size:="$2"
-  ros_env_wait_node /skin_sim "${3:-$ROS_ENV_START_S}" "$ROS_ENV_LAST_PID"
+  local name="$1" queue="$2" wait_s="${3:-$ROS_ENV_START_S}"
+  shift 2
+  [ $# -gt 0 ] && shift
+  ros_env_bg "$name" roslaunch "$ROS_ENV_SRC/launch/skin.launch" output:=screen queue_size:="$queue" "$@"
+  ros_env_wait_node /skin_sim "$wait_s" "$ROS_ENV_LAST_PID"
 }
 
 # ros_env_set_robot_description URDF: puts the text of the file URDF on the master as /robot_description.

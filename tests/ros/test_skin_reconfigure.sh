@@ -25,7 +25,9 @@ export PATH=/usr/bin:$PATH
 dynparam() { timeout 120 rosrun dynamic_reconfigure dynparam "$@"; }
 log="$ROS_ENV_DIR/launch.log"
 
-ros_env_launch_skin launch 120; started=$?
+# no step budget: the substeps checked are the settings' (a budget would lower them on a
+# slow machine: the sanitizer build beside two CPU hogs)
+ros_env_launch_skin launch 120 "$ROS_ENV_START_S" step_budget:=-1; started=$?
 lpid=$ROS_ENV_LAST_PID
 if [ "$started" -ne 0 ]; then
   ros_env_check "skin node starts from skin.launch" false
