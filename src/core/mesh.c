@@ -20,6 +20,7 @@
 #include "mesh_weld.h"
 #include "ss_err.h"
 #include "ss_vec.h"
+#include "union_find.h"
 
 int ss_mesh_check(int nvert, const double *pos, int nface, const int *faces, char *err,
                   int err_sz) {
@@ -57,22 +58,6 @@ void ss_topo_destroy(ss_topo *topo) {
 }
 
 /* ---- welding ------------------------------------------------------------- */
-
-static int uf_find(int *parent, int i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-static void uf_union(int *parent, int a, int b) {
-  a = uf_find(parent, a);
-  b = uf_find(parent, b);
-  /* the smaller index is the root, so the representative is the smallest vertex */
-  if (a < b) parent[b] = a;
-  else if (b < a) parent[a] = b;
-}
 
 /* Cells of side h >= tol: two vertices within tol of each other are in the
  * same or adjacent cells. Sorted by cell (x, y, z, then caller index), the

@@ -8,20 +8,7 @@
 #include <stdlib.h>
 
 #include "skin_sim/ss_mesh.h"
-
-static int find_root(int *parent, int v) {
-  while (parent[v] != v) {
-    parent[v] = parent[parent[v]];
-    v = parent[v];
-  }
-  return v;
-}
-
-static void join(int *parent, int a, int b) {
-  a = find_root(parent, a);
-  b = find_root(parent, b);
-  if (a != b) parent[a < b ? b : a] = a < b ? a : b;
-}
+#include "union_find.h"
 
 int ss_mesh_rigid_pieces(int nvert, int nface, const int *faces, const int *vert_weld,
                          const uint32_t *rigid_part, unsigned char *mask, ss_rigid_count *out) {
@@ -47,18 +34,18 @@ int ss_mesh_rigid_pieces(int nvert, int nface, const int *faces, const int *vert
       int w = vert_weld[v];
       if (w < 0 || w >= nvert) continue;
       if (first[w] < 0) first[w] = v;
-      else join(parent, v, first[w]);
+      else uf_union(parent, v, first[w]);
     }
   for (int f = 0; f < nface; f++) {
     const int *c = faces + 3 * (size_t)f;
-    join(parent, c[0], c[1]);
-    join(parent, c[0], c[2]);
+    uf_union(parent, c[0], c[1]);
+    uf_union(parent, c[0], c[2]);
   }
   /* the part all vertices of a root's piece move with: UINT32_MAX none seen
    * yet, 0 once one deforms or two differ */
   for (int v = 0; v < nvert; v++) part[v] = UINT32_MAX;
   for (int v = 0; v < nvert; v++) {
-    int r = find_root(parent, v);
+    int r = uf_find(parent, v);
     uint32_t k = rigid_part[v];
     if (part[r] == UINT32_MAX) part[r] = k;
     else if (part[r] != k) part[r] = 0;
@@ -68,7 +55,7 @@ int ss_mesh_rigid_pieces(int nvert, int nface, const int *faces, const int *vert
   int npiece = 0, ncarried = 0, nface_carried = 0;
   for (int v = 0; v < nvert; v++) first[v] = 0;
   for (int f = 0; f < nface; f++) {
-    int r = find_root(parent, faces[3 * (size_t)f]);
+    int r = uf_find(parent, faces[3 * (size_t)f]);
     int rigid = part[r] != 0 && part[r] != UINT32_MAX;
     if (!first[r]) {
       first[r] = 1;
