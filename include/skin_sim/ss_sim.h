@@ -176,14 +176,15 @@ void ss_sim_destroy(ss_sim *sim);
  * sparsity pattern: everything fixed once built, never written while
  * stepping) and the DATA of its run (state, anchors, solver workspaces).
  * Several sims may run on one model: a reference or truth run of a skin, a
- * second skin of the same body. They share its material, the model settings
- * young, poisson, density, stiffness, barycenters, bending, orient and
- * face_mask; each has its own run settings (solver, substeps, iterations,
- * tol, method, slide, tether, damping, gravity, dt, threads, ...), and the
+ * second skin of the same body. They share its material, the settings whose
+ * scope is SS_SCOPE_MODEL in the settings table (ss_settings.h), and
+ * face_mask; each has its own run settings (scope SS_SCOPE_RUN), and the
  * same bits as a sim made by ss_sim_create with the same settings.
- * Reference counted: a model lives while its creator's reference
- * (ss_model_destroy) or any sim on it (ss_sim_destroy) does, so the two may
- * be dropped in any order. */
+ * A model is a value: built once, never written afterwards (a live change of
+ * a model setting, ss_sim_set_settings, moves that sim onto a new model).
+ * Reference counted (atomically): a model lives while its creator's
+ * reference (ss_model_destroy) or any sim on it (ss_sim_destroy) does, so
+ * the two may be dropped in any order, on any thread. */
 
 /* Builds a model as ss_sim_create would (same arguments, same errors), with no
  * sim on it; release it with ss_model_destroy. */
@@ -195,11 +196,11 @@ void ss_model_destroy(ss_model *model);
 /* A sim on model (it takes a reference), at rest. settings: NULL for those the
  * model was built with; else its model settings (above) must be the model's,
  * else SS_E_ARG naming the first that differs. Other errors as ss_sim_create. */
-int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_settings *settings,
+int ss_sim_create_from_model(ss_sim **out, const ss_model *model, const ss_sim_settings *settings,
                              char *err, int err_sz);
 /* The model sim runs on (valid while sim is; pass it to ss_sim_create_from_model
  * to run another sim on it). */
-ss_model *ss_sim_model(const ss_sim *sim);
+const ss_model *ss_sim_model(const ss_sim *sim);
 /* The body a model was built on: its vertex and face counts. */
 int ss_model_body_nvert(const ss_model *model);
 int ss_model_body_nface(const ss_model *model);
@@ -215,17 +216,17 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
 
 /* Changes the settings of a simulation from its next step on, keeping its state
  * and anchors (live tuning). Checks them first: SS_E_ARG naming the bad setting,
- * nothing changed. What needs new masses, springs or matrices (young, poisson,
- * density, stiffness, bending, damping: SS_APPLY_REFACTOR in ss_settings.h) is
- * rebuilt here and refactored on the next substep. A setting that changes the
- * skin's structure (SS_APPLY_RECREATE: solver, method, rings, walk_max_steps,
- * barycenters, lbfgs_history, threads; bending turned on or off) cannot change in
- * place: then nothing changes, *recreate (may be NULL) is set to 1, err names the
- * setting and SS_OK is returned: create the simulation again with the settings.
- * settings->face_mask is ignored (the simulated region stays). A model setting
- * (young, poisson, density, stiffness, bending, orient) on a model shared with
- * another sim or a model reference is not changed either (*recreate = 1, as
- * above): the model of other sims is never written. Allocates nothing. */
+ * nothing changed. How each setting reaches the sim is its `apply` in the
+ * settings table (ss_settings.h): from the next step, or with its matrices
+ * refactored on the next substep (SS_APPLY_REFACTOR). A setting that changes
+ * the skin's structure (SS_APPLY_RECREATE; bending turned on or off) cannot
+ * change in place: then nothing changes, *recreate (may be NULL) is set to 1,
+ * err names the setting and SS_OK is returned: create the simulation again with
+ * the settings. settings->face_mask is ignored (the simulated region stays).
+ * A change of a model setting (scope SS_SCOPE_MODEL) moves this sim onto a new
+ * model with that material, which shares the old one's structure; other sims
+ * on the old model keep it, unwritten (this allocates the new model's arrays;
+ * run settings alone allocate nothing). */
 int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recreate, char *err,
                         int err_sz);
 

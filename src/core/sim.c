@@ -112,8 +112,8 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
   if (!sim || !settings) return ss_fail(err, err_sz, SS_E_ARG, "sim or settings are NULL");
   int status = ss_settings_check(settings, err, err_sz);
   if (status != SS_OK) return status;
-  int n = 0, refactor = 0;
-  const ss_setting *table = ss_settings_table(&n), *material = NULL;
+  int n = 0, refactor = 0, material = 0;
+  const ss_setting *table = ss_settings_table(&n);
   for (int i = 0; i < n; i++) {
     const ss_setting *d = &table[i];
     if (ss_setting_equal(d, &sim->set, settings)) continue;
@@ -125,30 +125,17 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
                      on_off ? "turned on or off" : "changed");
     }
     refactor |= d->apply == SS_APPLY_REFACTOR;
-    if (!material && ss_sim_in_model(d->offset)) material = d;
+    material |= d->scope == SS_SCOPE_MODEL;
   }
-  /* A model shared with other sims is never written: the change is refused
-   * (created again on a model of its own), not copied. */
-  if (material && sim->m->refs > 1) {
-    if (recreate) *recreate = 1;
-    return ss_fail(err, err_sz, SS_OK,
-                   "%s changed on a model shared by %d sims and references: the simulation must be "
-                   "created again",
-                   material->name, sim->m->refs);
+  /* The model is a value: a new material is a new model (on the old one's
+   * structure), this sim's alone; other sims on the old model keep it. */
+  if (material) {
+    status = ss_sim_rematerial(sim, settings, err, err_sz);
+    if (status != SS_OK) return status;
   }
-  const double old_bending = sim->set.bending;
-  const unsigned char *mask = sim->set.face_mask;
+  const unsigned char *mask = sim->m->mask;
   sim->set = *settings;
   sim->set.face_mask = mask; /* the region stays */
-  if (material) {
-    sim->m->set = sim->set;
-    ss_sim_build_material(sim);
-    ss_sim_energy_springs(sim); /* k_face into the membrane records */
-    if (old_bending > 0.0 && sim->set.bending != old_bending)
-      for (int e = 0; e < sim->m->nhinge; e++)
-        sim->m->hinge_weight[e] = sim->m->hinge_weight[e] / old_bending * sim->set.bending;
-    ss_sim_diag_const(sim);
-  }
   if (refactor) {
     sim->a_h = 0.0;       /* quasi-Newton: factor A again on the next substep */
     sim->h_const_h = 0.0; /* Newton: rebuild the constant Hessian */

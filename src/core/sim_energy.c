@@ -79,49 +79,49 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
   g[3 * k + 2] += gv[2];
 }
 
-void ss_sim_energy_springs(ss_sim *sim) {
-  const int bary = sim->set.barycenter_anchors;
-  for (int q = 0; q < sim->m->nsimface; q++) {
-    const int f = sim->m->simface[q];
-    ss_membrane_face *r = sim->m->mface + q;
+void ss_model_energy_springs(ss_model *m) {
+  const int bary = m->set.barycenter_anchors;
+  for (int q = 0; q < m->nsimface; q++) {
+    const int f = m->simface[q];
+    ss_membrane_face *r = m->mface + q;
     r->anchor = 3 * f;
-    r->k_bary = bary ? sim->m->k_face[f] : 0.0;
+    r->k_bary = bary ? m->k_face[f] : 0.0;
   }
 }
 
-int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
-  const int nsim = sim->m->nsimface, n = sim->m->ndof;
+int ss_model_energy_layout(ss_model *m, char *err, int err_sz) {
+  const int nsim = m->nsimface, n = m->ndof;
   /* mface, grad_ptr (zeroed), grad_slot: the model's arena; face_grad: the data's */
   for (int q = 0; q < nsim; q++) {
-    int f = sim->m->simface[q];
-    ss_membrane_face *r = sim->m->mface + q;
-    for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->m->faces[3 * f + c];
-    memcpy(r->dm_inv, sim->m->dm_inv + 4 * f, 4 * sizeof(double));
-    r->area = sim->m->rest_area[f];
+    int f = m->simface[q];
+    ss_membrane_face *r = m->mface + q;
+    for (int c = 0; c < 3; c++) r->xo[c] = 3 * m->faces[3 * f + c];
+    memcpy(r->dm_inv, m->dm_inv + 4 * f, 4 * sizeof(double));
+    r->area = m->rest_area[f];
   }
-  ss_sim_energy_springs(sim);
+  ss_model_energy_springs(m);
   /* Slots per dof in the order of the sum: the simulated faces' (membrane
    * and barycenter spring together) in simulated face order, each corner in
    * turn. */
-  int *cnt = sim->m->grad_ptr + 1;
+  int *cnt = m->grad_ptr + 1;
   for (int pass = 0; pass < 2; pass++) {
     if (pass == 1) {
-      for (int k = 0; k < n; k++) sim->m->grad_ptr[k + 1] += sim->m->grad_ptr[k];
-      cnt = sim->m->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
+      for (int k = 0; k < n; k++) m->grad_ptr[k + 1] += m->grad_ptr[k];
+      cnt = m->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
     }
     for (int q = 0; q < nsim; q++)
       for (int c = 0; c < 3; c++) {
-        int k = sim->m->dof[sim->m->faces[3 * sim->m->simface[q] + c]];
+        int k = m->dof[m->faces[3 * m->simface[q] + c]];
         if (k < 0) continue;
         if (pass == 0)
           cnt[k]++;
         else
-          sim->m->grad_slot[cnt[k]++] = 9 * q + 3 * c;
+          m->grad_slot[cnt[k]++] = 9 * q + 3 * c;
       }
   }
   /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
-  memmove(sim->m->grad_ptr + 1, sim->m->grad_ptr, (size_t)n * sizeof(int));
-  sim->m->grad_ptr[0] = 0;
+  memmove(m->grad_ptr + 1, m->grad_ptr, (size_t)n * sizeof(int));
+  m->grad_ptr[0] = 0;
   (void)err, (void)err_sz;
   return SS_OK;
 }
@@ -484,81 +484,78 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
 
 /* Adds w (x I3) to block (rank, column j): scalar != 0 in the n x n values,
  * else in the 3n x 3n values. */
-static void add_iso(const ss_sim *sim, double *vals, int scalar, int j, int rank, double w) {
+static void add_iso(const ss_model *m, double *vals, int scalar, int j, int rank, double w) {
   if (scalar) {
-    vals[sim->m->bcolp[j] + rank] += w;
+    vals[m->bcolp[j] + rank] += w;
   } else {
-    for (int c = 0; c < 3; c++) vals[ss_sim_slot3(sim, j, rank, c, c)] += w;
+    for (int c = 0; c < 3; c++) vals[ss_model_slot3(m, j, rank, c, c)] += w;
   }
 }
 
-static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
-  size_t nnz = scalar ? (size_t)sim->m->nblock : (size_t)sim->m->nnz3;
+static void constant_terms(const ss_model *m, const double *mi, double *vals, int scalar) {
+  size_t nnz = scalar ? (size_t)m->nblock : (size_t)m->nnz3;
   memset(vals, 0, nnz * sizeof *vals);
-  for (int k = 0; k < sim->m->ndof; k++) {
-    int v = sim->m->dof_vert[k];
-    int diag_rank = sim->m->bcolp[k + 1] - sim->m->bcolp[k] - 1;
-    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->m->k_vert[v]);
+  for (int k = 0; k < m->ndof; k++) {
+    int v = m->dof_vert[k];
+    int diag_rank = m->bcolp[k + 1] - m->bcolp[k] - 1;
+    add_iso(m, vals, scalar, k, diag_rank, (mi ? mi[k] : 0.0) + m->k_vert[v]);
   }
-  if (sim->set.barycenter_anchors) {
-    for (int f = 0; f < sim->m->nface; f++) {
-      double kf = sim->m->k_face[f];
+  if (m->set.barycenter_anchors) {
+    for (int f = 0; f < m->nface; f++) {
+      double kf = m->k_face[f];
       if (kf == 0.0) continue;
-      const int *fv = sim->m->faces + 3 * f;
+      const int *fv = m->faces + 3 * f;
       for (int a = 0; a < 3; a++) {
-        int i = sim->m->dof[fv[a]];
+        int i = m->dof[fv[a]];
         if (i < 0) continue;
         for (int b = 0; b < 3; b++) {
-          int j = sim->m->dof[fv[b]];
+          int j = m->dof[fv[b]];
           if (j < i) continue;
           /* Upper triangle: (a, b) and (b, a) meet in one block; count once
            * unless a == b. Off-diagonal blocks get the (a, b) value only, as
            * the symmetric (b, a) is implied. */
-          add_iso(sim, vals, scalar, j, sim->m->face_rank[9 * f + 3 * a + b], kf / 9.0);
+          add_iso(m, vals, scalar, j, m->face_rank[9 * f + 3 * a + b], kf / 9.0);
         }
       }
     }
   }
 }
 
-void ss_sim_constant_hessian(const ss_sim *sim, double *vals) { constant_terms(sim, vals, 0); }
+void ss_sim_constant_hessian(const ss_sim *sim, double *vals) { constant_terms(sim->m, sim->mi, vals, 0); }
 
-static void rest_laplacian(const ss_sim *sim, double *vals);
+static void rest_laplacian(const ss_model *m, double *vals);
 
-void ss_sim_scalar_matrix(const ss_sim *sim, double *vals) {
-  constant_terms(sim, vals, 1);
-  rest_laplacian(sim, vals);
+void ss_model_scalar_matrix(const ss_model *m, const double *mi, double *vals) {
+  constant_terms(m, mi, vals, 1);
+  rest_laplacian(m, vals);
 }
 
-void ss_sim_diag_const(ss_sim *sim) {
-  /* Build the scalar matrix without inertia into a scratch of nblock values:
-   * borrow h-independent terms only (mi = 0 during the call). */
-  double *vals = calloc((size_t)(sim->m->nblock ? sim->m->nblock : 1), sizeof *vals);
-  double *mi_save = sim->mi;
-  double *zeros = calloc((size_t)(sim->m->ndof ? sim->m->ndof : 1), sizeof *zeros);
-  if (!vals || !zeros) {
-    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_const[k] = sim->m->diag_springs[k] = 0.0;
-  } else {
-    sim->mi = zeros;
-    ss_sim_scalar_matrix(sim, vals);
-    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_const[k] = vals[sim->m->bcolp[k + 1] - 1];
-    constant_terms(sim, vals, 1); /* the springs alone */
-    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_springs[k] = vals[sim->m->bcolp[k + 1] - 1];
-    sim->mi = mi_save;
+void ss_sim_scalar_matrix(const ss_sim *sim, double *vals) { ss_model_scalar_matrix(sim->m, sim->mi, vals); }
+
+void ss_model_diag_const(ss_model *m) {
+  /* The scalar matrix without inertia (mi NULL) into a scratch of nblock
+   * values: its diagonal, then the springs' alone. */
+  double *vals = calloc((size_t)(m->nblock ? m->nblock : 1), sizeof *vals);
+  if (!vals) {
+    for (int k = 0; k < m->ndof; k++) m->diag_const[k] = m->diag_springs[k] = 0.0;
+    return;
   }
+  ss_model_scalar_matrix(m, NULL, vals);
+  for (int k = 0; k < m->ndof; k++) m->diag_const[k] = vals[m->bcolp[k + 1] - 1];
+  constant_terms(m, NULL, vals, 1); /* the springs alone */
+  for (int k = 0; k < m->ndof; k++) m->diag_springs[k] = vals[m->bcolp[k + 1] - 1];
   free(vals);
-  free(zeros);
 }
 
-static void rest_laplacian(const ss_sim *sim, double *vals) {
+static void rest_laplacian(const ss_model *m, double *vals) {
   /* Rest membrane stiffness: (mu + lam) times the cotangent Laplacian, the
    * exact Hessian of (mu + lam)/2 A |F|^2. It lies between the rest
    * membrane's in-plane eigenvalues 2 mu (shear) and 2 lam (area). */
-  double w = sim->m->mu + sim->m->lam;
-  for (int q = 0; q < sim->m->nsimface; q++) {
-    int f = sim->m->simface[q];
-    const int *fv = sim->m->faces + 3 * f;
-    const double *di = sim->m->dm_inv + 4 * f;
+  double w = m->mu + m->lam;
+  for (int q = 0; q < m->nsimface; q++) {
+    int f = m->simface[q];
+    const int *fv = m->faces + 3 * f;
+    const double *di = m->dm_inv + 4 * f;
     double d[3][2];
     for (int j = 0; j < 2; j++) {
       d[1][j] = di[j];
@@ -566,13 +563,13 @@ static void rest_laplacian(const ss_sim *sim, double *vals) {
       d[0][j] = -d[1][j] - d[2][j];
     }
     for (int a = 0; a < 3; a++) {
-      int i = sim->m->dof[fv[a]];
+      int i = m->dof[fv[a]];
       if (i < 0) continue;
       for (int b = 0; b < 3; b++) {
-        int j = sim->m->dof[fv[b]];
+        int j = m->dof[fv[b]];
         if (j < i) continue;
-        double kab = w * sim->m->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
-        vals[sim->m->bcolp[j] + sim->m->face_rank[9 * f + 3 * a + b]] += kab;
+        double kab = w * m->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
+        vals[m->bcolp[j] + m->face_rank[9 * f + 3 * a + b]] += kab;
       }
     }
   }

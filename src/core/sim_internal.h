@@ -17,6 +17,7 @@
 #define SKIN_SIM_SIM_INTERNAL_H
 
 #include <cholmod.h>
+#include <stdatomic.h>
 
 #include "mover.h"
 #include "par.h"
@@ -35,8 +36,9 @@ enum ss_vert_kind {
  * the packed energy layout and the symbolic analysis of the solver's matrix
  * (below, "symbolic analysis"). Several sims may run on one model (a reference
  * or truth run, a second skin of the same body: ss_sim_create_from_model);
- * nothing writes it while stepping, and ss_sim_set_settings changes its
- * material only when the model is not shared (else it asks for a new sim).
+ * it is built alone (sim_model.c) and nothing writes it afterwards: a sim
+ * holds it as `const ss_model *`, and a new material (ss_sim_set_settings)
+ * is a new model that borrows the old one's structure (`shape`).
  * The DATA of a run (struct ss_sim) is the state, the anchors, the solver
  * workspaces and the step's counters.
  *
@@ -141,8 +143,14 @@ enum ss_vert_kind {
 #define SS_ARENA_FIELD(name, type, count, shape) type *name;
 
 struct ss_model {
-  int refs;                   /* sims running on it + the creator's reference (ss_model_create) */
-  ss_sim_settings set;        /* built with; its model settings (ss_sim_in_model) are every
+  atomic_int refs;            /* sims running on it, models derived from it (shape) and the
+                                 creator's reference (ss_model_create); sims on other threads
+                                 may take and drop theirs */
+  ss_model *shape;            /* NULL: the model owns btopo, bvh_rest and the symbolic analysis.
+                                 Else a model it was derived from with another material
+                                 (ss_sim_set_settings), whose three it borrows, holding a
+                                 reference (never a chain: the owner's) */
+  ss_sim_settings set;        /* built with; its model settings (scope SS_SCOPE_MODEL) are every
                                  sim's on it. face_mask points to mask (or NULL) */
   void *arena;                /* every array below */
   size_t arena_bytes;
@@ -182,7 +190,7 @@ struct ss_model {
 };
 
 struct ss_sim {
-  ss_model *m;                /* the model this sim runs on (counted in m->refs) */
+  const ss_model *m;          /* the model this sim runs on (counted in m->refs): read only */
   ss_sim_settings set;        /* this sim's; face_mask points to m->mask (or NULL) */
   void *arena;                /* every array of SS_DATA_ARRAYS */
   size_t arena_bytes;
@@ -229,10 +237,9 @@ struct ss_sim {
   SS_DATA_ARRAYS(SS_ARENA_FIELD)
 };
 
-/* 1 if the setting at this offset of ss_sim_settings is a model setting (young,
- * poisson, density, stiffness, barycenters, bending, orient): every sim on a
- * model has the model's (sim_model.c). */
-int ss_sim_in_model(size_t offset);
+/* Moves sim onto a model derived from its own with the material (model
+ * settings) of set (sim_model.c, model_derive); its data stay. */
+int ss_sim_rematerial(ss_sim *sim, const ss_sim_settings *set, char *err, int err_sz);
 /* threads 0: the probe's steps (sim.c). After each step of step_ms
  * wall-clock ms, sets the thread count of the next. */
 #define SS_PROBE_STEPS 3       /* steps on one thread, then at most as many on all */
@@ -243,9 +250,9 @@ void ss_sim_choose_threads(ss_sim *sim, double step_ms);
  * runs): the same bits from any. Chosen at create: the widest. */
 void ss_sim_set_isa(ss_sim *sim, int isa);
 
-/* ---- sim_model.c ---- */
-/* The model's bvh_rest on the body at rest, built if it is not yet (model
- * building only: the model is read-only once built). */
+/* ---- building a model (sim_model.c runs these in order on a new model,
+ * which nothing writes afterwards) ---- */
+/* The model's bvh_rest on the body at rest, built if it is not yet. */
 int ss_sim_model_bvh(ss_model *m, const double *body_rest);
 
 /* ---- sim_bind.c ---- */
@@ -255,20 +262,22 @@ int ss_sim_model_bvh(ss_model *m, const double *body_rest);
 int ss_sim_face_frame(const double e1[3], const double e2[3], double t1[3], double t2[3],
                       double n[3]);
 /* Anchors of the skin on the body at rest (copy of the body or closest point). */
-int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
-                int err_sz);
+int ss_model_bind(ss_model *m, const ss_sim_mesh *skin, const double *body_rest, char *err,
+                  int err_sz);
 /* Vertex kinds, dofs, simulated faces, masses, spring stiffnesses, hinges. */
-int ss_sim_build_model(ss_sim *sim, char *err, int err_sz);
-/* From the settings: Lame parameters, masses and spring stiffnesses (part of
- * ss_sim_build_model; again on ss_sim_set_settings). */
-void ss_sim_build_material(ss_sim *sim);
+int ss_model_build_kinds(ss_model *m, char *err, int err_sz);
+/* From the model's settings: Lame parameters, masses and spring stiffnesses
+ * (part of ss_model_build_kinds; again on a model derived with another
+ * material). */
+void ss_model_build_material(ss_model *m);
 
 /* ---- orient.c: skin faces resist turning over against the body ---- */
 #define SS_ORIENT_S0 0.2 /* signed projected area ratio below which the term acts */
 #define SS_ORIENT_MIN_AREA SS_SLIVER_AREA /* faces of rest area below this times l^2 are not judged */
 #define SS_ORIENT_DEPTH 0.1 /* depth spring of a vertex under the body, per orient (orient.c) */
-/* orient_sign from the rest skin and the anchors at rest (after ss_sim_reset). */
-int ss_sim_orient_init(ss_sim *sim);
+/* orient_sign from the rest skin and the anchors as bound, in the body's
+ * frames at rest (the last step of building a model). */
+int ss_model_orient_init(ss_model *m, char *err, int err_sz);
 /* The unit body normal skin face f is judged against, in the pose of fr;
  * 0 where the face is not judged (see orient.c). */
 int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]);
@@ -289,7 +298,7 @@ double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir,
 void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals);
 
 /* ---- sim_pattern.c ---- */
-int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
+int ss_model_build_pattern(ss_model *m, char *err, int err_sz);
 
 /* ---- sim_energy.c ---- */
 /* Sets up the inertia weights and targets of a substep of length h from
@@ -297,10 +306,10 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
 void ss_sim_energy_begin(ss_sim *sim, double h);
 /* The packed layout the energy evaluation runs on (mface, grad_ptr,
  * grad_slot), once after the model and the pattern. */
-int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz);
+int ss_model_energy_layout(ss_model *m, char *err, int err_sz);
 /* The barycenter springs' stiffness in mface, from k_face: in the layout,
  * and again whenever the material is rebuilt. */
-void ss_sim_energy_springs(ss_sim *sim);
+void ss_model_energy_springs(ss_model *m);
 /* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).
@@ -328,15 +337,20 @@ void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
  * the start of each solve: the direction across the membrane, in which only
  * inertia and the anchor springs hold a flat skin (ss_sim_residual). */
 void ss_sim_normals_begin(ss_sim *sim, const double *xfull);
-/* diag_const and diag_springs from the model (once, at create). */
-void ss_sim_diag_const(ss_sim *sim);
-/* Values of the scalar n x n matrix: inertia + springs + rest membrane
- * Laplacian scaled by (mu + lam). */
+/* diag_const and diag_springs of the model (building it). */
+void ss_model_diag_const(ss_model *m);
+/* Values of the scalar n x n matrix: inertia weights mi (NULL: none) +
+ * springs + rest membrane Laplacian scaled by (mu + lam). */
+void ss_model_scalar_matrix(const ss_model *m, const double *mi, double *vals);
+/* The same with the sim's inertia weights of the current substep. */
 void ss_sim_scalar_matrix(const ss_sim *sim, double *vals);
 /* Slot of entry (row 3i+a, col 3j+b) of the 3n matrix from block rank r in
  * block column j (i <= j; a <= b when i == j). */
+static inline int ss_model_slot3(const ss_model *m, int j, int rank, int a, int b) {
+  return m->colp3[3 * j + b] + 3 * rank + a;
+}
 static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b) {
-  return sim->m->colp3[3 * j + b] + 3 * rank + a;
+  return ss_model_slot3(sim->m, j, rank, a, b);
 }
 
 /* ---- solvers (solver.h: the one loop, line search and the solvers' hooks).
