@@ -31,10 +31,16 @@
 #include "ss_err.h"
 #include "ss_vec.h"
 
+typedef struct inertia_ctx {
+  ss_sim *sim;
+  double h;
+} inertia_ctx;
+
 static void inertia_begin_block(void *ctx, int k0, int k1, double *sums) {
-  ss_sim *sim = ctx;
+  const inertia_ctx *ic = ctx;
+  ss_sim *sim = ic->sim;
   (void)sums;
-  const double h = sim->h, c = sim->set.damping, w = 1.0 / (h * h) + c / h;
+  const double h = ic->h, c = sim->set.damping, w = 1.0 / (h * h) + c / h;
   const double *g = sim->set.gravity;
   for (int k = k0; k < k1; k++) {
     int v = sim->m->dof_vert[k];
@@ -48,8 +54,8 @@ static void inertia_begin_block(void *ctx, int k0, int k1, double *sums) {
 }
 
 void ss_sim_energy_begin(ss_sim *sim, double h) {
-  sim->h = h;
-  ss_par_sum(sim->nthread, sim->m->ndof, 0, inertia_begin_block, sim, sim->par_part, NULL);
+  inertia_ctx ic = {sim, h};
+  ss_par_sum(sim->nthread, sim->m->ndof, 0, inertia_begin_block, &ic, sim->par_part, NULL);
   ss_sim_orient_begin(sim); /* orient.c: its normals in this pose */
 }
 
@@ -253,12 +259,20 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   return e;
 }
 
-double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
+double ss_sim_energy_at(ss_sim *sim, ss_sim_stats *st, const double *xd, double *g) {
   double t0 = ss_now_ms();
   ss_sim_scatter(sim, xd, sim->xfull_t);
   double e = ss_sim_energy(sim, sim->xfull_t, g);
-  if (sim->st) sim->st->assemble_ms += ss_now_ms() - t0, sim->st->energy_evaluations++;
+  st->assemble_ms += ss_now_ms() - t0, st->energy_evaluations++;
   return e;
+}
+
+double ss_sim_energy_first_trial(ss_sim *sim, const double *xd, const double *dir, double slope) {
+  /* the membrane, hinges and springs are what the solvers' matrices model:
+   * their minimum along a direction of those matrices is the full step. The
+   * orient term's depth springs (one-sided, stiff) are not: they answer
+   * with the minimum along the line of their exact model (orient.c) */
+  return ss_sim_orient_line_step(sim, xd, dir, slope);
 }
 
 /* The stiffness across the skin is taken as at least this share of that

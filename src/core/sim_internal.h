@@ -203,10 +203,7 @@ struct ss_sim {
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
   int probe_period;           /* threads 0: steps in the current probe period */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
-  double h;                   /* substep of the current system */
   int measure_anchors;        /* ss_sim_measure_anchors: anchor_pull and anchor_path summed */
-  double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
-  double tether_frac;         /* share of the way back home it walks this substep */
   /* CHOLMOD */
   cholmod_common cc;
   int cc_started;
@@ -229,18 +226,36 @@ struct ss_sim {
   cholmod_dense *qx_xy, *qy_xy, *qe_xy, *qx_z, *qy_z, *qe_z;
   int lb_m;                   /* L-BFGS history size */
   int lb_count, lb_head;
-  /* per-step counters */
-  ss_sim_stats *st;
   /* over the sim's life (ss_sim_warnings) */
   long long nstep;
   ss_warning warning[SS_NWARNING];
   SS_DATA_ARRAYS(SS_ARENA_FIELD)
 };
 
+/* ---- a substep (sim.c): its inputs, one value every stage reads ---- */
+typedef struct ss_substep {
+  const double *body_pos; /* the body pose at the end of the step */
+  double w;               /* share of the way from body_prev to body_pos */
+  int last;               /* the last substep: exactly body_pos */
+  double h;               /* its length */
+  double slide_frac;      /* share of the way to its skin point an anchor goes */
+  double tether_frac;     /* share of the way back home it walks */
+} ss_substep;
+
+/* ---- sim_anchor.c: the anchor pass and the anchors' positions ---- */
+/* anchor_pos from the anchors and the mover's frames of `pose` (the pose it
+ * holds); an anchor without a face follows its body vertex. */
+void ss_sim_anchor_positions_update(ss_sim *sim, const double *pose);
+/* Stage 4 of a substep: anchors slide towards their skin points, then walk
+ * home on the tether; counts into st. */
+void ss_sim_move_anchors(ss_sim *sim, const ss_substep *in, ss_sim_stats *st);
+/* Each anchor's pull and path back to 0 (ss_sim_measure_anchors). */
+void ss_sim_clear_anchor_measures(ss_sim *sim);
+
 /* Moves sim onto a model derived from its own with the material (model
  * settings) of set (sim_model.c, model_derive); its data stay. */
 int ss_sim_rematerial(ss_sim *sim, const ss_sim_settings *set, char *err, int err_sz);
-/* threads 0: the probe's steps (sim.c). After each step of step_ms
+/* threads 0: the probe's steps (sim_threads.c). After each step of step_ms
  * wall-clock ms, sets the thread count of the next. */
 #define SS_PROBE_STEPS 3       /* steps on one thread, then at most as many on all */
 #define SS_PROBE_PERIOD 50     /* steps from one probe to the next while all threads pay */
@@ -360,7 +375,8 @@ static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b)
  * start (xd unusable), 2 if only trial points were (xd is the last finite
  * iterate). ---- */
 int ss_solver_create(ss_sim *sim, char *err, int err_sz);
-int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite);
+int ss_solver_solve(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, double *xd, int *converged,
+                    int *stalled, int *nonfinite);
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz);
 int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz);
 /* The model's symbolic analysis (m->sym_newton / m->sym_qn, with m->cc) for
@@ -368,7 +384,11 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz);
 int ss_solver_newton_analyze(ss_model *m, char *err, int err_sz);
 int ss_solver_qn_analyze(ss_model *m, char *err, int err_sz);
 /* Energy and gradient g at the unknowns xd (scattered into xfull_t), timed
- * into the step's assemble_ms. */
-double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g);
+ * into st's assemble_ms. */
+double ss_sim_energy_at(ss_sim *sim, ss_sim_stats *st, const double *xd, double *g);
+/* A line search's first trial step along dir from xd (slope E's slope there,
+ * < 0), asked of the energy terms: the shortest any term's own model of the
+ * line gives, 1 where none has one (sim_energy.c). */
+double ss_sim_energy_first_trial(ss_sim *sim, const double *xd, const double *dir, double slope);
 
 #endif
