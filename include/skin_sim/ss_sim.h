@@ -44,51 +44,52 @@ const char *ss_solver_name(int solver);
 int ss_solver_parse(const char *name);
 
 /* Definition of a simulation; get one from ss_sim_default_settings() and
- * change what you need. Every field but face_mask is described once, with its
- * default, range and unit, in the settings table (ss_settings.h, src/core/settings.c,
- * `skinsim settings`), which ss_sim_default_settings() and the checks read. Stiffnesses are per unit REST AREA of skin, so a
- * refined mesh behaves the same. */
+ * change what you need. Every field but face_mask has its default, range and
+ * unit in ONE place, the settings table (ss_settings.h, src/core/settings.c;
+ * `skinsim settings` lists it), which ss_sim_default_settings() and the checks
+ * read: the comments below say what a field means, not its value. Stiffnesses
+ * are per unit REST AREA of skin, so a refined mesh behaves the same. */
 typedef struct ss_sim_settings {
-  int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */
-  double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0; default 1/30 */
+  int solver;            /* ss_solver */
+  double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0 */
   int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
-                            linearly in between); default 4: at one substep the error is
-                            the step's (Newton converged there is as far from the truth
-                            as quasi-Newton), so the budget goes into substeps */
-  int iterations;        /* max solver iterations per substep; default 2, the real-time
-                            budget of quasi-Newton (4 x 2 fits 30 Hz at 19k triangles on
-                            one core: doc/benchmarks.md); raise it (e.g. 50-500) for Newton
-                            or tight tolerances */
+                            linearly in between): at one substep the error is the step's
+                            (Newton converged there is as far from the truth as
+                            quasi-Newton), so the default budget goes into substeps */
+  int iterations;        /* max solver iterations per substep: the real-time budget of
+                            quasi-Newton (the defaults fit 30 Hz at 19k triangles on one
+                            core: doc/benchmarks.md); raise it (e.g. 50-500) for Newton or
+                            tight tolerances */
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
-                            lengths; default 1e-4 */
+                            lengths */
   double safety_residual; /* quasi-Newton: a substep whose residual (same measure as tol) is
                             still above this after `iterations`, or that ends with a face
                             squeezed below a tenth of its rest area, keeps iterating, up to
                             iterations_max: a hard frame costs more instead of tangling the
-                            skin; default 0.05 (5% of an edge length); 0 turns it off */
-  int iterations_max;    /* the hard cap for that; default 32 */
-  int lbfgs_history;     /* L-BFGS pairs kept (quasi-Newton); default 6, 1..32 */
-  double young;          /* N/m: membrane Young's modulus times thickness; default 50 */
-  double poisson;        /* Poisson ratio in [0, 0.5); default 0.3 */
-  double density;        /* kg/m^2: mass per rest area (> 0); default 1 */
-  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs; default 1e3:
-                              with the default density the skin rings at sqrt(k/rho) ~ 32
-                              rad/s (5 Hz, a soft adipose layer) and lags a/1000 s^2 behind
-                              a body accelerating at a, e.g. 1.6 cm on the flapping fold */
+                            skin; 0 turns it off */
+  int iterations_max;    /* the hard cap for that */
+  int lbfgs_history;     /* L-BFGS pairs kept (quasi-Newton) */
+  double young;          /* N/m: membrane Young's modulus times thickness */
+  double poisson;        /* Poisson ratio */
+  double density;        /* kg/m^2: mass per rest area */
+  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs (with the
+                              default density the default rings at sqrt(k/rho) ~ 32 rad/s,
+                              5 Hz, a soft adipose layer, and lags a/k s^2 behind a body
+                              accelerating at a) */
   int barycenter_anchors;  /* 1: a spring at every face barycenter too (the springs of
                               vertices and barycenters then share the stiffness half and
-                              half); default 1 */
-  double bending;        /* hinge bending stiffness k (N m); 0 = off (default) */
-  double gravity[3];     /* m/s^2; default 0 (off) */
-  double damping;        /* 1/s: mass-proportional damping; default 0 */
+                              half) */
+  double bending;        /* hinge bending stiffness k (N m); 0 = off */
+  double gravity[3];     /* m/s^2 */
+  double damping;        /* 1/s: mass-proportional damping */
   double slide;          /* 1/s, >= 0: how fast an anchor follows the skin point it holds. In a
                             substep of h seconds it goes a fraction 1 - exp(-slide h) of the
                             way (a* = a0 + that (p - a0), then carried there by the mover): a
                             relaxation with time constant 1/slide s, the same physics at any
                             substep count. 0 glues the skin to the body, +inf (INFINITY)
-                            is frictionless (the whole way every substep). Default 30 ln 2
-                            = 20.79 /s: half the way per 1/30 s frame */
+                            is frictionless (the whole way every substep). 30 ln 2 = 20.79 /s
+                            is half the way per 1/30 s frame */
   double tether;         /* 1/s, >= 0: the connective tissue under the skin. After its slide, each
                             anchor WALKS back along the body surface (the walk, whatever the
                             method, so it cannot jump across a gap) towards the point where it
@@ -105,8 +106,7 @@ typedef struct ss_sim_settings {
                             along a flat body the vertex anchors stay at home and the others
                             on their home face whatever the tether, 0.3 or 3 /s: a leash more
                             than a rate; doc/model.md, "Anchor update"). 0 = the paper's
-                            free sliding;
-                            default 3 */
+                            free sliding */
   double orient;         /* N/m (energy per m^2 of rest skin, as young), >= 0: the skin lies face up
                             on its body. Each skin face whose area projected on the tangent plane
                             of the body under it (signed, over its rest area: 1 flat, 0 on edge,
@@ -118,12 +118,12 @@ typedef struct ss_sim_settings {
                             below rest; membrane.c). Skin wrinkles far below an edge's scale;
                             a mesh as stiff in compression as in tension buckles in folds one
                             edge wide that turn over where the body under them is crushed.
-                            1 = the Stable Neo-Hookean membrane; default 0.1 */
+                            1 = the Stable Neo-Hookean membrane */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
-  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 0..64;
-                            default 0: all cores for a skin of 4000 faces or more, else 1,
-                            and only while they pay (every 50 steps 3 run on all, 3 on one,
-                            the rest on the faster).
+  int threads;           /* threads for per-face energies and anchor walks (OpenMP); 0: all
+                            cores for a skin of 4000 faces or more, else 1, and only while
+                            they pay (every 50 steps 3 run on all, 3 on one, the rest on the
+                            faster).
                             The results are the same bits for any count; 2 pays on an idle
                             2-core machine, and costs where the cores are busy (e.g. tests
                             running in parallel: ask for 1 there) */
