@@ -1,13 +1,21 @@
-/* Internal: the inside of ss_sim, shared by its modules.
+/* Internal: the inside of ss_sim, shared by its modules. Read one step in
+ * sim.c, top to bottom; the rest:
  *
- *   sim_model.c      model and data: arenas, create / destroy, sims sharing a model
- *   sim.c            step (its stages) / reset / live settings / accessors
- *   sim_bind.c       anchors at create (copy or closest point), face mask, hinges
- *   sim_pattern.c    sparsity pattern of the unknowns and element-to-slot maps
- *   sim_energy.c     E(x), its gradient, and Hessian assembly over all terms
+ *   sim.c            ss_sim_step and its four stages in order; reset, state, live settings,
+ *                    accessors
+ *   sim_anchor.c     stage 4, the anchor pass (slide, walk, tether); anchor positions
+ *   sim_model.c      model and data: arenas, building a model alone, derived materials,
+ *                    create / destroy, sims sharing a model
+ *   sim_bind.c       building a model: anchors bound (copy or closest point), vertex kinds,
+ *                    masses and springs, hinges
+ *   sim_pattern.c    building a model: sparsity pattern of the unknowns, element-to-slot maps
+ *   sim_energy.c     E(x), its gradient, Hessian assembly over all terms; the line search's
+ *                    first trial asked of the terms
+ *   orient.c         the orient term (faces face up, vertices not under the body)
  *   solver.c         the one solver loop (solver.h); line_search.c its line search
  *   solver_newton.c  projected Newton directions with CHOLMOD (3n x 3n)
  *   solver_qn.c      L-BFGS on the constant L (x) I3 matrix (scalar n x n CHOLMOD)
+ *   sim_threads.c    threads 0: the probe choosing the next step's thread count
  *
  * The model (fixed once built, shareable) and the data of a run: see "model
  * and data" below. Arrays are flat with their shape in the field lists. Unknowns ("dofs") are the free skin
