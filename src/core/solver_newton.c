@@ -11,7 +11,7 @@
  * Longva et al. 2023, "Pitfalls of projection"). If even that step finds no
  * decrease, a Jacobi-scaled gradient step is taken. H is a 3n x 3n symmetric matrix with its
  * upper triangle stored in compressed columns; its pattern and the map from
- * element entries to slots are built once (sim_pattern.c), cholmod_analyze
+ * element entries to slots are built once (model_pattern.c), cholmod_analyze
  * (fill-reducing ordering, symbolic factor) runs once per model (each sim
  * copies its symbolic factor), then
  * cholmod_factorize per iteration and cholmod_solve2 with reused workspace.

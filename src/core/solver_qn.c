@@ -7,7 +7,7 @@
  * matrix close to the true Hessian:
  *   A = M/h^2 (+ damping) + anchor springs + (mu + lam) * cotangent Laplacian,
  * every term of which is isotropic, so A = L (x) I3 with L the scalar n x n
- * matrix on the same pattern (sim_pattern.c). L is factored by CHOLMOD once
+ * matrix on the same pattern (model_pattern.c). L is factored by CHOLMOD once
  * per topology and time step (analysis once per model, sim_internal.h
  * "symbolic analysis"; numeric factorisation when h changes), and each
  * application of A^-1 is one cholmod_solve2 with three right-hand sides

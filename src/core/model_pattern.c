@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sim_internal.h"
+#include "model.h"
 #include "ss_err.h"
 
 static int cmp_ll(const void *a, const void *b) {

@@ -26,7 +26,7 @@
 
 #include "bvh.h"
 #include "energy.h"
-#include "sim_internal.h"
+#include "model.h"
 #include "ss_err.h"
 
 /* A separate skin's vertex v, bound by closest point: its rest offset from its
