@@ -19,7 +19,7 @@
 #include "energy.h"
 #include "isa.h"
 #include "ss_util.h"
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 #include "skin_sim/ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "walk.h"

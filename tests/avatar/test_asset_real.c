@@ -6,7 +6,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
 

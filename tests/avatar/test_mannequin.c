@@ -7,7 +7,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
 
