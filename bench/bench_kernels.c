@@ -20,7 +20,7 @@
 #include "isa.h"
 #include "ss_util.h"
 #include "topo.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "walk.h"
 

@@ -6,7 +6,7 @@
  * behaves like the built-in copy. */
 #include <string.h>
 
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
 
