@@ -23,8 +23,6 @@ fi
 command -v catkin_make > /dev/null || { echo "skipped: catkin_make not installed"; exit 77; }
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 
 ws="$ROS_ENV_DIR/ws"
 mkdir -p "$ws/src"
