@@ -35,13 +35,23 @@ ssa_autoweight_opts ssa_autoweight_default_opts(void) {
   return o;
 }
 
-static double seg_dist2(const double *p, const double *s) {
-  double d[3] = {s[3] - s[0], s[4] - s[1], s[5] - s[2]};
-  double w[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
+/* The parameter t in [0, 1] of the point of segment s (x0 y0 z0 x1 y1 z1)
+ * closest to p; d = s1 - s0 and w = p - s0 are left for the caller. */
+static double seg_param(const double *p, const double *s, double d[3], double w[3]) {
+  for (int c = 0; c < 3; c++) {
+    d[c] = s[3 + c] - s[c];
+    w[c] = p[c] - s[c];
+  }
   double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   double t = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0.0;
   if (t < 0) t = 0;
   if (t > 1) t = 1;
+  return t;
+}
+
+static double seg_dist2(const double *p, const double *s) {
+  double d[3], w[3];
+  double t = seg_param(p, s, d, w);
   double e[3] = {w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]};
   return e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
 }
@@ -232,12 +242,8 @@ static int vis_clear(const vis_tree *t, int w, const double *a, const double *b)
 }
 
 static void seg_closest(const double *p, const double *s, double *out) {
-  double d[3] = {s[3] - s[0], s[4] - s[1], s[5] - s[2]};
-  double w[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
-  double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  double t = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0.0;
-  if (t < 0) t = 0;
-  if (t > 1) t = 1;
+  double d[3], w[3];
+  double t = seg_param(p, s, d, w);
   for (int c = 0; c < 3; c++) out[c] = s[c] + t * d[c];
 }
 
