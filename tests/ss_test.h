@@ -121,4 +121,12 @@ static inline double ss_test_max_dist(const double *a, const double *b, int n) {
   return m;
 }
 
+/* Removes a test's temporary folder (from mkdtemp) and what is in it; says so
+ * when it cannot (not a failure of the test). */
+static inline void ss_test_remove_dir(const char *dir) {
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+}
+
 #endif
