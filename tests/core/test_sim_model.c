@@ -13,9 +13,9 @@
 #include <string.h>
 
 #include "sim_internal.h"
-#include "skin_sim/ss_reference.h"
-#include "skin_sim/ss_run.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_reference.h"
+#include "ss_run.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
 
