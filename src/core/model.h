@@ -150,6 +150,37 @@ int ss_model_build_pattern(ss_model *m, char *err, int err_sz);
 static inline int ss_model_slot3(const ss_model *m, int j, int rank, int a, int b) {
   return m->colp3[3 * j + b] + 3 * rank + a;
 }
+/* A pair of an element's corners whose block is stored: a's dof i and b's
+ * dof j both free, i <= j (the upper triangle: (a, b) and (b, a) meet in
+ * one block, counted once; off-diagonal blocks get the (a, b) value, the
+ * symmetric (b, a) is implied). */
+typedef struct ss_upper_pair {
+  int a, b;  /* corners */
+  int col;   /* block column: the dof of b */
+  int rank;  /* the block's rank in it (elem_rank[n a + b]) */
+  int diag;  /* 1: a diagonal block (i == j) */
+} ss_upper_pair;
+/* The stored pairs of an element of n corners verts with block ranks
+ * elem_rank (face_rank, hinge_rank), a then b in order (the order every
+ * assembly sums them: the same bits); returns how many (at most n^2). */
+static inline int ss_model_upper_pairs(const ss_model *m, const int *verts, int n, const int *elem_rank,
+                                       ss_upper_pair *out) {
+  int k = 0;
+  for (int a = 0; a < n; a++) {
+    const int i = m->dof[verts[a]];
+    if (i < 0) continue;
+    for (int b = 0; b < n; b++) {
+      const int j = m->dof[verts[b]];
+      if (j < i) continue; /* j < 0 too */
+      out[k++] = (ss_upper_pair){a, b, j, elem_rank[n * a + b], i == j};
+    }
+  }
+  return k;
+}
+/* Adds an element's (3n x 3n, row-major) Hessian he to the 3n x 3n
+ * upper-triangular values (model_matrix.c). */
+void ss_model_scatter_element(const ss_model *m, const int *verts, int n, const int *elem_rank,
+                              const double *he, double *vals);
 
 /* ---- model_matrix.c ---- */
 /* The packed layout the energy evaluation runs on (mface, grad_ptr,

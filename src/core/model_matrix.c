@@ -70,6 +70,18 @@ static void add_iso(const ss_model *m, double *vals, int scalar, int j, int rank
   }
 }
 
+void ss_model_scatter_element(const ss_model *m, const int *verts, int n, const int *elem_rank,
+                              const double *he, double *vals) {
+  ss_upper_pair pair[16];
+  const int np = ss_model_upper_pairs(m, verts, n, elem_rank, pair), w = 3 * n;
+  for (int p = 0; p < np; p++) {
+    const ss_upper_pair *u = &pair[p];
+    for (int c1 = 0; c1 < 3; c1++)
+      for (int c2 = u->diag ? c1 : 0; c2 < 3; c2++)
+        vals[ss_model_slot3(m, u->col, u->rank, c1, c2)] += he[w * (3 * u->a + c1) + 3 * u->b + c2];
+  }
+}
+
 void ss_model_constant_terms(const ss_model *m, const double *mi, double *vals, int scalar) {
   size_t nnz = scalar ? (size_t)m->nblock : (size_t)m->nnz3;
   memset(vals, 0, nnz * sizeof *vals);
@@ -82,19 +94,9 @@ void ss_model_constant_terms(const ss_model *m, const double *mi, double *vals, 
     for (int f = 0; f < m->nface; f++) {
       double kf = m->k_face[f];
       if (kf == 0.0) continue;
-      const int *fv = m->faces + 3 * f;
-      for (int a = 0; a < 3; a++) {
-        int i = m->dof[fv[a]];
-        if (i < 0) continue;
-        for (int b = 0; b < 3; b++) {
-          int j = m->dof[fv[b]];
-          if (j < i) continue;
-          /* Upper triangle: (a, b) and (b, a) meet in one block; count once
-           * unless a == b. Off-diagonal blocks get the (a, b) value only, as
-           * the symmetric (b, a) is implied. */
-          add_iso(m, vals, scalar, j, m->face_rank[9 * f + 3 * a + b], kf / 9.0);
-        }
-      }
+      ss_upper_pair pair[9];
+      const int np = ss_model_upper_pairs(m, m->faces + 3 * f, 3, m->face_rank + 9 * f, pair);
+      for (int p = 0; p < np; p++) add_iso(m, vals, scalar, pair[p].col, pair[p].rank, kf / 9.0);
     }
   }
 }
@@ -129,7 +131,6 @@ static void rest_laplacian(const ss_model *m, double *vals) {
   double w = m->mu + m->lam;
   for (int q = 0; q < m->nsimface; q++) {
     int f = m->simface[q];
-    const int *fv = m->faces + 3 * f;
     const double *di = m->dm_inv + 4 * f;
     double d[3][2];
     for (int j = 0; j < 2; j++) {
@@ -137,15 +138,11 @@ static void rest_laplacian(const ss_model *m, double *vals) {
       d[2][j] = di[2 + j];
       d[0][j] = -d[1][j] - d[2][j];
     }
-    for (int a = 0; a < 3; a++) {
-      int i = m->dof[fv[a]];
-      if (i < 0) continue;
-      for (int b = 0; b < 3; b++) {
-        int j = m->dof[fv[b]];
-        if (j < i) continue;
-        double kab = w * m->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
-        vals[m->bcolp[j] + m->face_rank[9 * f + 3 * a + b]] += kab;
-      }
+    ss_upper_pair pair[9];
+    const int np = ss_model_upper_pairs(m, m->faces + 3 * f, 3, m->face_rank + 9 * f, pair);
+    for (int p = 0; p < np; p++) {
+      const int a = pair[p].a, b = pair[p].b;
+      vals[m->bcolp[pair[p].col] + pair[p].rank] += w * m->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
     }
   }
 }

@@ -324,20 +324,11 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
     double gs[9];
     if (!(face_ratio(sim->m, xfull, f, n, n[3], gs) < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f];
-    const int *fv = sim->m->faces + 3 * f;
-    /* upper triangle through the face's block ranks, as the membrane's */
-    for (int a = 0; a < 3; a++) {
-      const int i = sim->m->dof[fv[a]];
-      if (i < 0) continue;
-      for (int b = 0; b < 3; b++) {
-        const int j = sim->m->dof[fv[b]];
-        if (j < i) continue;
-        const int r = sim->m->face_rank[9 * f + 3 * a + b];
-        for (int c1 = 0; c1 < 3; c1++)
-          for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
-            vals[ss_sim_slot3(sim, j, r, c1, c2)] += w * gs[3 * a + c1] * gs[3 * b + c2];
-      }
-    }
+    /* the Gauss-Newton block w gs gs^T, scattered as the membrane's */
+    double h81[81];
+    for (int r = 0; r < 9; r++)
+      for (int c = 0; c < 9; c++) h81[9 * r + c] = w * gs[r] * gs[c];
+    ss_model_scatter_element(sim->m, sim->m->faces + 3 * f, 3, sim->m->face_rank + 9 * f, h81, vals);
   }
   const double *nd = on + 4 * (size_t)sim->m->nface;
   for (int q = 0; q < sim->m->ndof; q++) {
@@ -347,7 +338,7 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
     const double w = depth_weight(sim, q);
     const int diag_rank = sim->m->bcolp[q + 1] - sim->m->bcolp[q] - 1;
     for (int c1 = 0; c1 < 3; c1++)
-      for (int c2 = c1; c2 < 3; c2++) vals[ss_sim_slot3(sim, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
+      for (int c2 = c1; c2 < 3; c2++) vals[ss_model_slot3(sim->m, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
   }
 }
 

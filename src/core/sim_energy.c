@@ -400,25 +400,6 @@ void ss_sim_normals_begin(ss_sim *sim, const double *xfull) {
   for (int k = 0; k < ndof; k++) dof_normal(sim, fn, k);
 }
 
-/* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
- * triangle of the 3n matrix through its ranks. */
-static void scatter_element(const ss_sim *sim, const int *verts, int n, const int *rank,
-                            const double *he, double *vals) {
-  int m = 3 * n;
-  for (int a = 0; a < n; a++) {
-    int i = sim->m->dof[verts[a]];
-    if (i < 0) continue;
-    for (int b = 0; b < n; b++) {
-      int j = sim->m->dof[verts[b]];
-      if (j < i) continue; /* j < 0 too; the transpose is added from (b, a) */
-      int r = rank[n * a + b];
-      for (int c1 = 0; c1 < 3; c1++)
-        for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
-          vals[ss_sim_slot3(sim, j, r, c1, c2)] += he[m * (3 * a + c1) + 3 * b + c2];
-    }
-  }
-}
-
 /* Current area over rest area of face f. */
 static double area_ratio(const ss_sim *sim, const double *x9, int f) {
   return 0.5 * sqrt(tri_cross2(x9, x9 + 3, x9 + 6)) / sim->m->rest_area[f];
@@ -437,14 +418,14 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
     else
       ss_membrane_eval(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam,
                        sim->m->set.compression, NULL, h81);
-    scatter_element(sim, fv, 3, sim->m->face_rank + 9 * f, h81, vals);
+    ss_model_scatter_element(sim->m, fv, 3, sim->m->face_rank + 9 * f, h81, vals);
   }
   for (int q = 0; q < sim->m->nhinge; q++) {
     const int *hv = sim->m->hinge_vert + 4 * q;
     double x12[12], h144[144];
     for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, xfull + 3 * hv[c], 3 * sizeof(double));
     ss_hinge_eval(x12, sim->m->hinge_theta0[q], sim->m->hinge_weight[q], NULL, h144);
-    scatter_element(sim, hv, 4, sim->m->hinge_rank + 16 * q, h144, vals);
+    ss_model_scatter_element(sim->m, hv, 4, sim->m->hinge_rank + 16 * q, h144, vals);
   }
   ss_sim_orient_hessian(sim, xfull, vals); /* orient.c */
 }

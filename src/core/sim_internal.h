@@ -224,9 +224,6 @@ void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
 void ss_sim_normals_begin(ss_sim *sim, const double *xfull);
 /* The same with the sim's inertia weights of the current substep. */
 void ss_sim_scalar_matrix(const ss_sim *sim, double *vals);
-static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b) {
-  return ss_model_slot3(sim->m, j, rank, a, b);
-}
 
 /* ---- solvers (solver.h: the one loop, line search and the solvers' hooks).
  * ss_solver_solve minimises E from xd (in/out, dofs) with the solver of the
