@@ -19,6 +19,7 @@
 #include "skin_sim/ssa_avatar.h"
 #include "safe_import.h"
 #include "ssa_util.h"
+#include "ss_free.h"
 
 ssa_asset_opts ssa_asset_default_opts(void) {
   ssa_asset_opts o;
@@ -36,29 +37,12 @@ void ssa_asset_destroy(ssa_asset *a) {
   free(a->node_parent);
   free(a->node_local);
   ssa_free_strs(a->part_name, a->npart);
-  free(a->part_node);
-  free(a->bind_pos);
-  free(a->rest_pos);
-  free(a->faces);
-  free(a->vert_part);
-  free(a->vert_src);
+  SS_FREE_ALL(a->part_node, a->bind_pos, a->rest_pos, a->faces, a->vert_part, a->vert_src);
   ssa_free_strs(a->bone_name, a->nbone);
-  free(a->bone_node);
-  free(a->bone_part);
-  free(a->bone_offset);
-  free(a->w_start);
-  free(a->w_bone);
-  free(a->w_weight);
+  SS_FREE_ALL(a->bone_node, a->bone_part, a->bone_offset, a->w_start, a->w_bone, a->w_weight);
   ssa_free_strs(a->anim_name, a->nanim);
-  free(a->anim_duration);
-  free(a->anim_chan_start);
-  free(a->chan_node);
-  free(a->chan_key_start);
-  free(a->key_time);
-  free(a->key_value);
-  free(a->anim_node_chan);
-  free(a->node_rest_trs);
-  free(a);
+  SS_FREE_ALL(a->anim_duration, a->anim_chan_start, a->chan_node, a->chan_key_start, a->key_time,
+              a->key_value, a->anim_node_chan, a->node_rest_trs, a);
 }
 
 int ssa_asset_node_index(const ssa_asset *a, const char *name) {
@@ -283,11 +267,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
   int *part_mesh = calloc((size_t)npart, sizeof(int));
   int *part_v0 = calloc((size_t)npart, sizeof(int));
   if (!rigid_needed || !part_mesh || !part_v0) {
-    free(nodes);
-    free(coo_v);
-    free(rigid_needed);
-    free(part_mesh);
-    free(part_v0);
+    SS_FREE_ALL(nodes, coo_v, rigid_needed, part_mesh, part_v0);
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);
   }
   int status = SS_OK;
@@ -422,10 +402,7 @@ static int load_scene(ssa_asset *a, const struct aiScene *sc, const ssa_asset_op
     free(wsum);
     free(rigid_bone);
   }
-  free(rigid_needed);
-  free(part_mesh);
-  free(part_v0);
-  free(coo_v);
+  SS_FREE_ALL(rigid_needed, part_mesh, part_v0, coo_v);
   for (int q = 0; q < npart && status == SS_OK; q++)
     if (!a->part_name[q])
       status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory reading asset '%s'", path);

@@ -10,6 +10,7 @@
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ssa_util.h"
+#include "ss_free.h"
 
 #include <strings.h>
 
@@ -31,20 +32,9 @@ void ssa_avatar_destroy(ssa_avatar *av) {
   if (!av) return;
   ssa_robot_destroy(av->robot);
   ssa_asset_destroy(av->asset);
-  free(av->rest_pos);
-  free(av->faces);
-  free(av->vert_part);
-  free(av->vert_src);
-  free(av->vert_link);
-  free(av->bone_target);
-  free(av->bone_offset);
-  free(av->bind_pos);
-  free(av->w_start);
-  free(av->w_bone);
-  free(av->w_weight);
-  free(av->target_world);
-  free(av->bone_mat);
-  free(av);
+  SS_FREE_ALL(av->rest_pos, av->faces, av->vert_part, av->vert_src, av->vert_link, av->bone_target,
+              av->bone_offset, av->bind_pos, av->w_start, av->w_bone, av->w_weight,
+              av->target_world, av->bone_mat, av);
 }
 
 /* Allocates the per-vertex and per-bone arrays (weights: nw entries). */

@@ -15,6 +15,7 @@
 #include "safe_import.h"
 #include "ssa_util.h"
 #include "urdf_parse.h"
+#include "ss_free.h"
 
 /* ---------------------------------------------------------------- files */
 
@@ -222,26 +223,12 @@ void ssa_robot_destroy(ssa_robot *r) {
   free(r->link_joint);
   free(r->link_order);
   ssa_free_strs(r->joint_name, r->njoint);
-  free(r->joint_type);
-  free(r->joint_parent_link);
-  free(r->joint_child_link);
-  free(r->joint_origin);
-  free(r->joint_axis);
-  free(r->joint_has_limits);
-  free(r->joint_lower);
-  free(r->joint_upper);
-  free(r->joint_mimic);
-  free(r->joint_mimic_mult);
-  free(r->joint_mimic_off);
-  free(r->visual_link);
-  free(r->visual_is_mesh);
+  SS_FREE_ALL(r->joint_type, r->joint_parent_link, r->joint_child_link, r->joint_origin,
+              r->joint_axis, r->joint_has_limits, r->joint_lower, r->joint_upper, r->joint_mimic,
+              r->joint_mimic_mult, r->joint_mimic_off, r->visual_link, r->visual_is_mesh);
   ssa_free_strs(r->visual_uri, r->nvisual);
   ssa_free_strs(r->visual_path, r->nvisual);
-  free(r->visual_origin);
-  free(r->visual_scale);
-  free(r->visual_kind);
-  free(r->visual_size);
-  free(r);
+  SS_FREE_ALL(r->visual_origin, r->visual_scale, r->visual_kind, r->visual_size, r);
 }
 
 int ssa_robot_link_index(const ssa_robot *r, const char *name) {

@@ -19,6 +19,7 @@
 
 #include "bvh.h"
 #include "closest.h"
+#include "ss_free.h"
 
 #define LEAF_SIZE 4
 #define MAX_DEPTH 96
@@ -134,11 +135,7 @@ void ss_bvh_destroy(ss_bvh *b) {
   if (!b) return;
   free(b->box);
   if (!b->borrowed) {
-    free(b->left);
-    free(b->right);
-    free(b->first);
-    free(b->count);
-    free(b->face_order);
+    SS_FREE_ALL(b->left, b->right, b->first, b->count, b->face_order);
   }
   free(b->centroid);
   free(b->stack);

@@ -21,6 +21,7 @@
 #include "ss_err.h"
 #include "ss_vec.h"
 #include "union_find.h"
+#include "ss_free.h"
 
 int ss_mesh_check(int nvert, const double *pos, int nface, const int *faces, char *err,
                   int err_sz) {
@@ -45,16 +46,9 @@ int ss_mesh_check(int nvert, const double *pos, int nface, const int *faces, cha
 
 void ss_topo_destroy(ss_topo *topo) {
   if (!topo) return;
-  free(topo->face_vert);
-  free(topo->vert_weld);
-  free(topo->weld_rep);
-  free(topo->face_adj);
-  free(topo->face_adj_edge);
-  free(topo->edge_kind);
-  free(topo->face_degenerate);
-  free(topo->vf_start);
-  free(topo->vf_face);
-  free(topo);
+  SS_FREE_ALL(topo->face_vert, topo->vert_weld, topo->weld_rep, topo->face_adj,
+              topo->face_adj_edge, topo->edge_kind, topo->face_degenerate, topo->vf_start,
+              topo->vf_face, topo);
 }
 
 /* ---- welding ------------------------------------------------------------- */
@@ -347,11 +341,7 @@ nomem:
 
 void ss_weld_destroy(ss_weld *w) {
   if (!w) return;
-  free(w->pos);
-  free(w->faces);
-  free(w->vert_weld);
-  free(w->weld_rep);
-  free(w);
+  SS_FREE_ALL(w->pos, w->faces, w->vert_weld, w->weld_rep, w);
 }
 
 int ss_weld_create(ss_weld **out, int nvert, const double *pos, int nface, const int *faces,

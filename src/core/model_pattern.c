@@ -53,6 +53,20 @@ static void element_ranks(const ss_model *m, const int *verts, int n, int *rank)
   }
 }
 
+/* The key (column-major, upper triangle) of the block of skin vertices u and
+ * w into *key: 1 if both are free and distinct dofs, else 0 (nothing written). */
+static int pair_key(const ss_model *m, int u, int w, long long *key) {
+  int i = m->dof[u], j = m->dof[w];
+  if (i < 0 || j < 0 || i == j) return 0;
+  if (i > j) {
+    const int t = i;
+    i = j;
+    j = t;
+  }
+  *key = (long long)j * m->ndof + i;
+  return 1;
+}
+
 int ss_model_build_pattern(ss_model *m, char *err, int err_sz) {
   int n = m->ndof;
   /* Candidate pairs: diagonal, simulated faces' corner pairs, hinges. */
@@ -63,30 +77,12 @@ int ss_model_build_pattern(ss_model *m, char *err, int err_sz) {
   for (int k = 0; k < n; k++) key[nk++] = (long long)k * n + k;
   for (int f = 0; f < m->nface; f++) {
     const int *fv = m->faces + 3 * f;
-    for (int a = 0; a < 3; a++) {
-      int i = m->dof[fv[a]], j = m->dof[fv[(a + 1) % 3]];
-      if (i < 0 || j < 0 || i == j) continue;
-      if (i > j) {
-        int t = i;
-        i = j;
-        j = t;
-      }
-      key[nk++] = (long long)j * n + i;
-    }
+    for (int a = 0; a < 3; a++) nk += pair_key(m, fv[a], fv[(a + 1) % 3], key + nk);
   }
   for (int e = 0; e < m->nhinge; e++) {
     const int *hv = m->hinge_vert + 4 * e;
     for (int a = 0; a < 4; a++)
-      for (int b = a + 1; b < 4; b++) {
-        int i = m->dof[hv[a]], j = m->dof[hv[b]];
-        if (i < 0 || j < 0 || i == j) continue;
-        if (i > j) {
-          int t = i;
-          i = j;
-          j = t;
-        }
-        key[nk++] = (long long)j * n + i;
-      }
+      for (int b = a + 1; b < 4; b++) nk += pair_key(m, hv[a], hv[b], key + nk);
   }
   qsort(key, nk, sizeof *key, cmp_ll);
   size_t nu = 0;

@@ -42,6 +42,7 @@
 #include "walk_step.h"
 #include "isa.h"
 #include "ss_vec.h"
+#include "ss_free.h"
 
 /* ---- frames ------------------------------------------------------------- */
 
@@ -67,12 +68,7 @@ int ss_frames_create(ss_frames **out, int nface) {
 
 void ss_frames_destroy(ss_frames *fr) {
   if (!fr) return;
-  free(fr->normal);
-  free(fr->area);
-  free(fr->degenerate);
-  free(fr->walk);
-  free(fr->cross);
-  free(fr);
+  SS_FREE_ALL(fr->normal, fr->area, fr->degenerate, fr->walk, fr->cross, fr);
 }
 
 /* T for one face from its edges e1, e2 (see the file comment). Returns 1

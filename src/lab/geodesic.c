@@ -25,6 +25,7 @@
 #include "geodesic.h"
 #include "ss_vec.h"
 #include "walk.h"
+#include "ss_free.h"
 
 struct ss_geodesic {
   int nweld;
@@ -91,14 +92,7 @@ int ss_geodesic_create(ss_geodesic **out, const ss_topo *topo) {
 
 void ss_geodesic_destroy(ss_geodesic *g) {
   if (!g) return;
-  free(g->adj_start);
-  free(g->adj);
-  free(g->dist);
-  free(g->seen);
-  free(g->done);
-  free(g->heap_key);
-  free(g->heap_vert);
-  free(g);
+  SS_FREE_ALL(g->adj_start, g->adj, g->dist, g->seen, g->done, g->heap_key, g->heap_vert, g);
 }
 
 static void point_on_face(const ss_topo *topo, const double *pos, int f, const double uv[2],

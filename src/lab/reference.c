@@ -25,6 +25,7 @@
 #include "ss_track.h"
 #include "bvh.h"
 #include "ss_err.h"
+#include "ss_free.h"
 
 static const char MAGIC[8] = {'S', 'S', 'R', 'E', 'F', '\0', 'v', '1'};
 #define MAX_COUNT 100000000
@@ -153,10 +154,7 @@ int ss_reference_key(const ss_body *body, const ss_run_settings *run, unsigned l
 
 void ss_reference_destroy(ss_reference *ref) {
   if (!ref) return;
-  free(ref->rest);
-  free(ref->faces);
-  free(ref->pos);
-  free(ref);
+  SS_FREE_ALL(ref->rest, ref->faces, ref->pos, ref);
 }
 
 static void cache_path(char *path, size_t n, const char *dir, unsigned long long key) {
