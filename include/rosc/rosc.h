@@ -288,6 +288,17 @@ int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
                        rosc_skin_mesh_cb cb, void *user);
 int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
                          rosc_joint_state_cb cb, void *user);
+/* A SkinMesh subscriber whose messages are sized before anything is allocated for
+ * them: every array's length prefix is checked against the bytes the message has
+ * left and against max_vertices (positions / 3, rigid_part) and max_triangles
+ * (triangles / 3; 0: no limit but the message's bytes), so a small message claiming
+ * a huge array costs nothing. A message refused so goes to refused(why, user) (why
+ * names the field and the sizes), or, with refused NULL, is dropped with a throttled
+ * error. rosc_sub_skin_mesh checks the bytes only. */
+typedef void (*rosc_refused_cb)(const char *why, void *user);
+int rosc_sub_skin_mesh_limited(rosc_sub **out, const char *topic, unsigned queue_size,
+                               size_t max_vertices, size_t max_triangles,
+                               rosc_skin_mesh_cb cb, rosc_refused_cb refused, void *user);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */
