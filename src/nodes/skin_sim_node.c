@@ -33,7 +33,9 @@
  * mesh of more than 8 MB hands its memory back once processed.
  *
  * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
- * core from the window's figures: ss_input_health); the ~reset service
+ * core from the window's figures: ss_input_health), and while one step takes
+ * longer, from the shim's own thread: "step in progress for N s" (rosc_diag_busy,
+ * ss_input_busy_error_s); the ~reset service
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
  * Parameters: see doc/ros.md and launch/skin.launch. */
@@ -1127,7 +1129,11 @@ int main(int argc, char **argv)
     /* callbacks only fill the inbox; one mesh is stepped between spins */
     rosc_spin_once(nd->in.count ? 0.0 : 0.1);
     if (nd->in.count) {
+      /* /diagnostics goes on from the shim's own thread if this step takes long */
+      rosc_diag_busy(nd->diag, "step",
+                     ss_input_busy_error_s(1e-3 * (double)nd->stream.period_us));
       process(nd, &nd->in.slot[nd->in.head]);
+      rosc_diag_busy(nd->diag, NULL, 0.0);
       release_large(&nd->in.slot[nd->in.head]);
       nd->in.head = (nd->in.head + 1) % nd->in.cap;
       nd->in.count--;
