@@ -15,7 +15,7 @@ src="$(cd "$(dirname "$0")/.." && pwd)"
 check=0
 if [ "${1:-}" = "--check" ]; then check=1; shift; fi
 bld="${1:-$src/build/release}"
-exe=$(find "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
+exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
 [ -n "$exe" ] || { echo "doc_tables.sh: no skinsim under $bld (build first: bash scripts/build.sh $bld)" >&2; exit 2; }
 table=$(mktemp)
 trap 'rm -f "$table"' EXIT

@@ -15,7 +15,8 @@
  *   node's namespace. Give topics relative names so users can remap them
  *   (`mesh_in:=/body/mesh` on the command line or <remap> in a launch file).
  * - Threading: call everything from one thread (the one that spins); callbacks run
- *   in that thread inside rosc_spin_*. Logging is safe from any thread.
+ *   in that thread inside rosc_spin_*. Logging is safe from any thread. (A rosc_diag
+ *   publishes from a thread of its own while the spinning one is busy: rosc_diag_busy.)
  * - Message views: a message is a plain struct whose arrays are (pointer, count)
  *   pairs. A count always counts elements of the message's own array (floats of
  *   SkinMesh.positions, points of Marker.points). A subscriber callback gets a const
@@ -288,6 +289,17 @@ int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
                        rosc_skin_mesh_cb cb, void *user);
 int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
                          rosc_joint_state_cb cb, void *user);
+/* A SkinMesh subscriber whose messages are sized before anything is allocated for
+ * them: every array's length prefix is checked against the bytes the message has
+ * left and against max_vertices (positions / 3, rigid_part) and max_triangles
+ * (triangles / 3; 0: no limit but the message's bytes), so a small message claiming
+ * a huge array costs nothing. A message refused so goes to refused(why, user) (why
+ * names the field and the sizes), or, with refused NULL, is dropped with a throttled
+ * error. rosc_sub_skin_mesh checks the bytes only. */
+typedef void (*rosc_refused_cb)(const char *why, void *user);
+int rosc_sub_skin_mesh_limited(rosc_sub **out, const char *topic, unsigned queue_size,
+                               size_t max_vertices, size_t max_triangles,
+                               rosc_skin_mesh_cb cb, rosc_refused_cb refused, void *user);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */
@@ -315,6 +327,13 @@ int rosc_diag_period(rosc_diag *d, double *out);
 /* Publishes the status now: level (ROSC_DIAG_*), a one-line message and n key/value
  * pairs (kv may be NULL with n 0; NULL keys or values are ROSC_E_INVALID). */
 int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv *kv, size_t n);
+/* Marks the start (what: e.g. "step") or the end (what NULL or "") of one long piece
+ * of work in the spinning thread. While it lasts, a thread of the handle's own
+ * publishes, every diagnostic period without a rosc_diag_update, the last status with
+ * the message "WHAT in progress for N s" (and that figure as a key), at level WARN, or
+ * ERROR once it has lasted error_after_s (<= 0: never); a worse last level is kept.
+ * So /diagnostics does not go silent while one step takes long. */
+int rosc_diag_busy(rosc_diag *d, const char *what, double error_after_s);
 int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
 
 /* ------------------------------------------------------------------ dynamic_reconfigure */

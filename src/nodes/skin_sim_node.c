@@ -28,10 +28,14 @@
  * the node spins between steps; deeper, a stall would fill it with serialized
  * meshes, a high-water mark the allocator keeps);
  * meshes lost before the callback show as gaps in header.seq and are counted as
- * inputs_dropped.
+ * inputs_dropped. The shim sizes each message before anything is allocated for it
+ * (~max_vertices, ~max_triangles: refused unread and counted as rejected), and a
+ * mesh of more than 8 MB hands its memory back once processed.
  *
  * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
- * core from the window's figures: ss_input_health); the ~reset service
+ * core from the window's figures: ss_input_health), and while one step takes
+ * longer, from the shim's own thread: "step in progress for N s" (rosc_diag_busy,
+ * ss_input_busy_error_s); the ~reset service
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
  * Parameters: see doc/ros.md and launch/skin.launch. */
@@ -43,6 +47,10 @@
 #include "skin_sim/ss_sim.h"
 #include "skin_sim/ssa_avatar.h"
 
+#include <limits.h>
+#ifdef __GLIBC__
+#include <malloc.h> /* malloc_trim */
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,6 +69,7 @@ typedef struct params {
   int marker_color;   /* MARKER_SLIDE, MARKER_STRETCH or MARKER_ONE (~marker_color) */
   float marker_rgb[3];/* MARKER_ONE: the colour */
   int queue_size;
+  int max_vertices, max_triangles; /* a kinematic_mesh beyond them is refused unread */
   int have_box;
   double box[6];      /* xmin ymin zmin xmax ymax zmax */
   char frame_id[ROSC_FRAME_ID_MAX]; /* "" : the input's frame; else the outputs' frame */
@@ -204,6 +213,8 @@ static int get_params(params *p)
     p->marker_color = MARKER_ONE;
   }
   ok &= get_int("~queue_size", &p->queue_size, 1);
+  ok &= get_int("~max_vertices", &p->max_vertices, 2000000);
+  ok &= get_int("~max_triangles", &p->max_triangles, 4000000);
   ok &= get_double("~step_budget", &p->step_budget, 0.0);
   ok &= get_string("~skin_mesh", p->skin_mesh, sizeof p->skin_mesh, "");
   ok &= get_double("~skin_max_distance", &p->skin_max_distance, 0.05);
@@ -217,6 +228,8 @@ static int get_params(params *p)
     ok = 0;
   }
   ok &= param_range("~queue_size", p->queue_size, 1, 1000);
+  ok &= param_range("~max_vertices", p->max_vertices, 3, INT_MAX);
+  ok &= param_range("~max_triangles", p->max_triangles, 1, INT_MAX);
   ok &= param_range("~max_split", p->max_split, 1, 1000);
   if (!(p->max_step > 0.0)) {
     ROSC_ERROR("~max_step must be > 0 s, got %g", p->max_step);
@@ -282,6 +295,42 @@ static void on_mesh(const rosc_skin_mesh *m, void *user)
   b->topology_id = m->topology_id;
   b->disc = disc;
   q->count++;
+}
+
+/* A mesh whose arrays exceed this many bytes gives its memory back once processed. */
+#define RELEASE_BYTES ((size_t)8 << 20)
+
+/* After a large mesh: its slot's buffers are freed and the C library is asked to hand
+ * freed memory back to the system. glibc keeps freed blocks in its heaps (its mmap
+ * threshold grows to 32 MB after a large block is freed), so without this one 96 MB
+ * message left the node's RSS at 111 MB for good (17 MB before). A stream of large
+ * meshes pays one allocation more per message; roscpp allocates each one afresh anyway. */
+static void release_large(mailbox *b)
+{
+  size_t bytes = b->cap_pos * sizeof(float) + (b->cap_tri + b->cap_rigid) * sizeof(uint32_t);
+  if (bytes <= RELEASE_BYTES) return;
+  free(b->pos);
+  free(b->tri);
+  free(b->rigid);
+  b->pos = NULL;
+  b->tri = b->rigid = NULL;
+  b->cap_pos = b->cap_tri = b->cap_rigid = 0;
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
+/* A kinematic_mesh the shim refused for its sizes before reading it (a length
+ * beyond the message's bytes, or beyond ~max_vertices / ~max_triangles): counted
+ * as received and rejected, with a throttled error naming the field and sizes. */
+static void on_refused(const char *why, void *user)
+{
+  node *nd = user;
+  nd->frames_in++;
+  nd->rejected++;
+  rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, 1.0, "skin_sim.size",
+              "rejected kinematic_mesh unread: %s (%u rejected so far)", why,
+              (unsigned)nd->rejected);
 }
 
 /* Counts a rejected message and logs why, at most once a second per kind of
@@ -1051,8 +1100,9 @@ int main(int argc, char **argv)
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 2, on_mesh, nd) !=
-          ROSC_OK) {
+      rosc_sub_skin_mesh_limited(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
+                                 (size_t)nd->p.max_vertices, (size_t)nd->p.max_triangles, on_mesh,
+                                 on_refused, nd) != ROSC_OK) {
     if (rosc_ok()) ROSC_ERROR("cannot advertise or subscribe");
     else status = 0;
     goto done;
@@ -1079,7 +1129,12 @@ int main(int argc, char **argv)
     /* callbacks only fill the inbox; one mesh is stepped between spins */
     rosc_spin_once(nd->in.count ? 0.0 : 0.1);
     if (nd->in.count) {
+      /* /diagnostics goes on from the shim's own thread if this step takes long */
+      rosc_diag_busy(nd->diag, "step",
+                     ss_input_busy_error_s(1e-3 * (double)nd->stream.period_us));
       process(nd, &nd->in.slot[nd->in.head]);
+      rosc_diag_busy(nd->diag, NULL, 0.0);
+      release_large(&nd->in.slot[nd->in.head]);
       nd->in.head = (nd->in.head + 1) % nd->in.cap;
       nd->in.count--;
     }

@@ -10,6 +10,7 @@
 #define ROSC_INTERNAL_H
 
 #include "rosc/rosc.h"
+#include "rosc_wire.h"
 
 #include <ros/exceptions.h>
 #include <ros/node_handle.h>
@@ -105,6 +106,9 @@ struct rosc_sub {
   rosc_internal::any_cb cb = nullptr;
   void *user = nullptr;
   uint64_t dropped = 0;
+  // SkinMesh subscribers: the sizes accepted (rosc_wire.h) and where refusals go
+  rosc_wire_limits limits = {0, 0};
+  rosc_refused_cb refused = nullptr;
   std::string topic;
   // scratch reused across messages (views into them live only during a callback)
   std::vector<const char *> names;
@@ -112,6 +116,8 @@ struct rosc_sub {
 
   // Counts a message the shim could not convert, with a throttled error naming why.
   void drop(const char *why);
+  // A message refused for its sizes: to refused(), else drop().
+  void refuse(const char *why);
 };
 
 #endif

@@ -10,15 +10,21 @@
 // arrays reused from message to message) and a publisher copies a C view into one message
 // object it reuses. roscpp serialises a message passed by const reference before publish()
 // returns (also for subscribers in the same process), so reusing it is safe.
+// A SkinMesh subscriber takes its messages as bytes and sizes them (rosc_wire.h) before
+// roscpp's deserialiser allocates anything (CheckedMeshHelper).
 #include "rosc/rosc.h"
 #include "rosc_internal.h"
 
 #include <ros/ros.h>
+#include <ros/subscribe_options.h>
+#include <ros/subscription_callback_helper.h>
 #include <sensor_msgs/JointState.h>
 #include <skin_sim/SkinMesh.h>
 #include <skin_sim/SkinStats.h>
 #include <std_msgs/String.h>
 #include <visualization_msgs/Marker.h>
+
+#include <boost/make_shared.hpp>
 
 #include <cstring>
 #include <memory>
@@ -325,7 +331,82 @@ void deliver(rosc_sub &s, const typename T::Ros &m)
   reinterpret_cast<typename T::Cb>(s.cb)(&c, s.user);
 }
 
+// A SkinMesh taken as bytes and sized (rosc_wire.h) before roscpp's deserialiser
+// allocates for it: the message, or why it was refused.
+struct CheckedMesh {
+  skin_sim::SkinMesh msg;
+  std::string refused;
+};
+
+// roscpp's subscription callback helper for a CheckedMesh: it gets the message's bytes
+// (roscpp deserialises lazily, in the spinning thread, just before the callback; a
+// message dropped from the queue is never deserialised). Its type is not SkinMesh, so a
+// publisher in the same process serialises for it too: every message takes this path.
+class CheckedMeshHelper : public ros::SubscriptionCallbackHelper {
+ public:
+  explicit CheckedMeshHelper(rosc_sub *s) : s_(s) {}
+  ros::VoidConstPtr deserialize(const ros::SubscriptionCallbackHelperDeserializeParams &p) override
+  {
+    boost::shared_ptr<CheckedMesh> c = boost::make_shared<CheckedMesh>();
+    char why[320];
+    if (!rosc_wire_skin_mesh_check(p.buffer, p.length, &s_->limits, nullptr, why, sizeof why)) {
+      c->refused = why;
+      return c;
+    }
+    // every length now fits the message's bytes: roscpp allocates at most their size
+    ros::serialization::IStream stream(p.buffer, p.length);
+    ros::serialization::deserialize(stream, c->msg);
+    return c;
+  }
+  void call(ros::SubscriptionCallbackHelperCallParams &p) override
+  {
+    const CheckedMesh *c = static_cast<const CheckedMesh *>(p.event.getConstMessage().get());
+    if (c == nullptr) return;
+    if (!c->refused.empty()) return s_->refuse(c->refused.c_str());
+    deliver<Msg<rosc_skin_mesh>>(*s_, c->msg);
+  }
+  const std::type_info &getTypeInfo() override { return typeid(CheckedMesh); }
+  bool isConst() override { return true; }
+  bool hasHeader() override { return false; }
+
+ private:
+  rosc_sub *s_;
+};
+
+int subscribe_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size, size_t max_vertices,
+                        size_t max_triangles, rosc_skin_mesh_cb cb, rosc_refused_cb refused,
+                        void *user)
+{
+  if (cb == nullptr || out == nullptr || !valid_name(topic) || queue_size == 0)
+    return ROSC_E_INVALID;
+  int st = need_node();
+  if (st != ROSC_OK) return st;
+  std::unique_ptr<rosc_sub> s(new rosc_sub());
+  s->type = ROSC_MSG_SKIN_MESH;
+  s->cb = reinterpret_cast<any_cb>(cb);
+  s->user = user;
+  s->limits.max_vertices = max_vertices;
+  s->limits.max_triangles = max_triangles;
+  s->refused = refused;
+  using M = skin_sim::SkinMesh;
+  ros::SubscribeOptions ops(topic, queue_size, ros::message_traits::md5sum<M>(),
+                            ros::message_traits::datatype<M>());
+  ops.helper = boost::make_shared<CheckedMeshHelper>(s.get());
+  ops.transport_hints = ros::TransportHints().tcpNoDelay();
+  s->sub = rosc_internal::node().subscribe(ops);
+  if (!s->sub) return ROSC_E_ROS;
+  s->topic = s->sub.getTopic();
+  *out = s.release();
+  return ROSC_OK;
+}
+
 }  // namespace
+
+void rosc_sub::refuse(const char *why)
+{
+  if (refused == nullptr) return drop(why);
+  refused(why, user);
+}
 
 void rosc_sub::drop(const char *why)
 {
@@ -456,8 +537,17 @@ int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
                        rosc_skin_mesh_cb cb, void *user)
 {
   return guard(__func__, [&] {
-    return rosc_internal::subscribe(out, ROSC_MSG_SKIN_MESH, topic, queue_size,
-                                    reinterpret_cast<any_cb>(cb), user);
+    return subscribe_skin_mesh(out, topic, queue_size, 0, 0, cb, nullptr, user);
+  });
+}
+
+int rosc_sub_skin_mesh_limited(rosc_sub **out, const char *topic, unsigned queue_size,
+                               size_t max_vertices, size_t max_triangles,
+                               rosc_skin_mesh_cb cb, rosc_refused_cb refused, void *user)
+{
+  return guard(__func__, [&] {
+    return subscribe_skin_mesh(out, topic, queue_size, max_vertices, max_triangles, cb, refused,
+                               user);
   });
 }
 

@@ -9,11 +9,15 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 
+#include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 using rosc_internal::copy_out;
@@ -63,15 +67,67 @@ int rosc_srv_destroy(rosc_srv *srv)
 }
 
 // ------------------------------------------------------------------ diagnostics
+// The status is published by the spinning thread (rosc_diag_update) and, while that
+// thread is busy with one long piece of work (rosc_diag_busy), by a thread of the
+// handle's own: every diagnostic period without an update it publishes the last
+// status again, its level raised to WARN (ERROR after error_after_s) and its message
+// "WHAT in progress for N s", so /diagnostics never goes silent during a long step.
+// The mutex guards the status, the busy state and the Updater (not thread-safe).
 struct rosc_diag {
   std::unique_ptr<diagnostic_updater::Updater> up;
   int level = ROSC_DIAG_STALE;
   std::string message = "no status yet";
   std::vector<std::pair<std::string, std::string>> kv;
+  // the watchdog thread's view
+  std::mutex mu;
+  std::condition_variable wake;
+  std::thread watch;
+  bool stop = false;
+  double period_s = 1.0;          // the last period read by the spinning thread
+  double last_pub_s = 0.0;        // wall time of the last status published
+  std::string busy_what;          // "": not busy
+  double busy_since_s = 0.0, busy_error_s = 0.0;
+  // what run() publishes (the last status, or the busy one)
+  int pub_level = ROSC_DIAG_STALE;
+  std::string pub_message = "no status yet";
+  std::string pub_extra_key, pub_extra_value;
+
   void run(diagnostic_updater::DiagnosticStatusWrapper &st)
   {
-    st.summary(static_cast<unsigned char>(level), message);
+    st.summary(static_cast<unsigned char>(pub_level), pub_message);
     for (const auto &p : kv) st.add(p.first, p.second);
+    if (!pub_extra_key.empty()) st.add(pub_extra_key, pub_extra_value);
+  }
+
+  static double now_s() { return ros::WallTime::now().toSec(); }
+
+  // The watchdog: wakes a few times a period; publishes the busy status when the
+  // spinning thread has been busy and silent for a period.
+  void watch_loop()
+  {
+    std::unique_lock<std::mutex> lock(mu);
+    while (!stop) {
+      double period = period_s > 0.0 ? period_s : 1.0;
+      wake.wait_for(lock, std::chrono::duration<double>(period / 4.0));
+      if (stop) break;
+      if (busy_what.empty()) continue;
+      double now = now_s();
+      if (now - busy_since_s < period || now - last_pub_s < period) continue;
+      double busy = now - busy_since_s;
+      char msg[256], val[32];
+      std::snprintf(msg, sizeof msg, "%s in progress for %.1f s", busy_what.c_str(), busy);
+      std::snprintf(val, sizeof val, "%.1f", busy);
+      pub_level = busy_error_s > 0.0 && busy >= busy_error_s ? ROSC_DIAG_ERROR : ROSC_DIAG_WARN;
+      if (level > pub_level && level != ROSC_DIAG_STALE) pub_level = level;
+      pub_message = msg;
+      pub_extra_key = busy_what + " in progress (s)";
+      pub_extra_value = val;
+      try {
+        if (ros::ok()) up->force_update();
+      } catch (...) {
+      }
+      last_pub_s = now;
+    }
   }
 };
 
@@ -84,6 +140,10 @@ int rosc_diag_create(rosc_diag **out, const char *hardware_id, const char *task)
     d->up.reset(new diagnostic_updater::Updater());
     d->up->setHardwareID(hardware_id[0] ? hardware_id : "none");
     d->up->add(task, d.get(), &rosc_diag::run);
+    d->period_s = d->up->getPeriod();
+    d->last_pub_s = rosc_diag::now_s();
+    rosc_diag *raw = d.get();
+    d->watch = std::thread([raw] { raw->watch_loop(); });
     *out = d.release();
     return ROSC_OK;
   });
@@ -93,7 +153,8 @@ int rosc_diag_period(rosc_diag *d, double *out)
 {
   return guard(__func__, [&]() -> int {
     if (d == nullptr || out == nullptr) return ROSC_E_INVALID;
-    *out = d->up->getPeriod();
+    std::lock_guard<std::mutex> lock(d->mu);
+    *out = d->period_s = d->up->getPeriod();
     return ROSC_OK;
   });
 }
@@ -106,11 +167,30 @@ int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv
     for (size_t i = 0; i < n; i++)
       if (kv[i].key == nullptr || kv[i].value == nullptr) return ROSC_E_INVALID;
     if (!rosc_ok()) return ROSC_E_STATE;
-    d->level = level;
-    d->message = message;
+    std::lock_guard<std::mutex> lock(d->mu);
+    d->level = d->pub_level = level;
+    d->message = d->pub_message = message;
+    d->pub_extra_key.clear();
     d->kv.clear();
     for (size_t i = 0; i < n; i++) d->kv.emplace_back(kv[i].key, kv[i].value);
     d->up->force_update();
+    d->last_pub_s = rosc_diag::now_s();
+    return ROSC_OK;
+  });
+}
+
+int rosc_diag_busy(rosc_diag *d, const char *what, double error_after_s)
+{
+  return guard(__func__, [&]() -> int {
+    if (d == nullptr) return ROSC_E_INVALID;
+    std::lock_guard<std::mutex> lock(d->mu);
+    if (what == nullptr || what[0] == '\0') {
+      d->busy_what.clear();
+      return ROSC_OK;
+    }
+    d->busy_what = what;
+    d->busy_since_s = rosc_diag::now_s();
+    d->busy_error_s = error_after_s;
     return ROSC_OK;
   });
 }
@@ -118,6 +198,13 @@ int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv
 int rosc_diag_destroy(rosc_diag *d)
 {
   return guard(__func__, [&]() -> int {
+    if (d == nullptr) return ROSC_OK;
+    {
+      std::lock_guard<std::mutex> lock(d->mu);
+      d->stop = true;
+    }
+    d->wake.notify_all();
+    if (d->watch.joinable()) d->watch.join();
     delete d;
     return ROSC_OK;
   });

@@ -400,3 +400,9 @@ int ss_input_health(const ss_input_window *w, char *msg, int msg_sz)
   snprintf(msg, n, "stepping normally");
   return SS_HEALTH_OK;
 }
+
+double ss_input_busy_error_s(double period_ms)
+{
+  if (!(period_ms > 0.0) || !isfinite(period_ms)) return 0.0;
+  return 2e-3 * period_ms;
+}

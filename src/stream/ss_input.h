@@ -202,6 +202,13 @@ typedef struct ss_input_window {
  * reason (or "stepping normally") in msg (may be NULL). */
 int ss_input_health(const ss_input_window *w, char *msg, int msg_sz);
 
+/* A step still running (/diagnostics publishes "step in progress for N s" while one
+ * step takes longer than the diagnostic period): WARN, and ERROR once it has run for
+ * more than the seconds returned here, twice the input period (period_ms; the bound a
+ * mean step is judged by: the node cannot keep up); 0 (never ERROR) when the period is
+ * unknown (<= 0 or not finite). */
+double ss_input_busy_error_s(double period_ms);
+
 #ifdef __cplusplus
 }
 #endif

@@ -452,4 +452,10 @@ static void test_health(void)
   w.step_ms_mean = NAN; /* a NaN step time is not judged (no crash, no false alarm) */
   w.rejected = 0;
   CHECK(ss_input_health(&w, msg, sizeof msg) == SS_HEALTH_OK);
+  /* a step still running: ERROR after twice a known input period, never while it is unknown */
+  CHECK(ss_input_busy_error_s(33.3) == 2e-3 * 33.3);
+  CHECK(ss_input_busy_error_s(0.0) == 0.0);
+  CHECK(ss_input_busy_error_s(-5.0) == 0.0);
+  CHECK(ss_input_busy_error_s(NAN) == 0.0);
+  CHECK(ss_input_busy_error_s(INFINITY) == 0.0);
 }

@@ -7,11 +7,21 @@
 # library, headers, launch, urdf, rviz, messages) and no test programs; its C
 # headers are the public API alone (the core's and the avatars', each compiling
 # on its own), not the lab's, the nodes' stream policy or the core's inside.
+# Then catkin's test path in the same workspace, as a ROS user's CI runs it:
+# `catkin_make -DSKIN_SIM_TESTS=ON run_tests && catkin_test_results build/test_results`
+# on a part of the suite (CATKIN_SUITE, CTest arguments passed through
+# SKIN_SIM_RUN_TESTS_ARGS; default: every tool.* test, which find skinsim through the
+# workspace's devel link, five core tests and ros.test_rosc): catkin_test_results
+# must count exactly the tests CTest lists for that filter, with no error or failure,
+# and exit 0; then, with one of those test programs made to fail (a copy in the
+# workspace's build folder replaced by `exit 1`), `catkin_make run_tests` again must
+# leave catkin_test_results saying 1 failure and exiting non-zero.
 # Usage: test_catkin_install.sh BUILD_DIR [SOURCE_DIR].
 #
 # The workspace build is the same in the normal and the sanitizer build of the
 # suite, so it runs once, in the normal build (the sanitizer build skips it,
-# saying so); it builds without the test programs (-DSKIN_SIM_TESTS=OFF).
+# saying so); the install builds without the test programs (-DSKIN_SIM_TESTS=OFF),
+# run_tests with them.
 set -u
 bld="$1"
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
@@ -86,5 +96,45 @@ print(n[0])'
   n=$("${clean_env[@]}" bash -c ". '$inst/setup.bash' && python3 -c '$count_py' 6" 2>> "$ROS_ENV_DIR/count.err")
   check "demo from the install space publishes skin_mesh (${n:-0} in 6 s)" "[ '${n:-0}' -gt 5 ]" \
     || tail -20 "$ROS_ENV_DIR/demo.log" "$ROS_ENV_DIR/count.err"
+fi
+
+# catkin's test path in the same workspace
+suite=${CATKIN_SUITE:-'-R;^tool\.|^core\.test_(input|weld|walk|settings|topology)$|^ros\.test_rosc$;-j2'}
+shared=$(cd "$src/.." && pwd)/shared
+wsb="$ws/build/skin_sim"
+t0=$(ros_env_now_ms)
+(cd "$ws" && "${clean_env[@]}" catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+   -DSKIN_SIM_TESTS=ON -DSS_SHARED_DIR="$shared" -DSKIN_SIM_RUN_TESTS_ARGS="$suite" \
+   run_tests) > "$ROS_ENV_DIR/run_tests.log" 2>&1
+rc=$?
+echo "catkin_make run_tests: exit $rc in $((($(ros_env_now_ms) - t0) / 1000)) s"
+check "catkin_make run_tests succeeds (exit $rc)" "[ $rc -eq 0 ]" || tail -30 "$ROS_ENV_DIR/run_tests.log"
+IFS=';' read -r -a suite_args <<< "$suite"
+want=$(cd "$wsb" && ctest -N "${suite_args[@]}" 2> /dev/null | sed -n 's/^Total Tests: //p')
+(cd "$ws" && "${clean_env[@]}" catkin_test_results build/test_results) > "$ROS_ENV_DIR/results.txt" 2>&1
+rc=$?
+echo "catkin_test_results build/test_results (exit $rc):"; sed 's/^/    /' "$ROS_ENV_DIR/results.txt" | tail -n 3
+grep -E "^ *(Passed|Failed|[0-9]+/[0-9]+ Test)" "$ROS_ENV_DIR/run_tests.log" | sed 's/^/    /' | head -40
+check "catkin_test_results counts the $want tests CTest lists, none failed, exit 0" \
+  "[ $rc -eq 0 ] && [ -n '$want' ] && [ '$want' -ge 10 ] && grep -q 'Summary: $want tests, 0 errors, 0 failures' '$ROS_ENV_DIR/results.txt'"
+ntool=$(cd "$wsb" && ctest -N -R '^tool\.' 2> /dev/null | sed -n 's/^Total Tests: //p')
+npass=$(grep -c 'tool\..*Passed' "$ROS_ENV_DIR/run_tests.log")
+check "every tool test passed in the workspace, skinsim found through its devel link ($npass of $ntool)" \
+  "[ -n '$ntool' ] && [ '$ntool' -ge 7 ] && [ '$npass' = '$ntool' ]"
+# one test made to fail: catkin_test_results must say so and exit non-zero
+victim="$wsb/tests/core/core_test_input"
+if [ -x "$victim" ]; then
+  printf '#!/bin/sh\necho "made to fail by test_catkin_install"\nexit 1\n' > "$victim"
+  (cd "$ws" && "${clean_env[@]}" catkin_make -DSKIN_SIM_RUN_TESTS_ARGS='-R;^core\.test_(input|weld)$' \
+     run_tests) > "$ROS_ENV_DIR/run_tests_fail.log" 2>&1
+  rc=$?
+  check "catkin_make run_tests exits 0 with a failing test (exit $rc), as catkin's does" "[ $rc -eq 0 ]"
+  (cd "$ws" && "${clean_env[@]}" catkin_test_results build/test_results) > "$ROS_ENV_DIR/results_fail.txt" 2>&1
+  rc=$?
+  echo "with core.test_input failing: $(tail -n 1 "$ROS_ENV_DIR/results_fail.txt") (exit $rc)"
+  check "catkin_test_results: 2 tests, 1 failure, exit non-zero" \
+    "[ $rc -ne 0 ] && grep -q 'Summary: 2 tests, 0 errors, 1 failures' '$ROS_ENV_DIR/results_fail.txt'"
+else
+  check "the workspace built core_test_input" false
 fi
 exit $fail

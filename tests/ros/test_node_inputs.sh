@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Honest inputs for the nodes, through a real master:
 # - a parameter of the wrong type (_substeps:=abc, _queue_size:=abc, _rate:=fast,
-#   _strict_limits:=3) or out of range (_queue_size:=0, _max_split:=0) stops
+#   _strict_limits:=3) or out of range (_queue_size:=0, _max_split:=0, _max_vertices:=0) stops
 #   skin_sim_node, avatar_node and motion_node at start (exit 2) with one message
 #   naming the parameter and the type or range wanted; an int where a double is
 #   wanted is fine;
@@ -44,6 +44,7 @@ refused skin_tol_str "~tol must be a double (or an int), but is the string 'smal
 refused skin_split_dbl "~max_split must be an int, but is the double 2.5" "$skin" _max_split:=2.5
 refused skin_queue0 "~queue_size = 0 is out of range \[1, 1000\]" "$skin" _queue_size:=0
 refused skin_split0 "~max_split = 0 is out of range \[1, 1000\]" "$skin" _max_split:=0
+refused skin_maxv0 "~max_vertices = 0 is out of range \[3, 2147483647\]" "$skin" _max_vertices:=0
 refused skin_bary "~barycenters must be a bool, but is the int 3" "$skin" _barycenters:=3
 refused skin_color "~marker_color: 'purple' is not slide, stretch or a colour 'R G B' (each in \[0, 1\])" "$skin" _marker_color:=purple
 refused skin_color_range "~marker_color: '1 2 0' is not slide" "$skin" _marker_color:="1 2 0"
