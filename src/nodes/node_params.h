@@ -1,7 +1,7 @@
 /* Private parameters of the skin_sim nodes, read the same way in every node:
  * a parameter of the wrong type (`_substeps:=abc`) or out of range stops the
  * node at start with one error naming it, never a silent default or clamp.
- * Header-only (static functions), included by each node's single .c file. */
+ * Header-only (static functions), included by the nodes' .c files. */
 #ifndef SKIN_SIM_NODE_PARAMS_H
 #define SKIN_SIM_NODE_PARAMS_H
 

@@ -40,6 +40,7 @@
  *
  * Parameters: see doc/ros.md and launch/skin.launch. */
 #include "node_params.h"
+#include "skin_params.h"
 #include "rosc/rosc.h"
 #include "ss_budget.h"
 #include "ss_input.h"
@@ -58,28 +59,6 @@
 
 #define ERR_SZ 512
 
-typedef struct params {
-  ss_sim_settings set;
-  double weld_tol;    /* m; < 0 relative (ss_topo_create) */
-  double max_gap;     /* s */
-  double max_step;    /* s */
-  int max_split;
-  double marker_rate; /* Hz; 0 off; < 0 every frame */
-  double slide_scale; /* m: red at this slide */
-  int marker_color;   /* MARKER_SLIDE, MARKER_STRETCH or MARKER_ONE (~marker_color) */
-  float marker_rgb[3];/* MARKER_ONE: the colour */
-  int queue_size;
-  int max_vertices, max_triangles; /* a kinematic_mesh beyond them is refused unread */
-  int have_box;
-  double box[6];      /* xmin ymin zmin xmax ymax zmax */
-  char frame_id[ROSC_FRAME_ID_MAX]; /* "" : the input's frame; else the outputs' frame */
-  char tf_prefix[128];              /* "" : none; else "PREFIX/" before the outputs' frame */
-  double step_budget; /* s: 0 the input's period; < 0 none (the settings' substeps and
-                         iterations always) */
-  char skin_mesh[1024];      /* "" : the skin is the received body; else a mesh file or URI */
-  double skin_max_distance;  /* m: a ~skin_mesh vertex farther from the body is refused */
-  char package_path[1024];   /* package:// resolution (ssa_resolve_uri) */
-} params;
 
 /* ~skin_mesh as loaded at start: the file's vertices and triangles, welded */
 typedef struct skin_file {
@@ -88,8 +67,6 @@ typedef struct skin_file {
   uint32_t topology_id; /* of its layout, published with it */
 } skin_file;
 
-/* ~marker_color: what colours skin_marker */
-enum { MARKER_SLIDE = 0, MARKER_STRETCH = 1, MARKER_ONE = 2 };
 
 typedef struct mailbox {
   rosc_header header;
@@ -166,81 +143,6 @@ typedef struct node {
            uint32_t rejected, dropped, skipped, resets, failures;
            unsigned long steps, steps_multi; long long lowered; } win; /* at the window start */
 } node;
-
-/* ------------------------------------------------------------------ parameters */
-static int get_params(params *p)
-{
-  char buf[256];
-  int ok = 1;
-  /* every simulation setting: ~NAME, from the table (ss_settings.h) */
-  p->set = ss_sim_default_settings();
-  int nset = 0;
-  const ss_setting *table = ss_settings_table(&nset);
-  for (int i = 0; i < nset; i++)
-    ok &= get_setting(&table[i], &p->set);
-  ok &= get_string("~frame_id", p->frame_id, sizeof p->frame_id, "");
-  ok &= get_string("~tf_prefix", p->tf_prefix, sizeof p->tf_prefix, "");
-  ok &= get_string("~mask_box", buf, sizeof buf, "");
-  p->have_box = 0;
-  if (buf[0]) {
-    double *b = p->box;
-    if (sscanf(buf, "%lf %lf %lf %lf %lf %lf", b, b + 1, b + 2, b + 3, b + 4, b + 5) != 6) {
-      ROSC_ERROR("~mask_box: '%s' is not six numbers 'xmin ymin zmin xmax ymax zmax' (m)", buf);
-      ok = 0;
-    } else {
-      p->have_box = 1;
-    }
-  }
-  ok &= get_double("~weld_tol", &p->weld_tol, -1.0);
-  ok &= get_double("~max_gap", &p->max_gap, 0.5);
-  ok &= get_double("~max_step", &p->max_step, 0.05);
-  ok &= get_int("~max_split", &p->max_split, 8);
-  ok &= get_double("~marker_rate", &p->marker_rate, 10.0);
-  ok &= get_double("~slide_scale", &p->slide_scale, 0.05);
-  ok &= get_string("~marker_color", buf, sizeof buf, "slide");
-  p->marker_color = MARKER_SLIDE;
-  if (strcmp(buf, "stretch") == 0) {
-    p->marker_color = MARKER_STRETCH;
-  } else if (strcmp(buf, "slide") != 0) {
-    float *c = p->marker_rgb;
-    char tail = 0;
-    if (sscanf(buf, "%f %f %f %c", c, c + 1, c + 2, &tail) != 3 || !(c[0] >= 0.0f && c[0] <= 1.0f) ||
-        !(c[1] >= 0.0f && c[1] <= 1.0f) || !(c[2] >= 0.0f && c[2] <= 1.0f)) {
-      ROSC_ERROR("~marker_color: '%s' is not slide, stretch or a colour 'R G B' (each in [0, 1])",
-                 buf);
-      ok = 0;
-    }
-    p->marker_color = MARKER_ONE;
-  }
-  ok &= get_int("~queue_size", &p->queue_size, 1);
-  ok &= get_int("~max_vertices", &p->max_vertices, 2000000);
-  ok &= get_int("~max_triangles", &p->max_triangles, 4000000);
-  ok &= get_double("~step_budget", &p->step_budget, 0.0);
-  ok &= get_string("~skin_mesh", p->skin_mesh, sizeof p->skin_mesh, "");
-  ok &= get_double("~skin_max_distance", &p->skin_max_distance, 0.05);
-  ok &= get_string("~package_path", p->package_path, sizeof p->package_path, "");
-  if (!(p->skin_max_distance >= 0.0)) {
-    ROSC_ERROR("~skin_max_distance must be >= 0 m, got %g", p->skin_max_distance);
-    ok = 0;
-  }
-  if (!isfinite(p->step_budget)) {
-    ROSC_ERROR("~step_budget must be a number of seconds (0: the input's period, < 0: none)");
-    ok = 0;
-  }
-  ok &= param_range("~queue_size", p->queue_size, 1, 1000);
-  ok &= param_range("~max_vertices", p->max_vertices, 3, INT_MAX);
-  ok &= param_range("~max_triangles", p->max_triangles, 1, INT_MAX);
-  ok &= param_range("~max_split", p->max_split, 1, 1000);
-  if (!(p->max_step > 0.0)) {
-    ROSC_ERROR("~max_step must be > 0 s, got %g", p->max_step);
-    ok = 0;
-  }
-  if (!(p->max_gap > 0.0)) {
-    ROSC_ERROR("~max_gap must be > 0 s");
-    ok = 0;
-  }
-  return ok;
-}
 
 /* ------------------------------------------------------------------ input */
 static int grow(void **buf, size_t *cap, size_t n, size_t elem)
@@ -1075,6 +977,10 @@ static void diagnose(node *nd)
 
 int main(int argc, char **argv)
 {
+  if (argc == 2 && strcmp(argv[1], "--params-markdown") == 0) { /* the manual's rows */
+    skin_params_markdown(stdout);
+    return 0;
+  }
   int st = rosc_init(&argc, argv, "skin_sim", 0, -1.0);
   if (st != ROSC_OK) {
     fprintf(stderr, "skin_sim_node: rosc_init: %s\n", rosc_strerror(st));
@@ -1082,7 +988,7 @@ int main(int argc, char **argv)
   }
   node *nd = calloc(1, sizeof *nd);
   if (!nd) return 1;
-  if (!get_params(&nd->p) || (nd->p.skin_mesh[0] && !load_skin_file(nd))) {
+  if (!skin_params_read(&nd->p) || (nd->p.skin_mesh[0] && !load_skin_file(nd))) {
     ss_weld_destroy(nd->skin.weld);
     free(nd->skin.faces);
     free(nd);

@@ -32,4 +32,16 @@ check "robot.launch urdf:=X rviz:=false: joint_state_publisher instead of the sl
 check "robot.launch urdf:=X joints:=none: the robot's own joint_states" \
   "[ \"\$(nodes '$src/launch/robot.launch' urdf:=$u joints:=none)\" = '/robot_state_publisher /avatar /skin_sim /rviz ' ]"
 check "skin.launch" "[ \"\$(nodes '$src/launch/skin.launch')\" = '/skin_sim ' ]"
+# skin.launch passes a setting or a node parameter only when its argument is set (the
+# node's tables hold the defaults): none by default, the typed value when given
+params() { roslaunch --dump-params "$@" 2> "$ROS_ENV_DIR/params.err"; }
+check "skin.launch passes no setting or parameter by default" \
+  "! params '$src/launch/skin.launch' | grep -Eq '/skin_sim/(substeps|slide|max_gap|queue_size):'"
+check "skin.launch substeps:=3 slide:=5 max_gap:=0.25: passed as int and doubles" \
+  "params '$src/launch/skin.launch' substeps:=3 slide:=5 max_gap:=0.25 > '$ROS_ENV_DIR/p.txt' && \
+   grep -q '/skin_sim/substeps: 3$' '$ROS_ENV_DIR/p.txt' && grep -q '/skin_sim/slide: 5.0$' '$ROS_ENV_DIR/p.txt' && \
+   grep -q '/skin_sim/max_gap: 0.25$' '$ROS_ENV_DIR/p.txt'"
+check "replay.launch passes its own step_budget -1 and queue_size 30" \
+  "params '$src/launch/replay.launch' bag:=/tmp/x.bag > '$ROS_ENV_DIR/p.txt' && \
+   grep -q '/skin_sim/step_budget: -1.0$' '$ROS_ENV_DIR/p.txt' && grep -q '/skin_sim/queue_size: 30$' '$ROS_ENV_DIR/p.txt'"
 exit $fail

@@ -45,6 +45,8 @@ refused skin_split_dbl "~max_split must be an int, but is the double 2.5" "$skin
 refused skin_queue0 "~queue_size = 0 is out of range \[1, 1000\]" "$skin" _queue_size:=0
 refused skin_split0 "~max_split = 0 is out of range \[1, 1000\]" "$skin" _max_split:=0
 refused skin_maxv0 "~max_vertices = 0 is out of range \[3, 2147483647\]" "$skin" _max_vertices:=0
+refused skin_gap0 "~max_gap = 0 s is out of range (0, inf\]" "$skin" _max_gap:=0.0
+refused skin_scale0 "~slide_scale = -0.1 m is out of range (0, inf)" "$skin" _slide_scale:=-0.1
 refused skin_bary "~barycenters must be a bool, but is the int 3" "$skin" _barycenters:=3
 refused skin_color "~marker_color: 'purple' is not slide, stretch or a colour 'R G B' (each in \[0, 1\])" "$skin" _marker_color:=purple
 refused skin_color_range "~marker_color: '1 2 0' is not slide" "$skin" _marker_color:="1 2 0"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The manual's settings tables (doc/ros.md, doc/cli.md) are the settings table itself:
-# every block between the "generated" markers in doc/*.md must be exactly what
-# `skinsim settings --markdown` prints now. After a setting is added or changed,
+# The manual's settings tables (doc/ros.md, doc/cli.md) are the settings table itself,
+# and doc/ros.md's node parameter table the node's: every block between the
+# "generated" markers in doc/*.md must be exactly what `skinsim settings --markdown`
+# (and, in a ROS build, `skin_sim_node --params-markdown`) prints now. After a setting is added or changed,
 # regenerate them with one command:
 #   bash scripts/doc_tables.sh [BUILD_DIR]
 # Also checks that the check can fail: a page with a stale row is caught.
@@ -15,6 +16,13 @@ cat /tmp/doc_tables.$$
 check "doc/*.md's generated tables agree with skinsim settings --markdown" "[ $rc -eq 0 ]"
 check "doc/ros.md and doc/cli.md each hold one" \
   "! grep -c 'generated: skinsim settings' '$src/doc/ros.md' '$src/doc/cli.md' | grep -q ':0$'"
+check "doc/ros.md holds the node's own parameter table" \
+  "grep -q 'generated: skin_sim_node --params-markdown' '$src/doc/ros.md'"
+node=$(find -L "$bld" -type f -name skin_sim_node -perm -u+x 2> /dev/null | head -n 1)
+if [ -n "$node" ]; then
+  check "the generated node table has the parameters the node reads (~max_gap, ~queue_size, ~tf_prefix)" \
+    "grep -qF '| \`~max_gap\` |' '$src/doc/ros.md' && grep -qF '| \`~queue_size\` |' '$src/doc/ros.md' && grep -qF '| \`~tf_prefix\` |' '$src/doc/ros.md'"
+fi
 # a copy of the tree with one row changed must fail the check
 tmp=$(mktemp -d)
 mkdir -p "$tmp/scripts" "$tmp/doc"

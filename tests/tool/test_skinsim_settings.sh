@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # The one settings table (include/skin_sim/ss_settings.h, `skinsim settings`) against
 # what is written by hand elsewhere: every setting is an <arg> of launch/skin.launch
-# with the table's default, passed to the node as <param> of the right type, its
-# comment starting with the type; demo.launch, replay.launch and robot.launch repeat no
-# default that disagrees; doc/ros.md's parameter table has a row `~name` with the
+# whose default is empty (the launch file carries no copy of a default: the node
+# takes the table's), passed to the node as a <param> of the right type only when
+# set (if="$(eval arg('NAME') != '')"), its comment starting with the type;
+# demo.launch, replay.launch and robot.launch repeat no default of a setting (empty,
+# or a value the table has); doc/ros.md's parameter table has a row `~name` with the
 # table's type and default (that table is generated: bash scripts/doc_tables.sh; its
 # exact text is checked by test_doc_tables.sh), and every other argument of skin.launch
-# (the node's own parameters) has a row in doc/ros.md too; and skinsim takes every flag
-# with the table's range (a value just outside is refused naming the flag, the bound
-# inside is taken). Fails on any disagreement.
+# (the node's own parameters) has a row in doc/ros.md too, is empty by default and is
+# passed only when set; and skinsim takes every flag with the table's range (a value
+# just outside is refused naming the flag, the bound inside is taken). Fails on any
+# disagreement.
 set -u
 . "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 
@@ -43,10 +46,12 @@ comments = dict(re.findall(r'<arg name="(\w+)"[^>]*/>\s*<!--\s*([^,:]+)', skin))
 for r in rows:
     n, t, d = r['name'], r['type'], r['default']
     if n not in args: bad.append('skin.launch: no <arg name="%s">' % n); continue
-    if not same(args[n], d): bad.append('skin.launch: %s default %s, table %s' % (n, args[n], d))
+    if args[n] != '': bad.append('skin.launch: %s has a default (%s): the table has it' % (n, args[n]))
     p = params.get(n)
     if p is None or p.get('value') != '$(arg %s)' % n:
         bad.append('skin.launch: no <param name="%s" value="$(arg %s)">' % (n, n))
+    elif p.get('if') != "$(eval arg('%s') != '')" % n:
+        bad.append('skin.launch: <param %s> is not passed only when set (if="$(eval arg(\'%s\') != \'\')")' % (n, n))
     elif p.get('type') not in (None, {'int': 'int', 'double': 'double', 'bool': 'bool', 'string': 'str'}[t]):
         bad.append('skin.launch: <param %s> type="%s", table %s' % (n, p.get('type'), t))
     elif t == 'double' and p.get('type') != 'double':
@@ -57,15 +62,19 @@ for other in ('demo.launch', 'replay.launch', 'robot.launch'):
     r2 = ET.fromstring(open(src + '/launch/' + other).read())
     for a in r2.iter('arg'):
         for r in rows:
-            if a.get('name') == r['name'] and a.get('default') is not None and \
+            if a.get('name') == r['name'] and a.get('default') not in (None, '') and \
                not same(a.get('default'), r['default']):
                 bad.append('%s: %s default %s, table %s' % (other, r['name'], a.get('default'), r['default']))
 readme = open(src + '/doc/ros.md').read()
 names = {r['name'] for r in rows}
 for n in args:
-    if n not in names and n not in ('name', 'output') and \
-       not re.search(r'^\| `~%s` \|' % re.escape(n), readme, re.M):
+    if n in names or n in ('name', 'output'): continue
+    if not re.search(r'^\| `~%s` \|' % re.escape(n), readme, re.M):
         bad.append('doc/ros.md: no row for ~%s (an argument of skin.launch)' % n)
+    if args[n] != '': bad.append('skin.launch: node parameter %s has a default (%s): the node has it' % (n, args[n]))
+    p = params.get(n)
+    if p is None or p.get('if') != "$(eval arg('%s') != '')" % n:
+        bad.append('skin.launch: node parameter %s is not passed only when set' % n)
 for r in rows:
     m = re.search(r'^\| `~%s` \| [^|]*\| (\w+), ([^|]*?)\s*\|' % re.escape(r['name']), readme, re.M)
     if not m: bad.append('doc/ros.md: no row for ~%s' % r['name']); continue
