@@ -186,6 +186,9 @@ ros_env_dump_logs() {
 ros_env_cleanup() {
   local rc=$?
   set +e
+  # a failed check (check sets fail, ros_env_check ROS_ENV_FAIL) fails the script
+  # whatever status its last line exits with
+  if [ "$rc" -eq 0 ] && { [ "${fail:-0}" != 0 ] || [ "${ROS_ENV_FAIL:-0}" != 0 ]; }; then rc=1; fi
   if [ "${#ROS_ENV_PIDS[@]}" -gt 0 ]; then
     # stop the test's own processes first, the master last
     local i pids=()
@@ -206,7 +209,7 @@ ros_env_cleanup() {
       rm -rf "$ROS_ENV_DIR"
     fi
   fi
-  return "$rc"
+  exit "$rc"
 }
 
 # ros_env_setup BUILD_DIR: see the top of this file. Returns 0, 77 (no ROS) or 1.

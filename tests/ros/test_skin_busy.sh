@@ -13,7 +13,6 @@ src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
 skin=$(ros_env_node_exe skin_sim_node) || exit 1
-check() { ros_env_check "$@"; }
 t0=$(ros_env_now_ms)
 D="$ROS_ENV_DIR"
 fig() { sed -n "s/.*figures .*\b$1=\([-0-9]*\).*/\1/p" "$D/probe.log" | head -n 1; }

@@ -20,7 +20,6 @@ src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
 skin=${SKIN_SIM_NODE:-$(ros_env_node_exe skin_sim_node)} || exit 1
-check() { ros_env_check "$@"; }
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=0"
 t0=$(ros_env_now_ms)
 D="$ROS_ENV_DIR"
