@@ -98,7 +98,7 @@ int main(void) {
   };
   for (size_t i = 0; i < sizeof pt / sizeof pt[0]; i++) {
     double depth = -1.0;
-    const int kind = ss_inside_classify(w, bvh, pos, pt[i].p, &depth);
+    const int kind = ss_inside_classify(w, bvh, pos, pt[i].p, -1, &depth);
     CHECK_MSG(kind == pt[i].kind, "point %zu: kind %d, expected %d", i, kind, pt[i].kind);
     CHECK_NEAR(depth, pt[i].depth, 1e-12);
   }
