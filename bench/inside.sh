@@ -20,7 +20,7 @@ echo "|---|---|---|---|---|---|---|"
 for b in "${bodies[@]}"; do
   name="${b%%|*}"
   read -r -a args <<<"${b#*|}"
-  "$skinsim" run "${args[@]}" "${extra[@]}" --json - 2>/dev/null | /usr/bin/python3 -c '
+  { "$skinsim" run "${args[@]}" "${extra[@]}" --json - 2>/dev/null || true; } | /usr/bin/python3 -c '
 import json, sys
 d = json.load(sys.stdin)
 e = d["mean_edge_length"] * 1000
