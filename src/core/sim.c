@@ -30,6 +30,7 @@
 #include <omp.h>
 #endif
 
+#include "collide.h"
 #include "sim_internal.h"
 #include "ss_err.h"
 #include "ss_vec.h"
@@ -624,6 +625,8 @@ static void stage_guard(ss_sim *sim, substep *sub) {
       sub->converged = 0;
     }
     ss_sim_scatter(sim, sim->xd, sim->x);
+    /* contact: the skin back out of the body before its velocity is taken */
+    if (sim->set.collide && sub->last && sub->nonfinite == 0) ss_sim_collide(sim);
   }
   st->converged &= sub->converged;
   st->stalled += sub->stalled;
