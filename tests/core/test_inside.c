@@ -9,36 +9,14 @@
 #include "bvh.h"
 #include "inside.h"
 #include "ss_test.h"
+#include "ss_test_mesh.h"
 
 #define GRID 8 /* quads per box face side */
-#define NV_BOX (6 * (GRID + 1) * (GRID + 1))
-#define NF_BOX (6 * 2 * GRID * GRID)
+#define NV_BOX TEST_BOX_NVERT(GRID)
+#define NF_BOX TEST_BOX_NFACE(GRID)
 
-/* A closed box [lo, hi], each side a GRID x GRID grid, wound outwards (its
- * sides' vertices not shared: seams, as mesh files have them). */
 static void make_box(const double lo[3], const double hi[3], double *pos, int *faces, int vbase) {
-  int nv = 0, nf = 0;
-  for (int a = 0; a < 3; a++)
-    for (int side = 0; side < 2; side++) {
-      const int u = (a + 1) % 3, v = (a + 2) % 3, v0 = nv;
-      for (int j = 0; j <= GRID; j++)
-        for (int i = 0; i <= GRID; i++) {
-          double *p = pos + 3 * nv++;
-          p[a] = side ? hi[a] : lo[a];
-          p[u] = lo[u] + (hi[u] - lo[u]) * i / GRID;
-          p[v] = lo[v] + (hi[v] - lo[v]) * j / GRID;
-        }
-      for (int j = 0; j < GRID; j++)
-        for (int i = 0; i < GRID; i++) {
-          const int p00 = vbase + v0 + j * (GRID + 1) + i, p10 = p00 + 1;
-          const int p01 = p00 + GRID + 1, p11 = p01 + 1;
-          /* e_u x e_v = e_a: counter-clockwise seen from +a on the high side */
-          int t[6] = {p00, p10, p11, p00, p11, p01};
-          if (!side) t[1] = p11, t[2] = p10, t[4] = p01, t[5] = p11;
-          memcpy(faces + 3 * nf, t, sizeof t);
-          nf += 2;
-        }
-    }
+  test_box(lo, hi, GRID, pos, faces, vbase);
 }
 
 int main(void) {
