@@ -19,8 +19,8 @@
 #include "energy.h"
 #include "isa.h"
 #include "ss_util.h"
-#include "skin_sim/ss_mesh.h"
-#include "skin_sim/ss_scene.h"
+#include "topo.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "walk.h"
 

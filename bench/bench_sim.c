@@ -30,7 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "mover.h"
 #include "ss_util.h"

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #define SS_TEST_SKIP 77
 
@@ -74,6 +75,58 @@ static inline double ss_test_rand(unsigned long long *state) {
   x ^= x >> 27;
   *state = x;
   return (double)((x * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Uniform in [-1, 1), from ss_test_rand. */
+static inline double ss_test_randu(unsigned long long *state) {
+  return 2.0 * ss_test_rand(state) - 1.0;
+}
+
+/* A random rotation matrix (row-major) from a random unit quaternion. */
+static inline void ss_test_random_rotation(unsigned long long *rng, double r[9]) {
+  double q[4], len = 0.0;
+  do {
+    len = 0.0;
+    for (int i = 0; i < 4; i++) q[i] = ss_test_randu(rng), len += q[i] * q[i];
+  } while (len < 0.1 || len > 1.0);
+  len = sqrt(len);
+  double w = q[0] / len, x = q[1] / len, y = q[2] / len, z = q[3] / len;
+  double m[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                 2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                 2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
+  for (int i = 0; i < 9; i++) r[i] = m[i];
+}
+
+/* Monotonic seconds, for the timings tests print (and the few bounds they set). */
+static inline double ss_test_now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* qsort's comparison of doubles (for medians). */
+static inline int ss_test_cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The largest distance between the n points of a and of b (xyz interleaved). */
+static inline double ss_test_max_dist(const double *a, const double *b, int n) {
+  double m = 0.0;
+  for (int v = 0; v < n; v++) {
+    double d = 0.0;
+    for (int i = 0; i < 3; i++) d += (a[3 * v + i] - b[3 * v + i]) * (a[3 * v + i] - b[3 * v + i]);
+    m = fmax(m, sqrt(d));
+  }
+  return m;
+}
+
+/* Removes a test's temporary folder (from mkdtemp) and what is in it; says so
+ * when it cannot (not a failure of the test). */
+static inline void ss_test_remove_dir(const char *dir) {
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
 }
 
 #endif

@@ -25,9 +25,9 @@ extern "C" {
 #endif
 
 typedef struct ss_mover_settings {
-  int method;          /* ss_method; default SS_METHOD_WALK */
-  int walk_max_steps;  /* bound on edges crossed by one walk; default 512 */
-  int nring_rings;     /* N for SS_METHOD_NRING; default 2 */
+  int method;          /* ss_method */
+  int walk_max_steps;  /* bound on edges crossed by one walk */
+  int nring_rings;     /* N for SS_METHOD_NRING */
 } ss_mover_settings;
 ss_mover_settings ss_mover_default_settings(void);
 

@@ -24,31 +24,11 @@
 extern "C" {
 #endif
 
-enum ss_edge_kind {
-  SS_EDGE_INTERIOR = 0,    /* exactly two faces */
-  SS_EDGE_BOUNDARY = 1,    /* one face */
-  SS_EDGE_NONMANIFOLD = 2  /* three or more faces */
-};
-
-typedef struct ss_topo {
-  int nvert;                 /* caller's vertex count */
-  int nface;                 /* triangle count */
-  int nweld;                 /* distinct vertices after welding */
-  int nedge;                 /* distinct (welded) edges */
-  int nboundary_edge;        /* edges with one face */
-  int nnonmanifold_edge;     /* edges with three or more faces */
-  int ndegenerate_face;      /* faces of (near) zero area at rest */
-  int *face_vert;            /* (nface x 3) caller vertex index of each corner (a copy) */
-  int *vert_weld;            /* (nvert) welded id of each caller vertex */
-  int *weld_rep;             /* (nweld) one caller vertex of each welded id (the smallest index) */
-  int *face_adj;             /* (nface x 3) face across edge k, or -1 (boundary or non-manifold) */
-  int *face_adj_edge;        /* (nface x 3) index of that same edge in the neighbour face, or -1 */
-  unsigned char *edge_kind;  /* (nface x 3) ss_edge_kind of edge k */
-  unsigned char *face_degenerate; /* (nface) 1 if the face's rest area is below tolerance */
-  int *vf_start;             /* (nweld + 1) CSR: faces around welded vertex w are */
-  int *vf_face;              /*   vf_face[vf_start[w] .. vf_start[w+1]-1]; (3 nface) */
-  double mean_edge_length;   /* mean rest length over distinct edges */
-} ss_topo;
+/* A mesh's topology (welded ids, face neighbours, edge kinds, the faces
+ * around each vertex), built once from rest positions. Opaque: its layout is
+ * the core's (src/core/topo.h) and may change; what users need of it is read
+ * through the functions below. */
+typedef struct ss_topo ss_topo;
 
 /* Checks a mesh given by the caller: nvert > 0, nface > 0, every index in
  * [0, nvert), every position finite. Returns SS_OK or SS_E_MESH /
@@ -67,6 +47,18 @@ void ss_topo_destroy(ss_topo *topo);
 
 /* Mean length of the distinct edges of the mesh posed at pos. */
 double ss_topo_mean_edge_length(const ss_topo *topo, const double *pos);
+
+/* What a caller reads of a topology (all owned by topo, valid until it is
+ * destroyed): the counts, the welded id of each caller vertex (nvert), one
+ * caller vertex of each welded id (nweld, the smallest index), 1 for each
+ * face of (near) zero area at rest (nface), and the mean rest edge length. */
+int ss_topo_nvert(const ss_topo *topo);
+int ss_topo_nface(const ss_topo *topo);
+int ss_topo_nweld(const ss_topo *topo);
+const int *ss_topo_vert_weld(const ss_topo *topo);
+const int *ss_topo_weld_rep(const ss_topo *topo);
+const unsigned char *ss_topo_face_degenerate(const ss_topo *topo);
+double ss_topo_rest_edge_length(const ss_topo *topo);
 
 /* A mesh with its coincident vertices welded into one: the skin of a body
  * whose seams (normals, UVs, one mesh per part) duplicate vertices, so that

@@ -43,6 +43,13 @@ enum ss_setting_apply {
                             (solver, method, barycenters, threads...) */
 };
 
+/* Whose a setting is: a model's (its material: every sim on one model has the
+ * model's, ss_sim_create_from_model) or each run's own. */
+enum ss_setting_scope {
+  SS_SCOPE_RUN = 0,
+  SS_SCOPE_MODEL = 1
+};
+
 typedef struct ss_setting {
   const char *name;      /* node parameter and dynamic_reconfigure name, e.g. "young" */
   const char *cli;       /* skinsim flag without "--" where it differs ("max-steps"); NULL:
@@ -57,6 +64,7 @@ typedef struct ss_setting {
   int in_key;            /* 1: part of the reference cache key (0: threads, bit-identical) */
   const char *const *choices; /* enum: the names, NULL-terminated */
   const char *help;      /* one line */
+  int scope;             /* ss_setting_scope */
 } ss_setting;
 
 /* The table and its length. */

@@ -44,51 +44,52 @@ const char *ss_solver_name(int solver);
 int ss_solver_parse(const char *name);
 
 /* Definition of a simulation; get one from ss_sim_default_settings() and
- * change what you need. Every field but face_mask is described once, with its
- * default, range and unit, in the settings table (ss_settings.h, src/core/settings.c,
- * `skinsim settings`), which ss_sim_default_settings() and the checks read. Stiffnesses are per unit REST AREA of skin, so a
- * refined mesh behaves the same. */
+ * change what you need. Every field but face_mask has its default, range and
+ * unit in ONE place, the settings table (ss_settings.h, src/core/settings.c;
+ * `skinsim settings` lists it), which ss_sim_default_settings() and the checks
+ * read: the comments below say what a field means, not its value. Stiffnesses
+ * are per unit REST AREA of skin, so a refined mesh behaves the same. */
 typedef struct ss_sim_settings {
-  int solver;            /* ss_solver; default SS_SOLVER_QUASI_NEWTON */
-  double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0; default 1/30 */
+  int solver;            /* ss_solver */
+  double dt;             /* s; frame time step used when ss_sim_step gets dt <= 0 */
   int substeps;          /* implicit Euler steps per ss_sim_step (body pose interpolated
-                            linearly in between); default 4: at one substep the error is
-                            the step's (Newton converged there is as far from the truth
-                            as quasi-Newton), so the budget goes into substeps */
-  int iterations;        /* max solver iterations per substep; default 2, the real-time
-                            budget of quasi-Newton (4 x 2 fits 30 Hz at 19k triangles on
-                            one core: doc/benchmarks.md); raise it (e.g. 50-500) for Newton
-                            or tight tolerances */
+                            linearly in between): at one substep the error is the step's
+                            (Newton converged there is as far from the truth as
+                            quasi-Newton), so the default budget goes into substeps */
+  int iterations;        /* max solver iterations per substep: the real-time budget of
+                            quasi-Newton (the defaults fit 30 Hz at 19k triangles on one
+                            core: doc/benchmarks.md); raise it (e.g. 50-500) for Newton or
+                            tight tolerances */
   double tol;            /* convergence: max over vertices of |gradient| / (mass/h^2 * mean
                             rest edge length), i.e. roughly the position error in edge
-                            lengths; default 1e-4 */
+                            lengths */
   double safety_residual; /* quasi-Newton: a substep whose residual (same measure as tol) is
                             still above this after `iterations`, or that ends with a face
                             squeezed below a tenth of its rest area, keeps iterating, up to
                             iterations_max: a hard frame costs more instead of tangling the
-                            skin; default 0.05 (5% of an edge length); 0 turns it off */
-  int iterations_max;    /* the hard cap for that; default 32 */
-  int lbfgs_history;     /* L-BFGS pairs kept (quasi-Newton); default 6, 1..32 */
-  double young;          /* N/m: membrane Young's modulus times thickness; default 50 */
-  double poisson;        /* Poisson ratio in [0, 0.5); default 0.3 */
-  double density;        /* kg/m^2: mass per rest area (> 0); default 1 */
-  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs; default 1e3:
-                              with the default density the skin rings at sqrt(k/rho) ~ 32
-                              rad/s (5 Hz, a soft adipose layer) and lags a/1000 s^2 behind
-                              a body accelerating at a, e.g. 1.6 cm on the flapping fold */
+                            skin; 0 turns it off */
+  int iterations_max;    /* the hard cap for that */
+  int lbfgs_history;     /* L-BFGS pairs kept (quasi-Newton) */
+  double young;          /* N/m: membrane Young's modulus times thickness */
+  double poisson;        /* Poisson ratio */
+  double density;        /* kg/m^2: mass per rest area */
+  double anchor_stiffness; /* N/m per m^2 of skin: zero-length anchor springs (with the
+                              default density the default rings at sqrt(k/rho) ~ 32 rad/s,
+                              5 Hz, a soft adipose layer, and lags a/k s^2 behind a body
+                              accelerating at a) */
   int barycenter_anchors;  /* 1: a spring at every face barycenter too (the springs of
                               vertices and barycenters then share the stiffness half and
-                              half); default 1 */
-  double bending;        /* hinge bending stiffness k (N m); 0 = off (default) */
-  double gravity[3];     /* m/s^2; default 0 (off) */
-  double damping;        /* 1/s: mass-proportional damping; default 0 */
+                              half) */
+  double bending;        /* hinge bending stiffness k (N m); 0 = off */
+  double gravity[3];     /* m/s^2 */
+  double damping;        /* 1/s: mass-proportional damping */
   double slide;          /* 1/s, >= 0: how fast an anchor follows the skin point it holds. In a
                             substep of h seconds it goes a fraction 1 - exp(-slide h) of the
                             way (a* = a0 + that (p - a0), then carried there by the mover): a
                             relaxation with time constant 1/slide s, the same physics at any
                             substep count. 0 glues the skin to the body, +inf (INFINITY)
-                            is frictionless (the whole way every substep). Default 30 ln 2
-                            = 20.79 /s: half the way per 1/30 s frame */
+                            is frictionless (the whole way every substep). 30 ln 2 = 20.79 /s
+                            is half the way per 1/30 s frame */
   double tether;         /* 1/s, >= 0: the connective tissue under the skin. After its slide, each
                             anchor WALKS back along the body surface (the walk, whatever the
                             method, so it cannot jump across a gap) towards the point where it
@@ -105,8 +106,7 @@ typedef struct ss_sim_settings {
                             along a flat body the vertex anchors stay at home and the others
                             on their home face whatever the tether, 0.3 or 3 /s: a leash more
                             than a rate; doc/model.md, "Anchor update"). 0 = the paper's
-                            free sliding;
-                            default 3 */
+                            free sliding */
   double orient;         /* N/m (energy per m^2 of rest skin, as young), >= 0: the skin lies face up
                             on its body. Each skin face whose area projected on the tangent plane
                             of the body under it (signed, over its rest area: 1 flat, 0 on edge,
@@ -118,17 +118,17 @@ typedef struct ss_sim_settings {
                             below rest; membrane.c). Skin wrinkles far below an edge's scale;
                             a mesh as stiff in compression as in tension buckles in folds one
                             edge wide that turn over where the body under them is crushed.
-                            1 = the Stable Neo-Hookean membrane; default 0.1 */
+                            1 = the Stable Neo-Hookean membrane */
   int collide;           /* 1: after the last substep's solve, free skin vertices behind the
                             body's surface around their anchor are moved out of it (collide.c;
-                            not where the body passes through itself); default 0 */
+                            not where the body passes through itself) */
   double collide_thickness; /* mean rest edge lengths kept between skin and body by collide,
-                            in [0, 1]; default 0 */
+                            in [0, 1] */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
-  int threads;           /* threads for per-face energies and anchor walks (OpenMP), 0..64;
-                            default 0: all cores for a skin of 4000 faces or more, else 1,
-                            and only while they pay (every 50 steps 3 run on all, 3 on one,
-                            the rest on the faster).
+  int threads;           /* threads for per-face energies and anchor walks (OpenMP); 0: all
+                            cores for a skin of 4000 faces or more, else 1, and only while
+                            they pay (every 50 steps 3 run on all, 3 on one, the rest on the
+                            faster).
                             The results are the same bits for any count; 2 pays on an idle
                             2-core machine, and costs where the cores are busy (e.g. tests
                             running in parallel: ask for 1 there) */
@@ -181,14 +181,15 @@ void ss_sim_destroy(ss_sim *sim);
  * sparsity pattern: everything fixed once built, never written while
  * stepping) and the DATA of its run (state, anchors, solver workspaces).
  * Several sims may run on one model: a reference or truth run of a skin, a
- * second skin of the same body. They share its material, the model settings
- * young, poisson, density, stiffness, barycenters, bending, orient and
- * face_mask; each has its own run settings (solver, substeps, iterations,
- * tol, method, slide, tether, damping, gravity, dt, threads, ...), and the
+ * second skin of the same body. They share its material, the settings whose
+ * scope is SS_SCOPE_MODEL in the settings table (ss_settings.h), and
+ * face_mask; each has its own run settings (scope SS_SCOPE_RUN), and the
  * same bits as a sim made by ss_sim_create with the same settings.
- * Reference counted: a model lives while its creator's reference
- * (ss_model_destroy) or any sim on it (ss_sim_destroy) does, so the two may
- * be dropped in any order. */
+ * A model is a value: built once, never written afterwards (a live change of
+ * a model setting, ss_sim_set_settings, moves that sim onto a new model).
+ * Reference counted (atomically): a model lives while its creator's
+ * reference (ss_model_destroy) or any sim on it (ss_sim_destroy) does, so
+ * the two may be dropped in any order, on any thread. */
 
 /* Builds a model as ss_sim_create would (same arguments, same errors), with no
  * sim on it; release it with ss_model_destroy. */
@@ -200,11 +201,11 @@ void ss_model_destroy(ss_model *model);
 /* A sim on model (it takes a reference), at rest. settings: NULL for those the
  * model was built with; else its model settings (above) must be the model's,
  * else SS_E_ARG naming the first that differs. Other errors as ss_sim_create. */
-int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_settings *settings,
+int ss_sim_create_from_model(ss_sim **out, const ss_model *model, const ss_sim_settings *settings,
                              char *err, int err_sz);
 /* The model sim runs on (valid while sim is; pass it to ss_sim_create_from_model
  * to run another sim on it). */
-ss_model *ss_sim_model(const ss_sim *sim);
+const ss_model *ss_sim_model(const ss_sim *sim);
 /* The body a model was built on: its vertex and face counts. */
 int ss_model_body_nvert(const ss_model *model);
 int ss_model_body_nface(const ss_model *model);
@@ -220,17 +221,17 @@ int ss_sim_set_state(ss_sim *sim, const double *pos, const double *vel, char *er
 
 /* Changes the settings of a simulation from its next step on, keeping its state
  * and anchors (live tuning). Checks them first: SS_E_ARG naming the bad setting,
- * nothing changed. What needs new masses, springs or matrices (young, poisson,
- * density, stiffness, bending, damping: SS_APPLY_REFACTOR in ss_settings.h) is
- * rebuilt here and refactored on the next substep. A setting that changes the
- * skin's structure (SS_APPLY_RECREATE: solver, method, rings, walk_max_steps,
- * barycenters, lbfgs_history, threads; bending turned on or off) cannot change in
- * place: then nothing changes, *recreate (may be NULL) is set to 1, err names the
- * setting and SS_OK is returned: create the simulation again with the settings.
- * settings->face_mask is ignored (the simulated region stays). A model setting
- * (young, poisson, density, stiffness, bending, orient) on a model shared with
- * another sim or a model reference is not changed either (*recreate = 1, as
- * above): the model of other sims is never written. Allocates nothing. */
+ * nothing changed. How each setting reaches the sim is its `apply` in the
+ * settings table (ss_settings.h): from the next step, or with its matrices
+ * refactored on the next substep (SS_APPLY_REFACTOR). A setting that changes
+ * the skin's structure (SS_APPLY_RECREATE; bending turned on or off) cannot
+ * change in place: then nothing changes, *recreate (may be NULL) is set to 1,
+ * err names the setting and SS_OK is returned: create the simulation again with
+ * the settings. settings->face_mask is ignored (the simulated region stays).
+ * A change of a model setting (scope SS_SCOPE_MODEL) moves this sim onto a new
+ * model with that material, which shares the old one's structure; other sims
+ * on the old model keep it, unwritten (this allocates the new model's arrays;
+ * run settings alone allocate nothing). */
 int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recreate, char *err,
                         int err_sz);
 

@@ -247,6 +247,17 @@ static int link_segments(const ssa_robot *r, const double *lw, double **seg, int
   return nseg;
 }
 
+/* Replaces the avatar's weights (CSR: w_start, w_bone, w_weight) by these,
+ * freeing the old ones. */
+static void set_weights(ssa_avatar *av, int *ws, int *wb, double *ww) {
+  free(av->w_start);
+  free(av->w_bone);
+  free(av->w_weight);
+  av->w_start = ws;
+  av->w_bone = wb;
+  av->w_weight = ww;
+}
+
 /* Bones: one per link, bind = inverse rest pose; weights from auto. */
 static int bind_links_auto(ssa_avatar *av, const ssa_avatar_opts *o, const char *what, char *err,
                            int err_sz) {
@@ -259,12 +270,7 @@ static int bind_links_auto(ssa_avatar *av, const ssa_avatar_opts *o, const char 
     free(owner);
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory binding %s", what);
   }
-  free(av->w_start);
-  free(av->w_bone);
-  free(av->w_weight);
-  av->w_start = NULL;
-  av->w_bone = NULL;
-  av->w_weight = NULL;
+  set_weights(av, NULL, NULL, NULL);
   char why[512] = "";
   int st = ssa_auto_weights(av->nvert, av->rest_pos, av->nface, av->faces, o->weld_tol, nseg, seg,
                             owner, r->nlink, &o->autoweight, &av->w_start, &av->w_bone,
@@ -330,12 +336,7 @@ static int bind_links_from_file(ssa_avatar *av) {
     ws[v + 1] = nw;
   }
   if (ok) {
-    free(av->w_start);
-    free(av->w_bone);
-    free(av->w_weight);
-    av->w_start = ws;
-    av->w_bone = wb;
-    av->w_weight = ww;
+    set_weights(av, ws, wb, ww);
     av->weight_source = SSA_WEIGHTS_FILE;
   } else {
     free(ws);

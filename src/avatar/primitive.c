@@ -19,54 +19,11 @@
  * and centred), which makes the winding consistently outward. */
 #include "skin_sim/ssa_avatar.h"
 #include "ssa_util.h"
+#include "ss_mesh_build.h"
 
 #define PRIM_DEFAULT_EDGE 0.02
 #define PRIM_MAX_SEG 512
 #define PRIM_MAX_TRIS 200000.0
-
-typedef struct builder {
-  double *pos;
-  int nv, cap_v;
-  int *faces;
-  int nf, cap_f;
-  int ok;
-} builder;
-
-static int add_v(builder *b, double x, double y, double z) {
-  if (!b->ok) return 0;
-  if (b->nv == b->cap_v) {
-    int nc = b->cap_v ? 2 * b->cap_v : 256;
-    double *np = realloc(b->pos, sizeof(double) * 3 * (size_t)nc);
-    if (!np) {
-      b->ok = 0;
-      return 0;
-    }
-    b->pos = np;
-    b->cap_v = nc;
-  }
-  b->pos[3 * b->nv] = x;
-  b->pos[3 * b->nv + 1] = y;
-  b->pos[3 * b->nv + 2] = z;
-  return b->nv++;
-}
-
-static void add_f(builder *b, int i, int j, int k) {
-  if (!b->ok) return;
-  if (b->nf == b->cap_f) {
-    int nc = b->cap_f ? 2 * b->cap_f : 256;
-    int *nf = realloc(b->faces, sizeof(int) * 3 * (size_t)nc);
-    if (!nf) {
-      b->ok = 0;
-      return;
-    }
-    b->faces = nf;
-    b->cap_f = nc;
-  }
-  b->faces[3 * b->nf] = i;
-  b->faces[3 * b->nf + 1] = j;
-  b->faces[3 * b->nf + 2] = k;
-  b->nf++;
-}
 
 static int segments(double length, double edge, int min) {
   double n = ceil(length / edge - 1e-9);
@@ -96,7 +53,7 @@ static double d2(const double *a, const double *b) {
 
 /* Six gridded faces of a box (half sizes h) or, with sphere_r > 0, of the
  * cube projected onto a sphere of that radius. n: cells per face axis. */
-static void cube_faces(builder *b, const double *h, const int *n, double sphere_r) {
+static void cube_faces(ss_mb *b, const double *h, const int *n, double sphere_r) {
   for (int a = 0; a < 3; a++)
     for (int s = -1; s <= 1; s += 2) {
       const int u = (a + 1) % 3, v = (a + 2) % 3, nu = n[u], nv = n[v];
@@ -115,9 +72,9 @@ static void cube_faces(builder *b, const double *h, const int *n, double sphere_
             p[u] = lin(h[u], i, nu);
             p[v] = lin(h[v], j, nv);
           }
-          add_v(b, p[0], p[1], p[2]);
+          ss_mb_vert(b, p[0], p[1], p[2]);
         }
-      if (!b->ok) return;
+      if (b->failed) return;
       for (int i = 0; i < nu; i++)
         for (int j = 0; j < nv; j++) {
           int v00 = base + i * (nv + 1) + j, v01 = v00 + 1, v10 = v00 + nv + 1, v11 = v10 + 1;
@@ -127,17 +84,17 @@ static void cube_faces(builder *b, const double *h, const int *n, double sphere_
           else
             diag = (i + j) & 1;
           if (!diag) {
-            add_f(b, v00, v10, v11);
-            add_f(b, v00, v11, v01);
+            ss_mb_tri(b, v00, v10, v11);
+            ss_mb_tri(b, v00, v11, v01);
           } else {
-            add_f(b, v00, v10, v01);
-            add_f(b, v10, v11, v01);
+            ss_mb_tri(b, v00, v10, v01);
+            ss_mb_tri(b, v10, v11, v01);
           }
         }
     }
 }
 
-static void cylinder(builder *b, double r, double len, double edge) {
+static void cylinder(ss_mb *b, double r, double len, double edge) {
   const int m = segments(2 * SSA_PI * r / 6.0, edge, 4); /* rings per cap: >= 24 columns */
   const int nt = 6 * m;                                  /* columns around */
   const int nz = segments(len, edge, 1);
@@ -146,19 +103,19 @@ static void cylinder(builder *b, double r, double len, double edge) {
   for (int i = 0; i <= nz; i++)
     for (int j = 0; j < nt; j++) {
       double t = 2.0 * SSA_PI * j / nt;
-      add_v(b, r * cos(t), r * sin(t), lin(hz, i, nz));
+      ss_mb_vert(b, r * cos(t), r * sin(t), lin(hz, i, nz));
     }
-  if (!b->ok) return;
+  if (b->failed) return;
   for (int i = 0; i < nz; i++)
     for (int j = 0; j < nt; j++) {
       int a = side + i * nt + j, c = side + i * nt + (j + 1) % nt;
-      add_f(b, a, c, c + nt);
-      add_f(b, a, c + nt, a + nt);
+      ss_mb_tri(b, a, c, c + nt);
+      ss_mb_tri(b, a, c + nt, a + nt);
     }
   for (int s = -1; s <= 1; s += 2) {
     const double z = s * hz;
-    int prev = add_v(b, 0.0, 0.0, z), nprev = 1; /* ring 0: the centre */
-    for (int k = 1; k <= m && b->ok; k++) {
+    int prev = ss_mb_vert(b, 0.0, 0.0, z), nprev = 1; /* ring 0: the centre */
+    for (int k = 1; k <= m && !b->failed; k++) {
       const int n1 = 6 * k;
       int ring = b->nv;
       if (k == m) { /* the side's end ring: the same vertices */
@@ -167,19 +124,19 @@ static void cylinder(builder *b, double r, double len, double edge) {
         const double rk = r * k / m;
         for (int q = 0; q < n1; q++) {
           double t = 2.0 * SSA_PI * q / n1;
-          add_v(b, rk * cos(t), rk * sin(t), z);
+          ss_mb_vert(b, rk * cos(t), rk * sin(t), z);
         }
       }
       int i0 = 0, i1 = 0;
-      while (b->ok && (i1 < n1 || (nprev > 1 && i0 < nprev))) {
+      while (!b->failed && (i1 < n1 || (nprev > 1 && i0 < nprev))) {
         /* advance on the ring whose next vertex comes first by angle */
         const int outer = i1 < n1 && (nprev == 1 || i0 >= nprev ||
                                       (double)(i1 + 1) / n1 <= (double)(i0 + 1) / nprev);
         if (outer) {
-          add_f(b, prev + i0 % nprev, ring + i1 % n1, ring + (i1 + 1) % n1);
+          ss_mb_tri(b, prev + i0 % nprev, ring + i1 % n1, ring + (i1 + 1) % n1);
           i1++;
         } else {
-          add_f(b, prev + i0 % nprev, ring + i1 % n1, prev + (i0 + 1) % nprev);
+          ss_mb_tri(b, prev + i0 % nprev, ring + i1 % n1, prev + (i0 + 1) % nprev);
           i0++;
         }
       }
@@ -203,7 +160,7 @@ static int cmp_keyed(const void *pa, const void *pb) {
 }
 
 /* Merges bit-identical vertices, keeps the first of each; turns faces outward. */
-static int finish(builder *b) {
+static int finish(ss_mb *b) {
   keyed *key = malloc(sizeof(keyed) * (size_t)(b->nv > 0 ? b->nv : 1));
   int *order = malloc(sizeof(int) * (size_t)(b->nv > 0 ? b->nv : 1));
   int *remap = malloc(sizeof(int) * (size_t)(b->nv > 0 ? b->nv : 1));
@@ -237,12 +194,12 @@ static int finish(builder *b) {
       n++;
     }
   }
-  for (int f = 0; f < 3 * b->nf; f++) b->faces[f] = newidx[remap[b->faces[f]]];
+  for (int f = 0; f < 3 * b->nf; f++) b->tri[f] = newidx[remap[b->tri[f]]];
   b->nv = n;
   free(order);
   free(remap);
   for (int f = 0; f < b->nf; f++) {
-    int *t = b->faces + 3 * f;
+    int *t = b->tri + 3 * f;
     const double *p0 = b->pos + 3 * t[0], *p1 = b->pos + 3 * t[1], *p2 = b->pos + 3 * t[2];
     double e1[3], e2[3], nrm[3], g[3];
     for (int k = 0; k < 3; k++) {
@@ -285,7 +242,7 @@ int ssa_primitive_mesh(int kind, const double *size, double edge, double **pos, 
                           ? 4 * SSA_PI * size[0] * size[0]
                           : 2 * SSA_PI * size[0] * (size[0] + size[1]);
   if (2.0 * area / (edge * edge) > PRIM_MAX_TRIS) edge = sqrt(2.0 * area / PRIM_MAX_TRIS);
-  builder b = {NULL, 0, 0, NULL, 0, 0, 1};
+  ss_mb b = {0};
   if (kind == SSA_VISUAL_BOX) {
     double h[3];
     int n[3];
@@ -301,13 +258,13 @@ int ssa_primitive_mesh(int kind, const double *size, double edge, double **pos, 
   } else {
     cylinder(&b, size[0], size[1], edge);
   }
-  if (!b.ok || !finish(&b)) {
+  if (b.failed || !finish(&b)) {
     free(b.pos);
-    free(b.faces);
+    free(b.tri);
     return ss_fail(err, err_sz, SS_E_NOMEM, "primitive: out of memory");
   }
   *pos = b.pos;
-  *faces = b.faces;
+  *faces = b.tri;
   *nvert = b.nv;
   *nface = b.nf;
   return SS_OK;

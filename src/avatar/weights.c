@@ -35,13 +35,23 @@ ssa_autoweight_opts ssa_autoweight_default_opts(void) {
   return o;
 }
 
-static double seg_dist2(const double *p, const double *s) {
-  double d[3] = {s[3] - s[0], s[4] - s[1], s[5] - s[2]};
-  double w[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
+/* The parameter t in [0, 1] of the point of segment s (x0 y0 z0 x1 y1 z1)
+ * closest to p; d = s1 - s0 and w = p - s0 are left for the caller. */
+static double seg_param(const double *p, const double *s, double d[3], double w[3]) {
+  for (int c = 0; c < 3; c++) {
+    d[c] = s[3 + c] - s[c];
+    w[c] = p[c] - s[c];
+  }
   double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   double t = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0.0;
   if (t < 0) t = 0;
   if (t > 1) t = 1;
+  return t;
+}
+
+static double seg_dist2(const double *p, const double *s) {
+  double d[3], w[3];
+  double t = seg_param(p, s, d, w);
   double e[3] = {w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]};
   return e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
 }
@@ -232,12 +242,8 @@ static int vis_clear(const vis_tree *t, int w, const double *a, const double *b)
 }
 
 static void seg_closest(const double *p, const double *s, double *out) {
-  double d[3] = {s[3] - s[0], s[4] - s[1], s[5] - s[2]};
-  double w[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
-  double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  double t = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0.0;
-  if (t < 0) t = 0;
-  if (t > 1) t = 1;
+  double d[3], w[3];
+  double t = seg_param(p, s, d, w);
   for (int c = 0; c < 3; c++) out[c] = s[c] + t * d[c];
 }
 
@@ -264,7 +270,9 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   ss_topo *topo = NULL;
   int st = ss_topo_create(&topo, nvert, pos, nface, faces, weld_tol, err, err_sz);
   if (st != SS_OK) return st;
-  const int nw = topo->nweld;
+  const int nw = ss_topo_nweld(topo);
+  const int *vert_weld = ss_topo_vert_weld(topo), *weld_rep = ss_topo_weld_rep(topo);
+  const unsigned char *face_degenerate = ss_topo_face_degenerate(topo);
   double *area = calloc((size_t)nw, sizeof(double));
   double *dist = malloc(sizeof(double) * (size_t)nw);
   int *near1 = malloc(sizeof(int) * (size_t)nw);
@@ -294,7 +302,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
     goto done;
   }
   if (o.visibility) {
-    if (!vis_tree_create(&vt, pos, nface, faces, topo->vert_weld)) {
+    if (!vis_tree_create(&vt, pos, nface, faces, vert_weld)) {
       vis_tree_destroy(&vt);
       free(seen);
       st = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for automatic weights");
@@ -310,7 +318,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
     goto done;
   }
   for (int i = 0; i < nw; i++) {
-    const double *p = pos + 3 * topo->weld_rep[i];
+    const double *p = pos + 3 * weld_rep[i];
     /* visit segments nearest first; stop at the second visible owner */
     for (int s = 0; s < nseg; s++) {
       sd[s] = seg_dist2(p, seg + 6 * s);
@@ -376,11 +384,11 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   }
   size_t nt = 0;
   for (int f = 0; f < nface; f++) {
-    if (topo->face_degenerate[f]) continue;
+    if (face_degenerate[f]) continue;
     int v[3];
     const double *x[3];
     for (int c = 0; c < 3; c++) {
-      v[c] = topo->vert_weld[faces[3 * f + c]];
+      v[c] = vert_weld[faces[3 * f + c]];
       x[c] = pos + 3 * faces[3 * f + c];
     }
     double e1[3], e2[3], n[3];
@@ -411,7 +419,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
       diag[j] += wgt;
     }
   }
-  const double mel = topo->mean_edge_length > 0 ? topo->mean_edge_length : 1.0;
+  const double mel = ss_topo_rest_edge_length(topo) > 0 ? ss_topo_rest_edge_length(topo) : 1.0;
   for (int i = 0; i < nw; i++) {
     double d = dist[i];
     if (d < 1e-3 * mel) d = 1e-3 * mel;
@@ -473,7 +481,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
       memset(nbr_cnt, 0, sizeof(double) * (size_t)nw);
       for (int f = 0; f < nface; f++)
         for (int c = 0; c < 3; c++) {
-          int a = topo->vert_weld[faces[3 * f + c]], b = topo->vert_weld[faces[3 * f + (c + 1) % 3]];
+          int a = vert_weld[faces[3 * f + c]], b = vert_weld[faces[3 * f + (c + 1) % 3]];
           if (a == b) continue;
           nbr_sum[a] += wj[b];
           nbr_cnt[a] += 1;
@@ -514,7 +522,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
     }
     cnt_w[i] = keep;
   }
-  for (int v = 0; v < nvert; v++) ws[v + 1] = ws[v] + cnt_w[topo->vert_weld[v]];
+  for (int v = 0; v < nvert; v++) ws[v + 1] = ws[v] + cnt_w[vert_weld[v]];
   free(cnt_w);
   wb = malloc(sizeof(int) * (size_t)(ws[nvert] > 0 ? ws[nvert] : 1));
   wv = malloc(sizeof(double) * (size_t)(ws[nvert] > 0 ? ws[nvert] : 1));
@@ -523,7 +531,7 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
     goto done;
   }
   for (int v = 0; v < nvert; v++) {
-    int i = topo->vert_weld[v], k = ws[v], best = -1;
+    int i = vert_weld[v], k = ws[v], best = -1;
     double bw = -1;
     for (int j = 0; j < nowner; j++) {
       double x = w[(size_t)j * nw + i];

@@ -4,7 +4,7 @@
 #ifndef SKIN_SIM_BVH_H
 #define SKIN_SIM_BVH_H
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 
 typedef struct ss_bvh ss_bvh;
 int ss_bvh_create(ss_bvh **out, const ss_topo *topo);

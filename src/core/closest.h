@@ -3,7 +3,7 @@
 #ifndef SKIN_SIM_CLOSEST_H
 #define SKIN_SIM_CLOSEST_H
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 
 /* Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision
  * Detection 5.1.5). Writes its canonical coordinates uv and returns the squared

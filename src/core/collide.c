@@ -104,10 +104,6 @@ void ss_collider_destroy(ss_collider *c) {
   free(c);
 }
 
-static inline double dot3(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* 1 if face g has a corner welded to one of the first `upto` corners of fa
  * (then the ring of an earlier corner already visited it). */
 static inline int seen_before(const ss_topo *t, const int *fav, int upto, int g) {

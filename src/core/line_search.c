@@ -10,9 +10,10 @@
  * conditions (which use the slope, not E).
  *
  * With step_memory (quasi-Newton) a search starts at twice the step the last
- * one took in this solve (at most 1), or at the minimum of the orient term's
- * depth springs along dir plus a quadratic model of the rest of E
- * (ss_sim_orient_line_step) where that is shorter, and a rejected trial is
+ * one took in this solve (at most 1), or where the direction asks for it
+ * (terms_first_trial) at the first trial the energy terms give
+ * (ss_sim_energy_first_trial: the minimum of the orient term's depth springs
+ * along dir plus a quadratic model of the rest of E) where that is shorter, and a rejected trial is
  * followed by the secant estimate of the minimum along dir, alpha s0 / (s0 -
  * g_t.d) from the slopes at 0 and at the trial point (both known), kept
  * within [0.1, 0.5] of the trial step. The quasi-Newton direction from the
@@ -38,14 +39,14 @@ int ss_line_search(ss_solve *s) {
   const double slope = ss_par_dot(nt, part, n3, s->g, dir);
   if (!(slope < 0.0)) return 0;
   double alpha = s->step_memory && s->alpha0 > 0.0 && s->alpha0 < 1.0 ? s->alpha0 : 1.0;
-  if (s->step_memory && s->depth_model) {
-    const double model = ss_sim_orient_line_step(sim, xd, dir, slope);
+  if (s->step_memory && s->terms_first_trial) {
+    const double model = ss_sim_energy_first_trial(sim, xd, dir, slope);
     if (model < alpha) alpha = model;
   }
   int any_finite = 0;
   for (int tries = 0; tries < 40; tries++) {
     ss_par_axpy(nt, part, n3, xt, xd, alpha, dir);
-    double et = ss_sim_energy_at(sim, xt, gt);
+    double et = ss_sim_energy_at(sim, s->st, xt, gt);
     /* |g_t|^2 (finite?) and the slope g_t.d in one pass */
     double gg, st_slope;
     ss_par_norm2_dot(nt, part, n3, gt, dir, &gg, &st_slope);

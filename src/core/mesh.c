@@ -16,8 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_mesh.h"
 #include "mesh_weld.h"
+#include "topo.h"
 #include "ss_err.h"
 #include "ss_vec.h"
 #include "union_find.h"
@@ -189,6 +189,14 @@ double ss_topo_mean_edge_length(const ss_topo *topo, const double *pos) {
     }
   return count ? sum / (double)count : 0.0;
 }
+
+int ss_topo_nvert(const ss_topo *topo) { return topo->nvert; }
+int ss_topo_nface(const ss_topo *topo) { return topo->nface; }
+int ss_topo_nweld(const ss_topo *topo) { return topo->nweld; }
+const int *ss_topo_vert_weld(const ss_topo *topo) { return topo->vert_weld; }
+const int *ss_topo_weld_rep(const ss_topo *topo) { return topo->weld_rep; }
+const unsigned char *ss_topo_face_degenerate(const ss_topo *topo) { return topo->face_degenerate; }
+double ss_topo_rest_edge_length(const ss_topo *topo) { return topo->mean_edge_length; }
 
 int ss_topo_create(ss_topo **out, int nvert, const double *rest_pos, int nface, const int *faces,
                    double weld_tol, char *err, int err_sz) {

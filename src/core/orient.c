@@ -52,15 +52,15 @@
 #include "isa.h"
 #include "sim_internal.h"
 #include "ss_body_normal.h"
+#include "ss_err.h"
 
 /* The body's normal under skin face f, from `face` (the anchors now, or as
  * bound at rest): ss_body_normal.h. Inlined: out of line, its three stores
  * were read back by ss_sim_orient_normal two at a time, a load that could not
  * be forwarded, on every face of every substep. */
-static inline SS_ALWAYS_INLINE void normal_under(const ss_sim *sim, const ss_frames *fr, const int *face, int f,
+static inline SS_ALWAYS_INLINE void normal_under(const ss_model *m, const ss_frames *fr, const int *face, int f,
                          double n[3]) {
-  body_normal_under(fr->normal, fr->area, sim->m->body_area0, face, sim->m->faces, sim->m->nvert,
-                    sim->m->nanchor, f, n);
+  body_normal_under(fr->normal, fr->area, m->body_area0, face, m->faces, m->nvert, m->nanchor, f, n);
 }
 
 /* 1 if skin face f's anchors (barycenter and corners) are all on the body
@@ -82,11 +82,11 @@ static inline int anchored_at_home(const ss_sim *sim, int f) {
  * degrees: the body turns over within the face's reach. */
 int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]) {
   double a[3], h[3];
-  normal_under(sim, fr, sim->anchor_face, f, a);
+  normal_under(sim->m, fr, sim->anchor_face, f, a);
   if (anchored_at_home(sim, f)) /* the same inputs: the same bits */
     memcpy(h, a, sizeof h);
   else
-    normal_under(sim, fr, sim->m->anchor_face0, f, h);
+    normal_under(sim->m, fr, sim->m->anchor_face0, f, h);
   for (int k = 0; k < 3; k++) n[k] = a[k] + h[k];
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!(len > 1.0)) return 0;
@@ -95,17 +95,17 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
 }
 
 /* c = sign_f / (2 A_f) of face f (its rest_area > 0). */
-static inline double face_c(const ss_sim *sim, int f) {
-  return sim->m->orient_sign[f] / (2.0 * sim->m->rest_area[f]);
+static inline double face_c(const ss_model *m, int f) {
+  return m->orient_sign[f] / (2.0 * m->rest_area[f]);
 }
 
 /* s of face f at positions xfull against the unit normal n, c = face_c; with s < S0 (the
  * only faces the term acts on) also its gradient (9, corners in face order).
  * Bit for bit the s and gradient of the formula at the head of this file. */
-static inline double face_ratio(const ss_sim *sim, const double *xfull, int f, const double n[3],
+static inline double face_ratio(const ss_model *m, const double *xfull, int f, const double n[3],
                                 double c, double grad[9]) {
   /* scalars, not arrays: no trip through the stack between the products */
-  const int *fv = sim->m->faces + 3 * f;
+  const int *fv = m->faces + 3 * f;
   const double *p0 = xfull + 3 * fv[0], *p1 = xfull + 3 * fv[1], *p2 = xfull + 3 * fv[2];
   const double a0 = p1[0] - p0[0], a1 = p1[1] - p0[1], a2 = p1[2] - p0[2]; /* e1 */
   const double b0 = p2[0] - p0[0], b1 = p2[1] - p0[1], b2 = p2[2] - p0[2]; /* e2 */
@@ -146,25 +146,36 @@ static double depth_weight(const ss_sim *sim, int q) {
   return SS_ORIENT_DEPTH * sim->set.orient * sim->m->vert_area[sim->m->dof_vert[q]] / (sim->m->edge_len * sim->m->edge_len);
 }
 
-int ss_sim_orient_init(ss_sim *sim) {
-  /* orient_sign: the model's arena, zeroed */
-  const ss_frames *fr = ss_mover_frames(sim->mover);
-  const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
-  for (int f = 0; f < sim->m->nface; f++) {
+int ss_model_orient_init(ss_model *m, char *err, int err_sz) {
+  /* orient_sign: the model's arena, zeroed. The body's frames at rest, where
+   * every anchor is on the face it was bound to (ss_sim_orient_normal's two
+   * normals are then one: n = (a + a) / |a + a|, the same bits as a sim's
+   * at rest). */
+  ss_frames *fr = NULL;
+  if (ss_frames_create(&fr, m->btopo->nface) != SS_OK)
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the body's frames at rest");
+  ss_frames_update(fr, m->btopo, m->body_rest);
+  const double min_area = SS_ORIENT_MIN_AREA * m->edge_len * m->edge_len;
+  for (int f = 0; f < m->nface; f++) {
     /* judged: faces held on the body by a spring (not a free flap), not
      * slivers: s of a sliver swings with the smallest move of its apex, and
      * so would its stiffness (the slivers scene: aspect ~300) */
-    const int *fv = sim->m->faces + 3 * f;
-    if (!(sim->m->rest_area[f] >= min_area)) continue;
-    if (sim->m->k_face[f] == 0.0 && sim->m->k_vert[fv[0]] == 0.0 && sim->m->k_vert[fv[1]] == 0.0 &&
-        sim->m->k_vert[fv[2]] == 0.0)
+    const int *fv = m->faces + 3 * f;
+    if (!(m->rest_area[f] >= min_area)) continue;
+    if (m->k_face[f] == 0.0 && m->k_vert[fv[0]] == 0.0 && m->k_vert[fv[1]] == 0.0 &&
+        m->k_vert[fv[2]] == 0.0)
       continue;
-    double n[3], g[9];
-    if (!ss_sim_orient_normal(sim, fr, f, n)) continue;
-    sim->m->orient_sign[f] = 1;
-    double s = face_ratio(sim, sim->m->rest, f, n, face_c(sim, f), g);
-    sim->m->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
+    double a[3], n[3], g[9];
+    normal_under(m, fr, m->anchor_face0, f, a);
+    for (int k = 0; k < 3; k++) n[k] = a[k] + a[k];
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 1.0)) continue;
+    for (int k = 0; k < 3; k++) n[k] /= len;
+    m->orient_sign[f] = 1;
+    double s = face_ratio(m, m->rest, f, n, face_c(m, f), g);
+    m->orient_sign[f] = (signed char)(s > 0.0 ? 1 : s < 0.0 ? -1 : 0);
   }
+  ss_frames_destroy(fr);
   return SS_OK;
 }
 
@@ -178,7 +189,7 @@ static inline void face_normal_begin(const ss_sim *sim, const ss_frames *fr, int
   double *n = sim->orient_n + 4 * (size_t)q;
   n[0] = n[1] = n[2] = n[3] = 0.0;
   if (!sim->m->orient_sign[f]) return;
-  if (ss_sim_orient_normal(sim, fr, f, n)) n[3] = face_c(sim, f);
+  if (ss_sim_orient_normal(sim, fr, f, n)) n[3] = face_c(sim->m, f);
   else n[0] = n[1] = n[2] = 0.0;
 }
 
@@ -225,7 +236,7 @@ static inline double dof_depth(const ss_sim *sim, int q, const double *xfull, co
 
 static inline double judged_ratio(const ss_sim *sim, const double *xfull, const double *n, int q) {
   double gs[9];
-  return n[3] == 0.0 ? SS_ORIENT_S0 : face_ratio(sim, xfull, sim->m->simface[q], n, n[3], gs);
+  return n[3] == 0.0 ? SS_ORIENT_S0 : face_ratio(sim->m, xfull, sim->m->simface[q], n, n[3], gs);
 }
 
 /* s of every judged face (S0 for the rest) into orient_s: each face its own,
@@ -282,7 +293,7 @@ double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
     const double *n = on + 4 * (size_t)q;
     const int f = sim->m->simface[q];
     double gs[9];
-    const double s = face_ratio(sim, xfull, f, n, n[3], gs);
+    const double s = face_ratio(sim->m, xfull, f, n, n[3], gs);
     if (!(s < SS_ORIENT_S0)) continue; /* never (s is orient_s[q]): tells the compiler gs is set */
     const double w = k * sim->m->rest_area[f], d = SS_ORIENT_S0 - s;
     e += 0.5 * w * d * d;
@@ -311,22 +322,13 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
     if (n[3] == 0.0) continue;
     const int f = sim->m->simface[q];
     double gs[9];
-    if (!(face_ratio(sim, xfull, f, n, n[3], gs) < SS_ORIENT_S0)) continue;
+    if (!(face_ratio(sim->m, xfull, f, n, n[3], gs) < SS_ORIENT_S0)) continue;
     const double w = k * sim->m->rest_area[f];
-    const int *fv = sim->m->faces + 3 * f;
-    /* upper triangle through the face's block ranks, as the membrane's */
-    for (int a = 0; a < 3; a++) {
-      const int i = sim->m->dof[fv[a]];
-      if (i < 0) continue;
-      for (int b = 0; b < 3; b++) {
-        const int j = sim->m->dof[fv[b]];
-        if (j < i) continue;
-        const int r = sim->m->face_rank[9 * f + 3 * a + b];
-        for (int c1 = 0; c1 < 3; c1++)
-          for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
-            vals[ss_sim_slot3(sim, j, r, c1, c2)] += w * gs[3 * a + c1] * gs[3 * b + c2];
-      }
-    }
+    /* the Gauss-Newton block w gs gs^T, scattered as the membrane's */
+    double h81[81];
+    for (int r = 0; r < 9; r++)
+      for (int c = 0; c < 9; c++) h81[9 * r + c] = w * gs[r] * gs[c];
+    ss_model_scatter_element(sim->m, sim->m->faces + 3 * f, 3, sim->m->face_rank + 9 * f, h81, vals);
   }
   const double *nd = on + 4 * (size_t)sim->m->nface;
   for (int q = 0; q < sim->m->ndof; q++) {
@@ -336,7 +338,7 @@ void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals)
     const double w = depth_weight(sim, q);
     const int diag_rank = sim->m->bcolp[q + 1] - sim->m->bcolp[q] - 1;
     for (int c1 = 0; c1 < 3; c1++)
-      for (int c2 = c1; c2 < 3; c2++) vals[ss_sim_slot3(sim, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
+      for (int c2 = c1; c2 < 3; c2++) vals[ss_model_slot3(sim->m, q, diag_rank, c1, c2)] += w * n[c1] * n[c2];
   }
 }
 

@@ -31,10 +31,16 @@
 #include "ss_err.h"
 #include "ss_vec.h"
 
+typedef struct inertia_ctx {
+  ss_sim *sim;
+  double h;
+} inertia_ctx;
+
 static void inertia_begin_block(void *ctx, int k0, int k1, double *sums) {
-  ss_sim *sim = ctx;
+  const inertia_ctx *ic = ctx;
+  ss_sim *sim = ic->sim;
   (void)sums;
-  const double h = sim->h, c = sim->set.damping, w = 1.0 / (h * h) + c / h;
+  const double h = ic->h, c = sim->set.damping, w = 1.0 / (h * h) + c / h;
   const double *g = sim->set.gravity;
   for (int k = k0; k < k1; k++) {
     int v = sim->m->dof_vert[k];
@@ -48,8 +54,8 @@ static void inertia_begin_block(void *ctx, int k0, int k1, double *sums) {
 }
 
 void ss_sim_energy_begin(ss_sim *sim, double h) {
-  sim->h = h;
-  ss_par_sum(sim->nthread, sim->m->ndof, 0, inertia_begin_block, sim, sim->par_part, NULL);
+  inertia_ctx ic = {sim, h};
+  ss_par_sum(sim->nthread, sim->m->ndof, 0, inertia_begin_block, &ic, sim->par_part, NULL);
   ss_sim_orient_begin(sim); /* orient.c: its normals in this pose */
 }
 
@@ -77,53 +83,6 @@ static inline void add_grad(const ss_sim *sim, double *g, int v, const double *g
   g[3 * k] += gv[0];
   g[3 * k + 1] += gv[1];
   g[3 * k + 2] += gv[2];
-}
-
-void ss_sim_energy_springs(ss_sim *sim) {
-  const int bary = sim->set.barycenter_anchors;
-  for (int q = 0; q < sim->m->nsimface; q++) {
-    const int f = sim->m->simface[q];
-    ss_membrane_face *r = sim->m->mface + q;
-    r->anchor = 3 * f;
-    r->k_bary = bary ? sim->m->k_face[f] : 0.0;
-  }
-}
-
-int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz) {
-  const int nsim = sim->m->nsimface, n = sim->m->ndof;
-  /* mface, grad_ptr (zeroed), grad_slot: the model's arena; face_grad: the data's */
-  for (int q = 0; q < nsim; q++) {
-    int f = sim->m->simface[q];
-    ss_membrane_face *r = sim->m->mface + q;
-    for (int c = 0; c < 3; c++) r->xo[c] = 3 * sim->m->faces[3 * f + c];
-    memcpy(r->dm_inv, sim->m->dm_inv + 4 * f, 4 * sizeof(double));
-    r->area = sim->m->rest_area[f];
-  }
-  ss_sim_energy_springs(sim);
-  /* Slots per dof in the order of the sum: the simulated faces' (membrane
-   * and barycenter spring together) in simulated face order, each corner in
-   * turn. */
-  int *cnt = sim->m->grad_ptr + 1;
-  for (int pass = 0; pass < 2; pass++) {
-    if (pass == 1) {
-      for (int k = 0; k < n; k++) sim->m->grad_ptr[k + 1] += sim->m->grad_ptr[k];
-      cnt = sim->m->grad_ptr; /* in pass 1 grad_ptr[k] is the next free entry of dof k */
-    }
-    for (int q = 0; q < nsim; q++)
-      for (int c = 0; c < 3; c++) {
-        int k = sim->m->dof[sim->m->faces[3 * sim->m->simface[q] + c]];
-        if (k < 0) continue;
-        if (pass == 0)
-          cnt[k]++;
-        else
-          sim->m->grad_slot[cnt[k]++] = 9 * q + 3 * c;
-      }
-  }
-  /* pass 1 advanced grad_ptr[k] to the end of dof k, i.e. the start of k + 1 */
-  memmove(sim->m->grad_ptr + 1, sim->m->grad_ptr, (size_t)n * sizeof(int));
-  sim->m->grad_ptr[0] = 0;
-  (void)err, (void)err_sz;
-  return SS_OK;
 }
 
 /* Gradient of dof k's own terms (inertia, vertex spring) into g. */
@@ -253,12 +212,20 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   return e;
 }
 
-double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g) {
+double ss_sim_energy_at(ss_sim *sim, ss_sim_stats *st, const double *xd, double *g) {
   double t0 = ss_now_ms();
   ss_sim_scatter(sim, xd, sim->xfull_t);
   double e = ss_sim_energy(sim, sim->xfull_t, g);
-  if (sim->st) sim->st->assemble_ms += ss_now_ms() - t0, sim->st->energy_evaluations++;
+  st->assemble_ms += ss_now_ms() - t0, st->energy_evaluations++;
   return e;
+}
+
+double ss_sim_energy_first_trial(ss_sim *sim, const double *xd, const double *dir, double slope) {
+  /* the membrane, hinges and springs are what the solvers' matrices model:
+   * their minimum along a direction of those matrices is the full step. The
+   * orient term's depth springs (one-sided, stiff) are not: they answer
+   * with the minimum along the line of their exact model (orient.c) */
+  return ss_sim_orient_line_step(sim, xd, dir, slope);
 }
 
 /* The stiffness across the skin is taken as at least this share of that
@@ -433,25 +400,6 @@ void ss_sim_normals_begin(ss_sim *sim, const double *xfull) {
   for (int k = 0; k < ndof; k++) dof_normal(sim, fn, k);
 }
 
-/* Adds an element's dense Hessian (n corners, row-major 3n x 3n) to the upper
- * triangle of the 3n matrix through its ranks. */
-static void scatter_element(const ss_sim *sim, const int *verts, int n, const int *rank,
-                            const double *he, double *vals) {
-  int m = 3 * n;
-  for (int a = 0; a < n; a++) {
-    int i = sim->m->dof[verts[a]];
-    if (i < 0) continue;
-    for (int b = 0; b < n; b++) {
-      int j = sim->m->dof[verts[b]];
-      if (j < i) continue; /* j < 0 too; the transpose is added from (b, a) */
-      int r = rank[n * a + b];
-      for (int c1 = 0; c1 < 3; c1++)
-        for (int c2 = (i == j ? c1 : 0); c2 < 3; c2++)
-          vals[ss_sim_slot3(sim, j, r, c1, c2)] += he[m * (3 * a + c1) + 3 * b + c2];
-    }
-  }
-}
-
 /* Current area over rest area of face f. */
 static double area_ratio(const ss_sim *sim, const double *x9, int f) {
   return 0.5 * sqrt(tri_cross2(x9, x9 + 3, x9 + 6)) / sim->m->rest_area[f];
@@ -470,110 +418,18 @@ void ss_sim_add_elastic_hessian(const ss_sim *sim, const double *xfull, double *
     else
       ss_membrane_eval(x9, sim->m->dm_inv + 4 * f, sim->m->rest_area[f], sim->m->mu, sim->m->lam,
                        sim->m->set.compression, NULL, h81);
-    scatter_element(sim, fv, 3, sim->m->face_rank + 9 * f, h81, vals);
+    ss_model_scatter_element(sim->m, fv, 3, sim->m->face_rank + 9 * f, h81, vals);
   }
   for (int q = 0; q < sim->m->nhinge; q++) {
     const int *hv = sim->m->hinge_vert + 4 * q;
     double x12[12], h144[144];
     for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, xfull + 3 * hv[c], 3 * sizeof(double));
     ss_hinge_eval(x12, sim->m->hinge_theta0[q], sim->m->hinge_weight[q], NULL, h144);
-    scatter_element(sim, hv, 4, sim->m->hinge_rank + 16 * q, h144, vals);
+    ss_model_scatter_element(sim->m, hv, 4, sim->m->hinge_rank + 16 * q, h144, vals);
   }
   ss_sim_orient_hessian(sim, xfull, vals); /* orient.c */
 }
 
-/* Adds w (x I3) to block (rank, column j): scalar != 0 in the n x n values,
- * else in the 3n x 3n values. */
-static void add_iso(const ss_sim *sim, double *vals, int scalar, int j, int rank, double w) {
-  if (scalar) {
-    vals[sim->m->bcolp[j] + rank] += w;
-  } else {
-    for (int c = 0; c < 3; c++) vals[ss_sim_slot3(sim, j, rank, c, c)] += w;
-  }
-}
+void ss_sim_constant_hessian(const ss_sim *sim, double *vals) { ss_model_constant_terms(sim->m, sim->mi, vals, 0); }
 
-static void constant_terms(const ss_sim *sim, double *vals, int scalar) {
-  size_t nnz = scalar ? (size_t)sim->m->nblock : (size_t)sim->m->nnz3;
-  memset(vals, 0, nnz * sizeof *vals);
-  for (int k = 0; k < sim->m->ndof; k++) {
-    int v = sim->m->dof_vert[k];
-    int diag_rank = sim->m->bcolp[k + 1] - sim->m->bcolp[k] - 1;
-    add_iso(sim, vals, scalar, k, diag_rank, sim->mi[k] + sim->m->k_vert[v]);
-  }
-  if (sim->set.barycenter_anchors) {
-    for (int f = 0; f < sim->m->nface; f++) {
-      double kf = sim->m->k_face[f];
-      if (kf == 0.0) continue;
-      const int *fv = sim->m->faces + 3 * f;
-      for (int a = 0; a < 3; a++) {
-        int i = sim->m->dof[fv[a]];
-        if (i < 0) continue;
-        for (int b = 0; b < 3; b++) {
-          int j = sim->m->dof[fv[b]];
-          if (j < i) continue;
-          /* Upper triangle: (a, b) and (b, a) meet in one block; count once
-           * unless a == b. Off-diagonal blocks get the (a, b) value only, as
-           * the symmetric (b, a) is implied. */
-          add_iso(sim, vals, scalar, j, sim->m->face_rank[9 * f + 3 * a + b], kf / 9.0);
-        }
-      }
-    }
-  }
-}
-
-void ss_sim_constant_hessian(const ss_sim *sim, double *vals) { constant_terms(sim, vals, 0); }
-
-static void rest_laplacian(const ss_sim *sim, double *vals);
-
-void ss_sim_scalar_matrix(const ss_sim *sim, double *vals) {
-  constant_terms(sim, vals, 1);
-  rest_laplacian(sim, vals);
-}
-
-void ss_sim_diag_const(ss_sim *sim) {
-  /* Build the scalar matrix without inertia into a scratch of nblock values:
-   * borrow h-independent terms only (mi = 0 during the call). */
-  double *vals = calloc((size_t)(sim->m->nblock ? sim->m->nblock : 1), sizeof *vals);
-  double *mi_save = sim->mi;
-  double *zeros = calloc((size_t)(sim->m->ndof ? sim->m->ndof : 1), sizeof *zeros);
-  if (!vals || !zeros) {
-    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_const[k] = sim->m->diag_springs[k] = 0.0;
-  } else {
-    sim->mi = zeros;
-    ss_sim_scalar_matrix(sim, vals);
-    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_const[k] = vals[sim->m->bcolp[k + 1] - 1];
-    constant_terms(sim, vals, 1); /* the springs alone */
-    for (int k = 0; k < sim->m->ndof; k++) sim->m->diag_springs[k] = vals[sim->m->bcolp[k + 1] - 1];
-    sim->mi = mi_save;
-  }
-  free(vals);
-  free(zeros);
-}
-
-static void rest_laplacian(const ss_sim *sim, double *vals) {
-  /* Rest membrane stiffness: (mu + lam) times the cotangent Laplacian, the
-   * exact Hessian of (mu + lam)/2 A |F|^2. It lies between the rest
-   * membrane's in-plane eigenvalues 2 mu (shear) and 2 lam (area). */
-  double w = sim->m->mu + sim->m->lam;
-  for (int q = 0; q < sim->m->nsimface; q++) {
-    int f = sim->m->simface[q];
-    const int *fv = sim->m->faces + 3 * f;
-    const double *di = sim->m->dm_inv + 4 * f;
-    double d[3][2];
-    for (int j = 0; j < 2; j++) {
-      d[1][j] = di[j];
-      d[2][j] = di[2 + j];
-      d[0][j] = -d[1][j] - d[2][j];
-    }
-    for (int a = 0; a < 3; a++) {
-      int i = sim->m->dof[fv[a]];
-      if (i < 0) continue;
-      for (int b = 0; b < 3; b++) {
-        int j = sim->m->dof[fv[b]];
-        if (j < i) continue;
-        double kab = w * sim->m->rest_area[f] * (d[a][0] * d[b][0] + d[a][1] * d[b][1]);
-        vals[sim->m->bcolp[j] + sim->m->face_rank[9 * f + 3 * a + b]] += kab;
-      }
-    }
-  }
-}
+void ss_sim_scalar_matrix(const ss_sim *sim, double *vals) { ss_model_scalar_matrix(sim->m, sim->mi, vals); }

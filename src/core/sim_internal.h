@@ -1,13 +1,19 @@
-/* Internal: the inside of ss_sim, shared by its modules.
+/* Internal: the inside of ss_sim, shared by its modules. Read one step in
+ * sim.c, top to bottom; the rest:
  *
- *   sim_model.c      model and data: arenas, create / destroy, sims sharing a model
- *   sim.c            step (its stages) / reset / live settings / accessors
- *   sim_bind.c       anchors at create (copy or closest point), face mask, hinges
- *   sim_pattern.c    sparsity pattern of the unknowns and element-to-slot maps
- *   sim_energy.c     E(x), its gradient, and Hessian assembly over all terms
+ *   sim.c            ss_sim_step and its four stages in order; reset, state, live settings,
+ *                    accessors
+ *   sim_anchor.c     stage 4, the anchor pass (slide, walk, tether); anchor positions
+ *   sim_energy.c     E(x), its gradient, Hessian assembly over all terms; the line search's
+ *                    first trial asked of the terms
+ *   orient.c         the orient term (faces face up, vertices not under the body)
  *   solver.c         the one solver loop (solver.h); line_search.c its line search
  *   solver_newton.c  projected Newton directions with CHOLMOD (3n x 3n)
  *   solver_qn.c      L-BFGS on the constant L (x) I3 matrix (scalar n x n CHOLMOD)
+ *   sim_threads.c    threads 0: the probe choosing the next step's thread count
+ *   sim_model.c      the model's and the data's arenas, building a model alone, derived
+ *                    materials, create / destroy, sims sharing a model
+ *   model.h          the model and the files that build it (model_*.c), which know no sim
  *
  * The model (fixed once built, shareable) and the data of a run: see "model
  * and data" below. Arrays are flat with their shape in the field lists. Unknowns ("dofs") are the free skin
@@ -16,17 +22,10 @@
 #ifndef SKIN_SIM_SIM_INTERNAL_H
 #define SKIN_SIM_SIM_INTERNAL_H
 
-#include <cholmod.h>
-
+#include "model.h"
 #include "mover.h"
 #include "par.h"
 #include "skin_sim/ss_sim.h"
-
-enum ss_vert_kind {
-  SS_VERT_FREE = 0,     /* an unknown */
-  SS_VERT_PINNED = 1,   /* on the border of the simulated region: follows its anchor */
-  SS_VERT_FOLLOWER = 2  /* outside the simulated region: follows its anchor */
-};
 
 /* ---- model and data (MuJoCo's mjModel / mjData split) ----------------------
  *
@@ -35,8 +34,9 @@ enum ss_vert_kind {
  * the packed energy layout and the symbolic analysis of the solver's matrix
  * (below, "symbolic analysis"). Several sims may run on one model (a reference
  * or truth run, a second skin of the same body: ss_sim_create_from_model);
- * nothing writes it while stepping, and ss_sim_set_settings changes its
- * material only when the model is not shared (else it asks for a new sim).
+ * it is built alone (model.h, sim_model.c) and nothing writes it afterwards: a sim
+ * holds it as `const ss_model *`, and a new material (ss_sim_set_settings)
+ * is a new model that borrows the old one's structure (`shape`).
  * The DATA of a run (struct ss_sim) is the state, the anchors, the solver
  * workspaces and the step's counters.
  *
@@ -50,49 +50,6 @@ enum ss_vert_kind {
  * Not in the arenas: the body topology (ss_topo), the mover, the walker
  * objects (their pointers are) and the CHOLMOD objects, each with its own
  * create and destroy. */
-
-/* name, type, count, shape */
-#define SS_MODEL_ARRAYS(X)                                                                       \
-  X(body_rest, double, 3 * (size_t)m->nbvert, "(nbvert x 3)")                                    \
-  X(body_area0, double, (size_t)m->nbface, "(nbface) body face areas at rest (as ss_frames')")   \
-  X(faces, int, 3 * (size_t)m->nface, "(nface x 3)")                                             \
-  X(rest, double, 3 * (size_t)m->nvert, "(nvert x 3)")                                           \
-  X(mask, unsigned char, (size_t)m->nface, "(nface) 1 = simulated face")                         \
-  X(dm_inv, double, 4 * (size_t)m->nface, "(nface x 4) membrane rest data")                      \
-  X(rest_area, double, (size_t)m->nface, "(nface) 0 for degenerate rest triangles")              \
-  X(vert_area, double, (size_t)m->nvert, "(nvert) lumped rest area: sum of adjacent areas / 3")  \
-  X(mass, double, (size_t)m->nvert, "(nvert) density * vert_area (>= a tiny floor)")             \
-  X(k_vert, double, (size_t)m->nvert, "(nvert) vertex spring stiffness (0 if not free)")         \
-  X(k_face, double, (size_t)m->nface, "(nface) barycenter spring stiffness (0 if none)")         \
-  X(kind, unsigned char, (size_t)m->nvert, "(nvert) ss_vert_kind")                               \
-  X(dof, int, (size_t)m->nvert, "(nvert) dof index or -1")                                       \
-  X(dof_vert, int, (size_t)m->nvert, "(ndof) vertex of each dof")                                \
-  X(simface, int, (size_t)m->nface, "(nsimface) faces with a membrane term")                     \
-  X(hinge_vert, int, 4 * (size_t)m->nhinge_max, "(nhinge x 4) e0, e1, o0, o1")                   \
-  X(hinge_theta0, double, (size_t)m->nhinge_max, "(nhinge) rest dihedral angle")                 \
-  X(hinge_weight, double, (size_t)m->nhinge_max, "(nhinge) k |e|^2 / A_e")                       \
-  X(anchor_face0, int, (size_t)m->nanchor, "(nanchor) bound at create")                          \
-  X(anchor_uv0, double, 2 * (size_t)m->nanchor, "(nanchor x 2)")                                 \
-  X(bcolp, int, (size_t)m->nvert + 1, "(ndof + 1) block column starts")                          \
-  X(brow, int, (size_t)m->nvert + 3 * (size_t)m->nface + 6 * (size_t)m->nhinge_max,              \
-    "(nblock) block rows in each block column, sorted")                                          \
-  X(colp3, int, 3 * (size_t)m->nvert + 1, "(3 ndof + 1) column starts of the 3n x 3n matrix")    \
-  X(face_rank, int, 9 * (size_t)m->nface,                                                        \
-    "(nface x 9) rank of block (min, max) of corners (a, b) in column max, -1 if not free")      \
-  X(hinge_rank, int, 16 * (size_t)m->nhinge_max, "(nhinge x 16) same for hinge corners")         \
-  X(follow_off, double, m->follow_offset ? 3 * (size_t)m->nvert : 0,                              \
-    "(nvert x 3) a separate skin's vertices: rest offset from their anchor in the anchor face's " \
-    "frame (along e1, across it in the face, along the normal); followers keep it")              \
-  X(orient_sign, signed char, (size_t)m->nface,                                                  \
-    "(nface) orient.c: rest orientation against the body, +-1, 0")                               \
-  X(mface, struct ss_membrane_face, (size_t)m->nface + 1,                                          \
-    "(nsimface) packed membrane input, in simface order")                                        \
-  X(grad_ptr, int, (size_t)m->nvert + 2, "(ndof + 1) CSR: the face_grad slots each dof sums")    \
-  X(grad_slot, int, 3 * (size_t)m->nface + 1,                                                    \
-    "in the order of the sum (by simulated face, each corner)")                                   \
-  X(diag_const, double, (size_t)m->nvert, "(ndof) diagonal of the scalar matrix without inertia") \
-  X(diag_springs, double, (size_t)m->nvert,                                                      \
-    "(ndof) its anchor springs' part alone: a flat membrane's stiffness across its surface")
 
 /* The data of a run: counts of the built model `m` and of the sim's own
  * settings (solver, history) and threads. */
@@ -138,51 +95,8 @@ enum ss_vert_kind {
 #define SS_SIM_QN_HISTORY(sim) \
   ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
 
-#define SS_ARENA_FIELD(name, type, count, shape) type *name;
-
-struct ss_model {
-  int refs;                   /* sims running on it + the creator's reference (ss_model_create) */
-  ss_sim_settings set;        /* built with; its model settings (ss_sim_in_model) are every
-                                 sim's on it. face_mask points to mask (or NULL) */
-  void *arena;                /* every array below */
-  size_t arena_bytes;
-  double mu, lam;             /* membrane Lamé parameters (stable form) */
-  /* body */
-  int nbvert, nbface;
-  ss_topo *btopo;
-  ss_bvh *bvh_rest;           /* the body's BVH at rest, or NULL: kept when the skin was bound by
-                                 closest point or the model's method is project; every project
-                                 sim's mover borrows its tree (ss_bvh_create_on). Never refitted */
-  /* skin */
-  int nvert, nface;
-  int ndof;                   /* free vertices: the unknowns */
-  int nsimface;               /* faces with a membrane term (masked, >= 1 free vertex) */
-  int nhinge;
-  int nhinge_max;             /* bound at allocation: 3 nface / 2 with bending, else 0 */
-  double edge_len;            /* mean rest edge length of the skin */
-  int nanchor;                /* nvert + (barycenters ? nface : 0) */
-  int follow_offset;          /* 1: a separate skin, whose followers keep their height over the
-                                 body (follow_off); 0: a copy of the body, on its anchors */
-  /* sparsity: block pattern over dofs, upper triangle, CSC; the scalar
-   * n x n matrix uses it directly, the 3n x 3n one expands each block. */
-  int nblock;
-  int nnz3;                   /* stored entries of the 3n x 3n matrix */
-  /* Symbolic analysis (fill-reducing ordering and symbolic factor, which
-   * depend on the pattern alone) of the matrix of the solver the model was
-   * built for (set.solver at model_build): the scalar n x n one (quasi-Newton,
-   * solver_qn.c) or the 3n x 3n one (Newton, solver_newton.c); the other is
-   * NULL, both are without dofs. Made once with the model's own
-   * cholmod_common; each sim on the model factors a copy of its own
-   * (cholmod_copy_factor), and a sim with the other solver analyses its
-   * matrix itself. Freed by the model's destroy. */
-  cholmod_common cc;
-  int cc_started;
-  cholmod_factor *sym_qn, *sym_newton;
-  SS_MODEL_ARRAYS(SS_ARENA_FIELD)
-};
-
 struct ss_sim {
-  ss_model *m;                /* the model this sim runs on (counted in m->refs) */
+  const ss_model *m;          /* the model this sim runs on (counted in m->refs): read only */
   ss_sim_settings set;        /* this sim's; face_mask points to m->mask (or NULL) */
   void *arena;                /* every array of SS_DATA_ARRAYS */
   size_t arena_bytes;
@@ -196,10 +110,7 @@ struct ss_sim {
   int thread_probe;           /* threads 0: steps into the current probe period (-1: off) */
   int probe_period;           /* threads 0: steps in the current probe period */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
-  double h;                   /* substep of the current system */
   int measure_anchors;        /* ss_sim_measure_anchors: anchor_pull and anchor_path summed */
-  double slide_frac;          /* share of the way to the skin point an anchor goes this substep */
-  double tether_frac;         /* share of the way back home it walks this substep */
   /* CHOLMOD */
   cholmod_common cc;
   int cc_started;
@@ -222,19 +133,36 @@ struct ss_sim {
   cholmod_dense *qx_xy, *qy_xy, *qe_xy, *qx_z, *qy_z, *qe_z;
   int lb_m;                   /* L-BFGS history size */
   int lb_count, lb_head;
-  /* per-step counters */
-  ss_sim_stats *st;
   /* over the sim's life (ss_sim_warnings) */
   long long nstep;
   ss_warning warning[SS_NWARNING];
   SS_DATA_ARRAYS(SS_ARENA_FIELD)
 };
 
-/* 1 if the setting at this offset of ss_sim_settings is a model setting (young,
- * poisson, density, stiffness, barycenters, bending, orient): every sim on a
- * model has the model's (sim_model.c). */
-int ss_sim_in_model(size_t offset);
-/* threads 0: the probe's steps (sim.c). After each step of step_ms
+/* ---- a substep (sim.c): its inputs, one value every stage reads ---- */
+typedef struct ss_substep {
+  const double *body_pos; /* the body pose at the end of the step */
+  double w;               /* share of the way from body_prev to body_pos */
+  int last;               /* the last substep: exactly body_pos */
+  double h;               /* its length */
+  double slide_frac;      /* share of the way to its skin point an anchor goes */
+  double tether_frac;     /* share of the way back home it walks */
+} ss_substep;
+
+/* ---- sim_anchor.c: the anchor pass and the anchors' positions ---- */
+/* anchor_pos from the anchors and the mover's frames of `pose` (the pose it
+ * holds); an anchor without a face follows its body vertex. */
+void ss_sim_anchor_positions_update(ss_sim *sim, const double *pose);
+/* Stage 4 of a substep: anchors slide towards their skin points, then walk
+ * home on the tether; counts into st. */
+void ss_sim_move_anchors(ss_sim *sim, const ss_substep *in, ss_sim_stats *st);
+/* Each anchor's pull and path back to 0 (ss_sim_measure_anchors). */
+void ss_sim_clear_anchor_measures(ss_sim *sim);
+
+/* Moves sim onto a model derived from its own with the material (model
+ * settings) of set (sim_model.c, model_derive); its data stay. */
+int ss_sim_rematerial(ss_sim *sim, const ss_sim_settings *set, char *err, int err_sz);
+/* threads 0: the probe's steps (sim_threads.c). After each step of step_ms
  * wall-clock ms, sets the thread count of the next. */
 #define SS_PROBE_STEPS 3       /* steps on one thread, then at most as many on all */
 #define SS_PROBE_PERIOD 50     /* steps from one probe to the next while all threads pay */
@@ -244,32 +172,7 @@ void ss_sim_choose_threads(ss_sim *sim, double step_ms);
  * runs): the same bits from any. Chosen at create: the widest. */
 void ss_sim_set_isa(ss_sim *sim, int isa);
 
-/* ---- sim_model.c ---- */
-/* The model's bvh_rest on the body at rest, built if it is not yet (model
- * building only: the model is read-only once built). */
-int ss_sim_model_bvh(ss_model *m, const double *body_rest);
-
-/* ---- sim_bind.c ---- */
-/* An orthonormal frame of a triangle with edges e1, e2 from its first corner:
- * t1 along e1, t2 across it in the triangle's plane, n its unit normal (the
- * order of ss_frames' normal). 0 (frame unset) where it is degenerate. */
-int ss_sim_face_frame(const double e1[3], const double e2[3], double t1[3], double t2[3],
-                      double n[3]);
-/* Anchors of the skin on the body at rest (copy of the body or closest point). */
-int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
-                int err_sz);
-/* Vertex kinds, dofs, simulated faces, masses, spring stiffnesses, hinges. */
-int ss_sim_build_model(ss_sim *sim, char *err, int err_sz);
-/* From the settings: Lame parameters, masses and spring stiffnesses (part of
- * ss_sim_build_model; again on ss_sim_set_settings). */
-void ss_sim_build_material(ss_sim *sim);
-
 /* ---- orient.c: skin faces resist turning over against the body ---- */
-#define SS_ORIENT_S0 0.2 /* signed projected area ratio below which the term acts */
-#define SS_ORIENT_MIN_AREA SS_SLIVER_AREA /* faces of rest area below this times l^2 are not judged */
-#define SS_ORIENT_DEPTH 0.1 /* depth spring of a vertex under the body, per orient (orient.c) */
-/* orient_sign from the rest skin and the anchors at rest (after ss_sim_reset). */
-int ss_sim_orient_init(ss_sim *sim);
 /* The unit body normal skin face f is judged against, in the pose of fr;
  * 0 where the face is not judged (see orient.c). */
 int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n[3]);
@@ -289,19 +192,10 @@ double ss_sim_orient_line_step(ss_sim *sim, const double *xd, const double *dir,
 /* Adds its (Gauss-Newton, PSD) Hessian to the 3n x 3n upper-triangular values. */
 void ss_sim_orient_hessian(const ss_sim *sim, const double *xfull, double *vals);
 
-/* ---- sim_pattern.c ---- */
-int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz);
-
 /* ---- sim_energy.c ---- */
 /* Sets up the inertia weights and targets of a substep of length h from
  * x_prev, v and the settings. */
 void ss_sim_energy_begin(ss_sim *sim, double h);
-/* The packed layout the energy evaluation runs on (mface, grad_ptr,
- * grad_slot), once after the model and the pattern. */
-int ss_sim_energy_layout(ss_sim *sim, char *err, int err_sz);
-/* The barycenter springs' stiffness in mface, from k_face: in the layout,
- * and again whenever the material is rebuilt. */
-void ss_sim_energy_springs(ss_sim *sim);
 /* Scatters dofs xd into the full positions xfull (fixed vertices untouched). */
 void ss_sim_scatter(const ss_sim *sim, const double *xd, double *xfull);
 /* E at the full positions xfull; gradient over dofs into g (may be NULL).
@@ -329,16 +223,8 @@ void ss_sim_constant_hessian(const ss_sim *sim, double *vals);
  * the start of each solve: the direction across the membrane, in which only
  * inertia and the anchor springs hold a flat skin (ss_sim_residual). */
 void ss_sim_normals_begin(ss_sim *sim, const double *xfull);
-/* diag_const and diag_springs from the model (once, at create). */
-void ss_sim_diag_const(ss_sim *sim);
-/* Values of the scalar n x n matrix: inertia + springs + rest membrane
- * Laplacian scaled by (mu + lam). */
+/* The same with the sim's inertia weights of the current substep. */
 void ss_sim_scalar_matrix(const ss_sim *sim, double *vals);
-/* Slot of entry (row 3i+a, col 3j+b) of the 3n matrix from block rank r in
- * block column j (i <= j; a <= b when i == j). */
-static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b) {
-  return sim->m->colp3[3 * j + b] + 3 * rank + a;
-}
 
 /* ---- solvers (solver.h: the one loop, line search and the solvers' hooks).
  * ss_solver_solve minimises E from xd (in/out, dofs) with the solver of the
@@ -347,15 +233,16 @@ static inline int ss_sim_slot3(const ss_sim *sim, int j, int rank, int a, int b)
  * start (xd unusable), 2 if only trial points were (xd is the last finite
  * iterate). ---- */
 int ss_solver_create(ss_sim *sim, char *err, int err_sz);
-int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite);
+int ss_solver_solve(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, double *xd, int *converged,
+                    int *stalled, int *nonfinite);
 int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz);
 int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz);
-/* The model's symbolic analysis (m->sym_newton / m->sym_qn, with m->cc) for
- * its built pattern, once at model_build (ndof > 0). */
-int ss_solver_newton_analyze(ss_model *m, char *err, int err_sz);
-int ss_solver_qn_analyze(ss_model *m, char *err, int err_sz);
 /* Energy and gradient g at the unknowns xd (scattered into xfull_t), timed
- * into the step's assemble_ms. */
-double ss_sim_energy_at(ss_sim *sim, const double *xd, double *g);
+ * into st's assemble_ms. */
+double ss_sim_energy_at(ss_sim *sim, ss_sim_stats *st, const double *xd, double *g);
+/* A line search's first trial step along dir from xd (slope E's slope there,
+ * < 0), asked of the energy terms: the shortest any term's own model of the
+ * line gives, 1 where none has one (sim_energy.c). */
+double ss_sim_energy_first_trial(ss_sim *sim, const double *xd, const double *dir, double slope);
 
 #endif

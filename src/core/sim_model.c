@@ -1,11 +1,15 @@
 /* ss_sim's model and data (sim_internal.h, "model and data"): their arenas,
  * create and destroy, and several sims on one model.
  *
- * ss_sim_create = model_new (counts, arena, inputs, body topology) +
- * model_build on the new sim (anchors bound, vertex kinds, masses, hinges,
- * pattern, energy layout, symbolic analysis, rest orientation) + the sim's data (mover, walkers,
- * arena, state at rest) + its solver. ss_sim_create_from_model skips the
- * model's two steps and takes a reference to it instead. */
+ * A model is built alone and then frozen: model_new (counts, arena, inputs,
+ * body topology) + model_build (anchors bound, vertex kinds, masses, hinges,
+ * pattern, energy layout, symbolic analysis, rest orientation). Nothing
+ * writes it afterwards: sims hold it as `const ss_model *`, and a live change
+ * of its material (ss_sim_set_settings) derives a new model (model_derive)
+ * that shares the old one's body topology, rest BVH and symbolic analysis.
+ * ss_sim_create = a new model + a sim on it: the sim's data (mover, walkers,
+ * arena, state at rest) + its solver. ss_sim_create_from_model takes a
+ * reference to a model instead. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -102,26 +106,27 @@ static int data_arena(ss_sim *sim) {
 
 /* ---- model ---- */
 
-int ss_sim_in_model(size_t offset) {
-  static const size_t model_settings[] = {
-      offsetof(ss_sim_settings, young),   offsetof(ss_sim_settings, poisson),
-      offsetof(ss_sim_settings, density), offsetof(ss_sim_settings, anchor_stiffness),
-      offsetof(ss_sim_settings, bending), offsetof(ss_sim_settings, barycenter_anchors),
-      offsetof(ss_sim_settings, orient),  offsetof(ss_sim_settings, compression)};
-  for (size_t i = 0; i < sizeof model_settings / sizeof model_settings[0]; i++)
-    if (model_settings[i] == offset) return 1;
-  return 0;
+/* A reference to a model: the count is the one thing about a frozen model
+ * that changes, atomically, so sims on other threads may share it. */
+static void model_retain(const ss_model *m) {
+  atomic_fetch_add_explicit(&((ss_model *)m)->refs, 1, memory_order_relaxed);
 }
 
-static void model_release(ss_model *m) {
-  if (!m || --m->refs > 0) return;
+static void model_release(const ss_model *cm) {
+  if (!cm) return;
+  ss_model *m = (ss_model *)cm; /* the last reference owns it */
+  if (atomic_fetch_sub_explicit(&m->refs, 1, memory_order_acq_rel) > 1) return;
   if (m->cc_started) {
     cholmod_free_factor(&m->sym_qn, &m->cc);
     cholmod_free_factor(&m->sym_newton, &m->cc);
     cholmod_finish(&m->cc);
   }
-  ss_bvh_destroy(m->bvh_rest);
-  ss_topo_destroy(m->btopo);
+  if (m->shape) {
+    model_release(m->shape);
+  } else {
+    ss_bvh_destroy(m->bvh_rest);
+    ss_topo_destroy(m->btopo);
+  }
   free(m->arena);
   free(m);
 }
@@ -135,7 +140,7 @@ static int model_new(ss_model **out, int body_nvert, const double *body_rest, in
                      char *err, int err_sz) {
   ss_model *m = calloc(1, sizeof *m);
   if (!m) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
-  m->refs = 1;
+  atomic_init(&m->refs, 1);
   m->set = *set;
   m->nbvert = body_nvert;
   m->nbface = body_nface;
@@ -188,19 +193,56 @@ int ss_sim_model_bvh(ss_model *m, const double *body_rest) {
   return status;
 }
 
-/* The rest of the model, on the sim being created with it: anchors bound,
- * vertex kinds, masses, hinges, pattern, energy layout, symbolic analysis. */
-static int model_build(ss_sim *sim, const ss_sim_mesh *skin, char *err, int err_sz) {
-  int status = ss_sim_bind(sim, skin, sim->m->body_rest, err, err_sz);
-  if (status == SS_OK) status = ss_sim_build_model(sim, err, err_sz);
-  if (status == SS_OK) status = ss_sim_build_pattern(sim, err, err_sz);
-  if (status == SS_OK) status = ss_sim_energy_layout(sim, err, err_sz);
-  if (status == SS_OK) ss_sim_diag_const(sim);
-  if (status == SS_OK) status = model_analyze(sim->m, err, err_sz);
-  if (status == SS_OK && sim->set.mover.method == SS_METHOD_PROJECT &&
-      ss_sim_model_bvh(sim->m, sim->m->body_rest) != SS_OK)
+/* The rest of the model: anchors bound, vertex kinds, masses, hinges,
+ * pattern, energy layout, symbolic analysis, rest orientation. */
+static int model_build(ss_model *m, const ss_sim_mesh *skin, char *err, int err_sz) {
+  int status = ss_model_bind(m, skin, m->body_rest, err, err_sz);
+  if (status == SS_OK) status = ss_model_build_kinds(m, err, err_sz);
+  if (status == SS_OK) status = ss_model_build_pattern(m, err, err_sz);
+  if (status == SS_OK) status = ss_model_energy_layout(m, err, err_sz);
+  if (status == SS_OK) ss_model_diag_const(m);
+  if (status == SS_OK) status = model_analyze(m, err, err_sz);
+  if (status == SS_OK && m->set.mover.method == SS_METHOD_PROJECT &&
+      ss_sim_model_bvh(m, m->body_rest) != SS_OK)
     status = ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for the body's BVH");
+  if (status == SS_OK) status = ss_model_orient_init(m, err, err_sz);
   return status;
+}
+
+/* A model with the material of `set` (its model settings) on m's structure:
+ * m's arrays copied (the same counts, so the same layout), the material
+ * rebuilt; the body topology, rest BVH and symbolic analysis borrowed from
+ * m's owner, whose reference it holds. Hinge weights scale with the bending
+ * stiffness (bending turned on or off changes the structure: refused by
+ * ss_sim_set_settings before). */
+static int model_derive(const ss_model *m, const ss_sim_settings *set, ss_model **out, char *err,
+                        int err_sz) {
+  ss_model *d = malloc(sizeof *d);
+  if (!d) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  memcpy(d, m, sizeof *d);
+  atomic_init(&d->refs, 1);
+  d->cc_started = 0; /* the analysis is the owner's */
+  d->sym_qn = d->sym_newton = NULL;
+  d->shape = m->shape ? m->shape : (ss_model *)m;
+  d->sym_qn = d->shape->sym_qn;
+  d->sym_newton = d->shape->sym_newton;
+  if (model_arena(d) != SS_OK) {
+    free(d);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
+  }
+  memcpy(d->arena, m->arena, m->arena_bytes);
+  model_retain(d->shape);
+  const double old_bending = m->set.bending;
+  const unsigned char *mask = d->mask;
+  d->set = *set;
+  d->set.face_mask = mask;
+  ss_model_build_material(d);
+  ss_model_energy_springs(d); /* k_face into the membrane records */
+  if (old_bending > 0.0 && d->set.bending != old_bending)
+    for (int e = 0; e < d->nhinge; e++) d->hinge_weight[e] = d->hinge_weight[e] / old_bending * d->set.bending;
+  ss_model_diag_const(d);
+  *out = d;
+  return SS_OK;
 }
 
 /* 0 if the model settings of set are the model's (a sim on a shared model
@@ -211,7 +253,7 @@ static int model_settings_agree(const ss_model *m, const ss_sim_settings *set, c
   int n = 0;
   const ss_setting *table = ss_settings_table(&n);
   for (int i = 0; i < n; i++)
-    if (ss_sim_in_model(table[i].offset) && !ss_setting_equal(&table[i], &m->set, set))
+    if (table[i].scope == SS_SCOPE_MODEL && !ss_setting_equal(&table[i], &m->set, set))
       return ss_fail(err, err_sz, SS_E_ARG,
                      "setting %s is %g, the model's is %g: sims on one model share its material "
                      "(ss_sim_create_from_model)",
@@ -307,9 +349,9 @@ void ss_sim_destroy(ss_sim *sim) {
 }
 
 /* A sim on model m, whose reference it takes over (released on failure):
- * the model built first if `build`, the solver made if `solver`. */
-static int sim_make(ss_sim **out, ss_model *m, const ss_sim_settings *set,
-                    const ss_sim_mesh *skin, int build, int solver, char *err, int err_sz) {
+ * its data and its solver. */
+static int sim_make(ss_sim **out, const ss_model *m, const ss_sim_settings *set, char *err,
+                    int err_sz) {
   ss_sim *sim = calloc(1, sizeof *sim);
   if (!sim) {
     model_release(m);
@@ -318,10 +360,8 @@ static int sim_make(ss_sim **out, ss_model *m, const ss_sim_settings *set,
   sim->m = m;
   sim->set = *set;
   sim->set.face_mask = m->mask;
-  int status = build ? model_build(sim, skin, err, err_sz) : SS_OK;
-  if (status == SS_OK) status = sim_data(sim, err, err_sz);
-  if (status == SS_OK && build) status = ss_sim_orient_init(sim);
-  if (status == SS_OK && solver) status = sim_solver(sim, err, err_sz);
+  int status = sim_data(sim, err, err_sz);
+  if (status == SS_OK) status = sim_solver(sim, err, err_sz);
   if (status != SS_OK) {
     ss_sim_destroy(sim);
     return status;
@@ -330,14 +370,11 @@ static int sim_make(ss_sim **out, ss_model *m, const ss_sim_settings *set,
   return SS_OK;
 }
 
-/* Checks the arguments of ss_sim_create / ss_model_create and creates a sim
- * with its own model (its solver only if `solver`). */
-static int create(ss_sim **out, int body_nvert, const double *body_rest, int body_nface,
-                  const int *body_faces, const ss_sim_mesh *skin, const ss_sim_settings *settings,
-                  int solver, char *err, int err_sz) {
+/* Checks the arguments of ss_sim_create / ss_model_create and builds a model. */
+static int model_create(ss_model **out, int body_nvert, const double *body_rest, int body_nface,
+                        const int *body_faces, const ss_sim_mesh *skin,
+                        const ss_sim_settings *set, char *err, int err_sz) {
   if (!body_rest || !body_faces) return ss_fail(err, err_sz, SS_E_ARG, "body positions or faces are NULL");
-  ss_sim_settings def = ss_sim_default_settings();
-  const ss_sim_settings *set = settings ? settings : &def;
   int status = ss_settings_check(set, err, err_sz);
   if (status != SS_OK) return status;
   status = ss_mesh_check(body_nvert, body_rest, body_nface, body_faces, err, err_sz);
@@ -349,8 +386,13 @@ static int create(ss_sim **out, int body_nvert, const double *body_rest, int bod
   }
   ss_model *m = NULL;
   status = model_new(&m, body_nvert, body_rest, body_nface, body_faces, skin, set, err, err_sz);
-  if (status != SS_OK) return status;
-  return sim_make(out, m, set, skin, 1, solver, err, err_sz);
+  if (status == SS_OK) status = model_build(m, skin, err, err_sz);
+  if (status != SS_OK) {
+    model_release(m);
+    return status;
+  }
+  *out = m;
+  return SS_OK;
 }
 
 int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int body_nface,
@@ -358,7 +400,12 @@ int ss_sim_create(ss_sim **out, int body_nvert, const double *body_rest, int bod
                   const ss_sim_settings *settings, char *err, int err_sz) {
   if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
   *out = NULL;
-  return create(out, body_nvert, body_rest, body_nface, body_faces, skin, settings, 1, err, err_sz);
+  ss_sim_settings def = ss_sim_default_settings();
+  const ss_sim_settings *set = settings ? settings : &def;
+  ss_model *m = NULL;
+  int status = model_create(&m, body_nvert, body_rest, body_nface, body_faces, skin, set, err, err_sz);
+  if (status != SS_OK) return status;
+  return sim_make(out, m, set, err, err_sz);
 }
 
 int ss_model_create(ss_model **out, int body_nvert, const double *body_rest, int body_nface,
@@ -366,18 +413,12 @@ int ss_model_create(ss_model **out, int body_nvert, const double *body_rest, int
                     const ss_sim_settings *settings, char *err, int err_sz) {
   if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
   *out = NULL;
-  /* built on a sim without a solver (the rest orientation needs anchors at
-   * rest in the body's frames), which then lets it go */
-  ss_sim *sim = NULL;
-  int status = create(&sim, body_nvert, body_rest, body_nface, body_faces, skin, settings, 0, err, err_sz);
-  if (status != SS_OK) return status;
-  sim->m->refs++;
-  *out = sim->m;
-  ss_sim_destroy(sim);
-  return SS_OK;
+  ss_sim_settings def = ss_sim_default_settings();
+  return model_create(out, body_nvert, body_rest, body_nface, body_faces, skin,
+                      settings ? settings : &def, err, err_sz);
 }
 
-int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_settings *settings,
+int ss_sim_create_from_model(ss_sim **out, const ss_model *model, const ss_sim_settings *settings,
                              char *err, int err_sz) {
   if (!out) return ss_fail(err, err_sz, SS_E_ARG, "out is NULL");
   *out = NULL;
@@ -386,10 +427,19 @@ int ss_sim_create_from_model(ss_sim **out, ss_model *model, const ss_sim_setting
   int status = ss_settings_check(set, err, err_sz);
   if (status == SS_OK) status = model_settings_agree(model, set, err, err_sz);
   if (status != SS_OK) return status;
-  model->refs++;
-  return sim_make(out, model, set, NULL, 0, 1, err, err_sz);
+  model_retain(model);
+  return sim_make(out, model, set, err, err_sz);
 }
 
-ss_model *ss_sim_model(const ss_sim *sim) { return sim ? sim->m : NULL; }
+int ss_sim_rematerial(ss_sim *sim, const ss_sim_settings *set, char *err, int err_sz) {
+  ss_model *d = NULL;
+  int status = model_derive(sim->m, set, &d, err, err_sz);
+  if (status != SS_OK) return status;
+  model_release(sim->m);
+  sim->m = d;
+  return SS_OK;
+}
+
+const ss_model *ss_sim_model(const ss_sim *sim) { return sim ? sim->m : NULL; }
 int ss_model_body_nvert(const ss_model *model) { return model->nbvert; }
 int ss_model_body_nface(const ss_model *model) { return model->nbface; }

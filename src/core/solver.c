@@ -46,7 +46,7 @@ static int after_line_search(ss_solve *s, int ls, double *best_res, int *roundof
     return 0;
   }
   if (ls == 0) {
-    ss_sim_stats *st = sim->st;
+    ss_sim_stats *st = s->st;
     st->residual = ss_sim_residual(sim, s->g); /* g is at xd */
     st->energy = s->e;
     if (st->residual <= sim->set.tol)
@@ -73,16 +73,17 @@ static int squeezed(const ss_sim *sim, const double *xfull) {
   return 0;
 }
 
-int ss_solver_solve(ss_sim *sim, double *xd, int *converged, int *stalled, int *nonfinite) {
+int ss_solver_solve(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, double *xd, int *converged,
+                    int *stalled, int *nonfinite) {
   const ss_solver_ops *ops = solver_ops(sim);
-  ss_sim_stats *st = sim->st;
-  ss_solve s = {.sim = sim, .xd = xd, .g = sim->gd, .dir = sim->dir, .xt = sim->xt, .gt = sim->gt, .e = 0.0, .step_memory = ops->step_memory, .alpha0 = 1.0, .skip_exact = 0, .backoff = 1};
+  ss_solve s = {.sim = sim, .in = in, .st = st, .xd = xd, .g = sim->gd, .dir = sim->dir, .xt = sim->xt,
+                .gt = sim->gt, .e = 0.0, .step_memory = ops->step_memory, .alpha0 = 1.0};
   *converged = *stalled = *nonfinite = 0;
   int roundoff_steps = 0;
   double best_res = INFINITY;
   int status = ops->begin(&s);
   if (status != SS_OK) return status;
-  s.e = ss_sim_energy_at(sim, xd, s.g);
+  s.e = ss_sim_energy_at(sim, st, xd, s.g);
   ss_sim_normals_begin(sim, sim->xfull_t); /* xfull_t: xd scattered by the evaluation */
   double res = ss_sim_residual(sim, s.g);
   if (!isfinite(s.e) || !isfinite(res)) {

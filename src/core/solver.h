@@ -16,6 +16,8 @@
 /* One solve's state, owned by the loop; the solver reads and may update it. */
 typedef struct ss_solve {
   ss_sim *sim;
+  const ss_substep *in; /* the substep being solved (its h) */
+  ss_sim_stats *st;     /* its step's counters */
   double *xd;      /* (ndof x 3) the iterate */
   double *g;       /* (ndof x 3) the gradient of E at xd */
   double *dir;     /* (ndof x 3) the direction a solver writes */
@@ -25,11 +27,11 @@ typedef struct ss_solve {
   double e;        /* E at xd */
   int step_memory; /* the line search starts where the last one ended (ss_solver_ops) */
   double alpha0;   /* with step_memory: the next search's first trial step, in (0, 1] */
-  int depth_model; /* quasi-Newton: dir comes from the constant matrix and fewer curvature pairs
-                      than the history holds, which have not learned the depth springs: the
-                      search's first trial is at most their model's (line_search.c) */
-  int skip_exact;  /* Newton: iterations left before the exact Hessian is tried again */
-  int backoff;     /* Newton: the next wait after a failed exact step */
+  int terms_first_trial; /* set by a direction from a matrix that has not learned every
+                            term (quasi-Newton: the constant matrix and fewer curvature pairs
+                            than the history holds): the search's first trial is at most the
+                            one the energy terms give (ss_sim_energy_first_trial) */
+  double own[4];   /* the solver's own state in this solve (its begin() sets it) */
 } ss_solve;
 
 /* What direction() returns besides an error code (< 0). */

@@ -11,7 +11,7 @@
  * Longva et al. 2023, "Pitfalls of projection"). If even that step finds no
  * decrease, a Jacobi-scaled gradient step is taken. H is a 3n x 3n symmetric matrix with its
  * upper triangle stored in compressed columns; its pattern and the map from
- * element entries to slots are built once (sim_pattern.c), cholmod_analyze
+ * element entries to slots are built once (model_pattern.c), cholmod_analyze
  * (fill-reducing ordering, symbolic factor) runs once per model (each sim
  * copies its symbolic factor), then
  * cholmod_factorize per iteration and cholmod_solve2 with reused workspace.
@@ -74,9 +74,10 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
                    cc->status);
   /* One factorisation and solve now, on the constant part, so that the
    * factor's values and the solve workspace are allocated before stepping. */
-  ss_sim_energy_begin(sim, sim->set.dt / sim->set.substeps);
+  const double h = sim->set.dt / sim->set.substeps;
+  ss_sim_energy_begin(sim, h);
   ss_sim_constant_hessian(sim, sim->h_const);
-  sim->h_const_h = sim->h;
+  sim->h_const_h = h;
   memcpy(sim->H->x, sim->h_const, (size_t)sim->m->nnz3 * sizeof(double));
   if (!cholmod_factorize(sim->H, sim->LH, cc) || cc->status != CHOLMOD_OK ||
       !cholmod_solve2(CHOLMOD_A, sim->LH, sim->nb, NULL, &sim->nx, NULL, &sim->ny, &sim->ne, cc))
@@ -88,10 +89,10 @@ int ss_solver_newton_create(ss_sim *sim, char *err, int err_sz) {
 /* Newton direction dir = -H^-1 g at xd with the exact (exact != 0) or the
  * per-element projected elastic Hessian. Returns 1 on success, 0 if H is not
  * positive definite, or SS_E_SOLVER (< 0) if CHOLMOD failed. */
-static int newton_direction(ss_sim *sim, const double *xd, const double *g, double *dir, int exact) {
+static int newton_direction(ss_sim *sim, ss_sim_stats *st, const double *xd, const double *g, double *dir,
+                            int exact) {
   int n3 = 3 * sim->m->ndof;
   cholmod_common *cc = &sim->cc;
-  ss_sim_stats *st = sim->st;
   double t0 = ss_now_ms();
   ss_sim_scatter(sim, xd, sim->xfull_t); /* a failed line search left a trial point there */
   double *vals = sim->H->x;
@@ -114,11 +115,21 @@ static int newton_direction(ss_sim *sim, const double *xd, const double *g, doub
   return 1;
 }
 
+/* Newton's own state in a solve (ss_solve's `own`). */
+typedef struct newton_state {
+  int skip_exact; /* iterations left before the exact Hessian is tried again */
+  int backoff;    /* the next wait after a failed exact step */
+} newton_state;
+_Static_assert(sizeof(newton_state) <= sizeof(((ss_solve *)0)->own), "newton_state fits ss_solve's own");
+
+static newton_state *own(ss_solve *s) { return (newton_state *)(void *)s->own; }
+
 static int newton_begin(ss_solve *s) {
   ss_sim *sim = s->sim;
-  if (sim->h_const_h != sim->h) {
+  *own(s) = (newton_state){.skip_exact = 0, .backoff = 1};
+  if (sim->h_const_h != s->in->h) {
     ss_sim_constant_hessian(sim, sim->h_const);
-    sim->h_const_h = sim->h;
+    sim->h_const_h = s->in->h;
   }
   return SS_OK;
 }
@@ -126,8 +137,9 @@ static int newton_begin(ss_solve *s) {
 /* A failed exact step: wait 1, 2, 4, ... (at most 64) iterations before the
  * exact Hessian is tried again. */
 static void exact_failed(ss_solve *s) {
-  s->skip_exact = s->backoff;
-  s->backoff = s->backoff < 64 ? 2 * s->backoff : s->backoff;
+  newton_state *ns = own(s);
+  ns->skip_exact = ns->backoff;
+  ns->backoff = ns->backoff < 64 ? 2 * ns->backoff : ns->backoff;
 }
 
 /* Projection on demand (in the spirit of Longva et al. 2023): the exact
@@ -141,16 +153,16 @@ static int newton_dir(ss_solve *s, int attempt) {
   int d;
   switch (attempt) {
   case 0:
-    if (s->skip_exact > 0) {
-      s->skip_exact--;
+    if (own(s)->skip_exact > 0) {
+      own(s)->skip_exact--;
       return SS_DIR_SKIP;
     }
-    d = newton_direction(sim, s->xd, s->g, s->dir, 1);
+    d = newton_direction(sim, s->st, s->xd, s->g, s->dir, 1);
     if (d < 0) return d;
     if (d == 0) exact_failed(s);
     return d > 0 ? SS_DIR_OK : SS_DIR_SKIP;
   case 1:
-    d = newton_direction(sim, s->xd, s->g, s->dir, 0);
+    d = newton_direction(sim, s->st, s->xd, s->g, s->dir, 0);
     if (d < 0) return d;
     return d > 0 ? SS_DIR_OK : SS_DIR_SKIP;
   case 2:
@@ -170,7 +182,7 @@ static int newton_dir(ss_solve *s, int attempt) {
 static void newton_tried(ss_solve *s, int attempt, int ls) {
   if (attempt != 0) return;
   if (ls != 0)
-    s->backoff = 1;
+    own(s)->backoff = 1;
   else
     exact_failed(s);
 }

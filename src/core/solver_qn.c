@@ -7,7 +7,7 @@
  * matrix close to the true Hessian:
  *   A = M/h^2 (+ damping) + anchor springs + (mu + lam) * cotangent Laplacian,
  * every term of which is isotropic, so A = L (x) I3 with L the scalar n x n
- * matrix on the same pattern (sim_pattern.c). L is factored by CHOLMOD once
+ * matrix on the same pattern (model_pattern.c). L is factored by CHOLMOD once
  * per topology and time step (analysis once per model, sim_internal.h
  * "symbolic analysis"; numeric factorisation when h changes), and each
  * application of A^-1 is one cholmod_solve2 with three right-hand sides
@@ -36,15 +36,15 @@
 #include "ss_err.h"
 
 /* Factors L for the current h (sim->mi set by ss_sim_energy_begin). */
-static int factor_scalar(ss_sim *sim) {
+static int factor_scalar(ss_sim *sim, double h, ss_sim_stats *st) {
   ss_sim_scalar_matrix(sim, sim->A->x);
   int ok = cholmod_factorize(sim->A, sim->LA, &sim->cc);
-  if (sim->st) sim->st->factorizations++;
+  if (st) st->factorizations++;
   if (!ok || sim->cc.status != CHOLMOD_OK) {
     sim->a_h = 0.0;
     return SS_E_SOLVER;
   }
-  sim->a_h = sim->h;
+  sim->a_h = h;
   return SS_OK;
 }
 
@@ -180,8 +180,9 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
                    cc->status);
   /* Factor and solve once now: the factor and the solve workspace are then
    * allocated before stepping. */
-  ss_sim_energy_begin(sim, sim->set.dt / sim->set.substeps);
-  if (factor_scalar(sim) != SS_OK || solve_columns(sim, 0, 3, &sim->qx, &sim->qy, &sim->qe, cc) != SS_OK)
+  const double h = sim->set.dt / sim->set.substeps;
+  ss_sim_energy_begin(sim, h);
+  if (factor_scalar(sim, h, NULL) != SS_OK || solve_columns(sim, 0, 3, &sim->qx, &sim->qy, &sim->qe, cc) != SS_OK)
     return ss_fail(err, err_sz, SS_E_SOLVER, "CHOLMOD factorisation of the quasi-Newton matrix failed (status %d)",
                    cc->status);
 #ifdef _OPENMP
@@ -204,10 +205,10 @@ int ss_solver_qn_create(ss_sim *sim, char *err, int err_sz) {
 
 static int qn_begin(ss_solve *s) {
   ss_sim *sim = s->sim;
-  if (sim->a_h != sim->h) {
+  if (sim->a_h != s->in->h) {
     double t = ss_now_ms();
-    int status = factor_scalar(sim);
-    sim->st->factor_ms += ss_now_ms() - t;
+    int status = factor_scalar(sim, s->in->h, s->st);
+    s->st->factor_ms += ss_now_ms() - t;
     if (status != SS_OK) return status;
   }
   sim->lb_count = 0;
@@ -220,7 +221,7 @@ static int preconditioned_gradient(ss_solve *s) {
   int n3 = 3 * s->sim->m->ndof;
   if (apply_inverse(s->sim, s->g, s->dir) != SS_OK) return SS_E_SOLVER;
   for (int i = 0; i < n3; i++) s->dir[i] = -s->dir[i];
-  s->depth_model = 1;
+  s->terms_first_trial = 1;
   return SS_DIR_OK;
 }
 
@@ -229,7 +230,7 @@ static int preconditioned_gradient(ss_solve *s) {
 static int lbfgs_direction(ss_solve *s) {
   ss_sim *sim = s->sim;
   int n3 = 3 * sim->m->ndof, m = sim->lb_m;
-  ss_sim_stats *st = sim->st;
+  ss_sim_stats *st = s->st;
   const double *g = s->g;
   double *dir = s->dir;
   double t1 = ss_now_ms();
@@ -238,7 +239,7 @@ static int lbfgs_direction(ss_solve *s) {
    * same operations in the same order as two separate loops: same bits,
    * half the memory traffic). */
   int count = sim->lb_count;
-  s->depth_model = count < m;
+  s->terms_first_trial = count < m;
   double next = 0.0;
   /* the passes on the sim's threads, their dots summed by blocks (par.h) */
   const int nt = sim->nthread;

@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 
 /* Per-face data of the body in its current pose, computed once per frame
  * (ss_frames_update) and then shared read-only by every anchor update. */

@@ -3,7 +3,7 @@
 #ifndef SKIN_SIM_GEODESIC_H
 #define SKIN_SIM_GEODESIC_H
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h" /* the lab is built with the core and reads its topology directly */
 
 /* Scratch for surface distances on one topology. */
 typedef struct ss_geodesic ss_geodesic;

@@ -10,7 +10,7 @@
  *   faces        int32  (nface x 3)
  *   positions    double (frames x nvert x 3)
  *   checksum     uint64: FNV-1a of every byte before it */
-#include "skin_sim/ss_reference.h"
+#include "ss_reference.h"
 
 #include <errno.h>
 #include <math.h>
@@ -22,7 +22,7 @@
 #include <unistd.h>
 
 #include "skin_sim/ss_settings.h"
-#include "skin_sim/ss_track.h"
+#include "ss_track.h"
 #include "bvh.h"
 #include "ss_err.h"
 

@@ -2,7 +2,7 @@
  * measured (see ss_run.h). The
  * measurements are taken outside the timed step and never change the
  * simulation: a run with and without them gives the same bits. */
-#include "skin_sim/ss_run.h"
+#include "ss_run.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -56,7 +56,7 @@
  *           capsules overlapping where they join. Built and posed in
  *           scene_quadruped.c.
  */
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -5,51 +5,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-void ss_mb_free(ss_mb *mb) {
-  free(mb->pos);
-  free(mb->tri);
-  mb->pos = NULL;
-  mb->tri = NULL;
-  mb->nv = mb->nf = mb->cap_v = mb->cap_f = 0;
-}
-
-int ss_mb_vert(ss_mb *mb, double x, double y, double z) {
-  if (mb->failed) return 0;
-  if (mb->nv == mb->cap_v) {
-    int cap = mb->cap_v ? 2 * mb->cap_v : 1024;
-    double *p = realloc(mb->pos, sizeof(double) * 3 * (size_t)cap);
-    if (!p) {
-      mb->failed = 1;
-      return 0;
-    }
-    mb->pos = p;
-    mb->cap_v = cap;
-  }
-  double *p = mb->pos + 3 * mb->nv;
-  p[0] = x;
-  p[1] = y;
-  p[2] = z;
-  return mb->nv++;
-}
-
-void ss_mb_tri(ss_mb *mb, int a, int b, int c) {
-  if (mb->failed) return;
-  if (mb->nf == mb->cap_f) {
-    int cap = mb->cap_f ? 2 * mb->cap_f : 2048;
-    int *t = realloc(mb->tri, sizeof(int) * 3 * (size_t)cap);
-    if (!t) {
-      mb->failed = 1;
-      return;
-    }
-    mb->tri = t;
-    mb->cap_f = cap;
-  }
-  int *t = mb->tri + 3 * mb->nf++;
-  t[0] = a;
-  t[1] = b;
-  t[2] = c;
-}
-
 /* ------------------------------------------------------------- capsule */
 
 int ss_capsule_rings(double r, double hc, double h) {

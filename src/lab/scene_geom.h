@@ -6,18 +6,7 @@
 
 #define SS_PI 3.14159265358979323846
 
-/* A growable mesh: positions (nv x 3) and faces (nf x 3). On allocation
- * failure `failed` is set and further pushes are ignored. */
-typedef struct ss_mb {
-  double *pos;
-  int *tri;
-  int nv, nf, cap_v, cap_f;
-  int failed;
-} ss_mb;
-
-void ss_mb_free(ss_mb *mb);
-int ss_mb_vert(ss_mb *mb, double x, double y, double z); /* returns the new index */
-void ss_mb_tri(ss_mb *mb, int a, int b, int c);
+#include "ss_mesh_build.h" /* ss_mb: the growable mesh */
 
 /* Capsule of radius r around a cylinder of half-length hc, as a latitude-
  * longitude mesh: two poles, nring rings of nseg vertices (every other ring

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_track.h"
+#include "ss_track.h"
 #include "mover.h"
 #include "snag.h"
 #include "ss_err.h"

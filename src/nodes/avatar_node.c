@@ -32,7 +32,7 @@
  * bad parameter). */
 #include "node_params.h"
 #include "rosc/rosc.h"
-#include "skin_sim/ss_input.h"
+#include "ss_input.h"
 #include "skin_sim/ssa_avatar.h"
 
 #include <math.h>

@@ -37,8 +37,8 @@
  * Parameters: see doc/ros.md and launch/skin.launch. */
 #include "node_params.h"
 #include "rosc/rosc.h"
-#include "skin_sim/ss_budget.h"
-#include "skin_sim/ss_input.h"
+#include "ss_budget.h"
+#include "ss_input.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_sim.h"
 #include "skin_sim/ssa_avatar.h"

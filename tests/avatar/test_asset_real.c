@@ -6,19 +6,13 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
 
 static int exists(const char *p) {
   struct stat st;
   return stat(p, &st) == 0;
-}
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 typedef struct {
@@ -46,11 +40,6 @@ static double bbox_diag(int n, const double *p) {
               (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 
-static int cmp_d(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 static int run_case(const asset_case *c) {
   char err[512] = "";
   ssa_avatar *av = NULL;
@@ -63,9 +52,9 @@ static int run_case(const asset_case *c) {
     ssa_avatar_opts o = ssa_avatar_default_opts();
     o.warn = count_warning;
     o.warn_user = &size_warnings;
-    double t0 = now_s();
+    double t0 = ss_test_now_s();
     st = ssa_avatar_load_asset(&av, c->path, &o, err, sizeof err);
-    loads[k] = now_s() - t0;
+    loads[k] = ss_test_now_s() - t0;
   }
   CHECK_MSG(size_warnings == 5 * c->size_warnings, "%s: %d size warnings in 5 loads", c->path,
             size_warnings);
@@ -80,7 +69,7 @@ static int run_case(const asset_case *c) {
     CHECK_EQ_INT(size_warnings, 0);
     ssa_avatar_destroy(small);
   }
-  qsort(loads, 5, sizeof(double), cmp_d);
+  qsort(loads, 5, sizeof(double), ss_test_cmp_double);
   double t_load = loads[2];
   CHECK_MSG(st == SS_OK, "%s: %s", c->path, err);
   if (st != SS_OK) return 0;
@@ -126,9 +115,9 @@ static int run_case(const asset_case *c) {
     double dur = a->anim_duration[an];
     for (int k = 0; k <= 40; k++) {
       double t = dur * k / 40.0;
-      double p0 = now_s();
+      double p0 = ss_test_now_s();
       CHECK(ssa_avatar_pose_anim(av, an, t, pos) == SS_OK);
-      if (nsample < 512) ptimes[nsample++] = now_s() - p0;
+      if (nsample < 512) ptimes[nsample++] = ss_test_now_s() - p0;
       if (k == 0) memcpy(first, pos, sizeof(double) * 3 * (size_t)av->nvert);
       double dg = bbox_diag(av->nvert, pos);
       CHECK_MSG(dg > 0.5 * diag && dg < 2.0 * diag, "%s: anim %d t %g: size %g, rest size %g",
@@ -165,7 +154,7 @@ static int run_case(const asset_case *c) {
     CHECK(ssa_avatar_pose_anim_toward_rest(av, 0, t, NAN, way) == SS_E_ARG);
     free(way);
   }
-  qsort(ptimes, (size_t)nsample, sizeof(double), cmp_d);
+  qsort(ptimes, (size_t)nsample, sizeof(double), ss_test_cmp_double);
   printf("%-28s v %5d f %5d bones %3d anims %d size %.3g m moved %.3g; medians: load %.1f ms, "
          "pose %.3f ms\n",
          strrchr(c->path, '/') + 1, av->nvert, av->nface, a->nbone_file, a->nanim, diag, max_move,

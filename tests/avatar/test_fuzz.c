@@ -141,8 +141,6 @@ int main(void) {
   fuzz_asset("/usr/share/assimp/models/X/anim_test.x", 40);
   printf("damaged inputs: %d loaded, %d refused with a message, none crashed\n", ok_count,
          err_count);
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  ss_test_remove_dir(dir);
   return ss_test_finish("test_fuzz");
 }

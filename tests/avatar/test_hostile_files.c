@@ -145,8 +145,6 @@ int main(void) {
   ssa_asset *a = NULL;
   CHECK_MSG(ssa_asset_load(&a, p, NULL, err, sizeof err) == SS_OK && a && a->nface == 1, "%s", err);
   ssa_asset_destroy(a);
-  char cmd[600];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  if (system(cmd) != 0) printf("could not remove %s\n", dir);
+  ss_test_remove_dir(dir);
   return ss_test_finish("test_hostile_files");
 }

@@ -7,28 +7,17 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
 
 static void check_mesh(int target, int *nface_out) {
   double *pos = NULL;
   int *faces = NULL, nv = 0, nf = 0;
   char err[256] = "";
-  double t0 = now_s();
+  double t0 = ss_test_now_s();
   CHECK_EQ_INT(ssa_mannequin_mesh(target, &pos, &nv, &faces, &nf, err, sizeof err), SS_OK);
-  double dt = now_s() - t0;
+  double dt = ss_test_now_s() - t0;
   if (!pos) return;
   int req = target > 0 ? target : 5000;
   CHECK_MSG(fabs((double)nf / req - 1.0) < 0.10, "%d triangles for %d requested", nf, req);
@@ -106,9 +95,9 @@ int main(void) {
 
   /* as an avatar */
   ssa_avatar *av = NULL;
-  double t0 = now_s();
+  double t0 = ss_test_now_s();
   CHECK_EQ_INT(ssa_avatar_mannequin(&av, 0, err, sizeof err), SS_OK);
-  double t_make = now_s() - t0;
+  double t_make = ss_test_now_s() - t0;
   if (!av) {
     fprintf(stderr, "%s\n", err);
     return 1;
@@ -192,9 +181,9 @@ int main(void) {
     for (int k = 0; k <= 16; k++) {
       double t = T * k / 16.0;
       CHECK_EQ_INT(ssa_motion_builtin_eval(mi, t, r, q), SS_OK);
-      double a = now_s();
+      double a = ss_test_now_s();
       ssa_avatar_pose_joints(av, q, pos);
-      if (np < 64) ptimes[np++] = now_s() - a;
+      if (np < 64) ptimes[np++] = ss_test_now_s() - a;
       for (int i = 0; i < 3 * av->nvert; i++) {
         nonfinite += !isfinite(pos[i]);
         maxmove = fmax(maxmove, fabs(pos[i] - av->rest_pos[i]));
@@ -255,7 +244,7 @@ int main(void) {
   unlink(tmpl);
   ssa_motion_destroy(m);
   ssa_motion_destroy(m2);
-  qsort(ptimes, (size_t)np, sizeof(double), cmp_d);
+  qsort(ptimes, (size_t)np, sizeof(double), ss_test_cmp_double);
   printf("mannequin avatar: %d vertices, %d triangles, %d links; made (mesh + heat weights) in "
          "%.0f ms; pose median %.3f ms\n",
          av->nvert, av->nface, r->nlink, 1e3 * t_make, 1e3 * ptimes[np / 2]);

@@ -123,8 +123,6 @@ int main(void) {
   } else {
     fprintf(stderr, "%s\n", err);
   }
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  ss_test_remove_dir(dir);
   return ss_test_finish("test_resolve");
 }

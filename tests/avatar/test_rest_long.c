@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_run.h"
+#include "ss_run.h"
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
 

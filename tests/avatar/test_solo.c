@@ -10,17 +10,6 @@
 #include "skin_sim/ssa_avatar.h"
 #include "ss_test.h"
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_d(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 int main(void) {
   char root[1024], pkg[1100], urdf[1200], pp[2400], err[1024] = "";
   snprintf(root, sizeof root, "%s/data/urdf-solo-quadruped", SS_SHARED_DIR);
@@ -53,9 +42,9 @@ int main(void) {
   for (int k = 0; k < 7; k++) {
     ssa_avatar_destroy(av);
     av = NULL;
-    double t0 = now_s();
+    double t0 = ss_test_now_s();
     CHECK_EQ_INT(ssa_avatar_load_urdf(&av, urdf, NULL, &o, err, sizeof err), SS_OK);
-    times[k] = now_s() - t0;
+    times[k] = ss_test_now_s() - t0;
   }
   if (!av) {
     fprintf(stderr, "%s\n", err);
@@ -82,9 +71,9 @@ int main(void) {
   CHECK_EQ_INT(ssa_robot_set_joints(r, q, 8, names, vals, err, sizeof err), SS_OK);
   double ptimes[21];
   for (int k = 0; k < 21; k++) {
-    double t0 = now_s();
+    double t0 = ss_test_now_s();
     CHECK_EQ_INT(ssa_avatar_pose_joints(av, q, pos), SS_OK);
-    ptimes[k] = now_s() - t0;
+    ptimes[k] = ss_test_now_s() - t0;
   }
   /* each vertex = link pose x link-at-rest^-1 x rest position (rigid links) */
   double *lw = malloc(sizeof(double) * 16 * (size_t)r->nlink);
@@ -114,8 +103,8 @@ int main(void) {
   /* the feet are rigid on FL_FOOT etc.: a foot's vertices end below the body when legs bend */
   int foot = ssa_robot_link_index(r, "FL_FOOT");
   CHECK(foot >= 0);
-  qsort(times, 7, sizeof(double), cmp_d);
-  qsort(ptimes, 21, sizeof(double), cmp_d);
+  qsort(times, 7, sizeof(double), ss_test_cmp_double);
+  qsort(ptimes, 21, sizeof(double), ss_test_cmp_double);
   printf("solo: %d links, %d joints, %d visuals, %d vertices, %d triangles; load median %.1f ms, "
          "pose median %.3f ms\n",
          r->nlink, r->njoint, r->nvisual, av->nvert, av->nface, 1e3 * times[3], 1e3 * ptimes[10]);

@@ -1,7 +1,7 @@
 /* ss_budget.h: the real-time budget lowers substeps, then iterations, until a
  * step fits; raises them again when there is time; does not hunt between
  * levels under a steady load; and goes back to the settings without a budget. */
-#include "skin_sim/ss_budget.h"
+#include "ss_budget.h"
 #include "ss_test.h"
 
 /* A machine where a step costs unit ms per unit of work (plus noise). */

@@ -15,8 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "skin_sim/ss_run.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_run.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
 #include "walk.h"

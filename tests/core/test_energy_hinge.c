@@ -11,8 +11,6 @@
 
 static const double PI = 3.14159265358979323846;
 
-static double randu(unsigned long long *rng) { return 2.0 * ss_test_rand(rng) - 1.0; }
-
 /* Hinge along the x axis from (0,0,0) to (1,0,0); wing A in the xy-plane
  * (normal +z); wing B turned by phi about the edge (phi > 0: down, away from
  * the normal, convex). */
@@ -22,17 +20,9 @@ static void make_hinge(double phi, double x[12]) {
 }
 
 static void random_rigid(unsigned long long *rng, const double *in, double *out, int npts) {
-  double q[4], len;
-  do {
-    len = 0.0;
-    for (int i = 0; i < 4; i++) q[i] = randu(rng), len += q[i] * q[i];
-  } while (len < 0.1 || len > 1.0);
-  len = sqrt(len);
-  double w = q[0] / len, a = q[1] / len, b = q[2] / len, c = q[3] / len;
-  double r[9] = {1 - 2 * (b * b + c * c), 2 * (a * b - w * c),     2 * (a * c + w * b),
-                 2 * (a * b + w * c),     1 - 2 * (a * a + c * c), 2 * (b * c - w * a),
-                 2 * (a * c - w * b),     2 * (b * c + w * a),     1 - 2 * (a * a + b * b)};
-  double t[3] = {randu(rng), randu(rng), randu(rng)};
+  double r[9];
+  ss_test_random_rotation(rng, r);
+  double t[3] = {ss_test_randu(rng), ss_test_randu(rng), ss_test_randu(rng)};
   for (int p = 0; p < npts; p++)
     for (int i = 0; i < 3; i++)
       out[3 * p + i] = r[3 * i] * in[3 * p] + r[3 * i + 1] * in[3 * p + 1] +
@@ -82,7 +72,7 @@ static void fd_gradient(const double x0[12], double theta0, double weight, doubl
 
 static void random_hinge(unsigned long long *rng, double x[12]) {
   for (;;) {
-    for (int i = 0; i < 12; i++) x[i] = randu(rng);
+    for (int i = 0; i < 12; i++) x[i] = ss_test_randu(rng);
     /* Keep wings away from degenerate for the derivative checks. */
     double e[3], a[3], b[3], na[3], nb[3];
     for (int i = 0; i < 3; i++) e[i] = x[3 + i] - x[i], a[i] = x[6 + i] - x[i], b[i] = x[9 + i] - x[i];
@@ -101,7 +91,7 @@ static void test_derivatives(unsigned long long *rng) {
     random_hinge(rng, x);
     double theta = ss_hinge_angle(x);
     double weight = 0.5 + ss_test_rand(rng);
-    double theta0 = randu(rng) * 3.0;
+    double theta0 = ss_test_randu(rng) * 3.0;
     char what[64];
     snprintf(what, sizeof what, "random #%d", trial);
     fd_gradient(x, theta0, weight, 1e-6, 1e-7, what);

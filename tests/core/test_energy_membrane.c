@@ -18,8 +18,6 @@ static const double MU = 3.0, LAM = 7.0;
  * the compression-soft one (main runs them for both). */
 static double COMP = 1.0;
 
-static double randu(unsigned long long *rng) { return 2.0 * ss_test_rand(rng) - 1.0; }
-
 static double norm_inf(const double *a, int n) {
   double m = 0.0;
   for (int i = 0; i < n; i++) m = fmax(m, fabs(a[i]));
@@ -30,21 +28,6 @@ static int all_finite(const double *a, int n) {
   for (int i = 0; i < n; i++)
     if (!isfinite(a[i])) return 0;
   return 1;
-}
-
-/* A random rotation matrix (row-major) from a random unit quaternion. */
-static void random_rotation(unsigned long long *rng, double r[9]) {
-  double q[4], len = 0.0;
-  do {
-    len = 0.0;
-    for (int i = 0; i < 4; i++) q[i] = randu(rng), len += q[i] * q[i];
-  } while (len < 0.1 || len > 1.0);
-  len = sqrt(len);
-  double w = q[0] / len, x = q[1] / len, y = q[2] / len, z = q[3] / len;
-  double m[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
-                 2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-                 2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
-  memcpy(r, m, sizeof m);
 }
 
 static void rotate_points(const double r[9], const double t[3], const double *in, double *out,
@@ -66,7 +49,7 @@ static double min_eigenvalue(const double *m, int n) {
 /* A random, reasonably shaped rest triangle, anywhere, any orientation. */
 static void random_rest(unsigned long long *rng, double rest[9]) {
   for (;;) {
-    for (int i = 0; i < 9; i++) rest[i] = randu(rng);
+    for (int i = 0; i < 9; i++) rest[i] = ss_test_randu(rng);
     double dm[4], area;
     if (ss_membrane_rest(rest, rest + 3, rest + 6, dm, &area) == 0 && area > 0.1) return;
   }
@@ -91,7 +74,7 @@ static void make_current(unsigned long long *rng, const double rest[9], int kind
   switch (kind) {
   case RANDOM:
     for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 2; j++) a[i][j] += 0.5 * randu(rng);
+      for (int j = 0; j < 2; j++) a[i][j] += 0.5 * ss_test_randu(rng);
     break;
   case NEAR_DEGENERATE: break;
   case FLIPPED: a[1][1] = -0.8, a[0][1] = 0.3; break;
@@ -110,8 +93,8 @@ static void make_current(unsigned long long *rng, const double rest[9], int kind
     local[7] = t * e1[1] + 1e-8 * rest_h * e1[0] / sqrt(len2);
     local[8] = 0.0;
   }
-  double r[9], tr[3] = {randu(rng), randu(rng), randu(rng)};
-  random_rotation(rng, r);
+  double r[9], tr[3] = {ss_test_randu(rng), ss_test_randu(rng), ss_test_randu(rng)};
+  ss_test_random_rotation(rng, r);
   rotate_points(r, tr, local, x, 3);
 }
 
@@ -157,10 +140,11 @@ static void test_uniform_scaling(unsigned long long *rng) {
   const double scales[] = {0.1, 0.5, 0.9, 1.0, 1.1, 2.0, 10.0};
   double alpha = 1.0 + MU / LAM;
   for (int trial = 0; trial < 10; trial++) {
-    double rest[9], dm[4], area, x[9], r[9], t[3] = {randu(rng), randu(rng), randu(rng)};
+    double rest[9], dm[4], area, x[9], r[9],
+        t[3] = {ss_test_randu(rng), ss_test_randu(rng), ss_test_randu(rng)};
     random_rest(rng, rest);
     ss_membrane_rest(rest, rest + 3, rest + 6, dm, &area);
-    random_rotation(rng, r);
+    ss_test_random_rotation(rng, r);
     for (size_t k = 0; k < sizeof scales / sizeof scales[0]; k++) {
       double s = scales[k], scaled[9];
       for (int i = 0; i < 9; i++) scaled[i] = s * rest[i];
@@ -306,7 +290,7 @@ static void test_projection_identity_when_psd(unsigned long long *rng) {
     ss_membrane_rest(rest, rest + 3, rest + 6, dm, &area);
     double s = 1.0 + 0.05 * ss_test_rand(rng), scaled[9];
     for (int i = 0; i < 9; i++) scaled[i] = s * rest[i];
-    random_rotation(rng, r);
+    ss_test_random_rotation(rng, r);
     rotate_points(r, t, scaled, x, 3);
     double h[81], hraw[81];
     ss_membrane_eval(x, dm, area, MU, LAM, COMP, NULL, h);
@@ -329,11 +313,11 @@ static void test_projection_identity_when_psd(unsigned long long *rng) {
  * and transform the gradient and Hessian covariantly. */
 static void test_rigid_invariance(unsigned long long *rng) {
   for (int trial = 0; trial < 50; trial++) {
-    double rest[9], dm[4], area, x[9], y[9], r[9], t[3] = {randu(rng), randu(rng), randu(rng)};
+    double rest[9], dm[4], area, x[9], y[9], r[9], t[3] = {ss_test_randu(rng), ss_test_randu(rng), ss_test_randu(rng)};
     random_rest(rng, rest);
     ss_membrane_rest(rest, rest + 3, rest + 6, dm, &area);
     make_current(rng, rest, trial % 2 ? RANDOM : STRETCH10, x);
-    random_rotation(rng, r);
+    ss_test_random_rotation(rng, r);
     if (trial % 3 == 0)
       for (int j = 0; j < 3; j++) r[j] = -r[j]; /* a reflection */
     rotate_points(r, t, x, y, 3);
@@ -395,7 +379,7 @@ static void test_degenerate(unsigned long long *rng) {
     CHECK_EQ_INT(ss_membrane_rest(bad[b], bad[b] + 3, bad[b] + 6, d, &a), -1);
     CHECK(d[0] == 1.0 && d[1] == 0.0 && d[2] == 0.0 && d[3] == 1.0 && a == 0.0);
     double x[9], g[9], h[81];
-    for (int i = 0; i < 9; i++) x[i] = randu(rng);
+    for (int i = 0; i < 9; i++) x[i] = ss_test_randu(rng);
     CHECK_NEAR(ss_membrane_eval(x, d, a, MU, LAM, COMP, g, h), 0.0, 0.0);
     CHECK(norm_inf(g, 9) == 0.0 && norm_inf(h, 81) == 0.0);
   }
@@ -426,7 +410,7 @@ static void test_batch_bits(unsigned long long *rng) {
     rec[q].area = area;
     rec[q].anchor = 3 * (NF - 1 - q); /* anchors in any order */
     rec[q].k_bary = q % 5 == 3 ? 0.0 : 10.0 * ss_test_rand(rng);
-    for (int i = 0; i < 3; i++) anchors[rec[q].anchor + i] = cur[i] + 0.3 * randu(rng);
+    for (int i = 0; i < 3; i++) anchors[rec[q].anchor + i] = cur[i] + 0.3 * ss_test_randu(rng);
   }
   for (int isa = 0; isa < SS_ISA_COUNT; isa++) {
     if (!ss_isa_supported(isa)) {

@@ -1,6 +1,6 @@
 /* ss_input.h: checks of received meshes, stamp classification, step splitting,
  * slide distances and colours. */
-#include "skin_sim/ss_input.h"
+#include "ss_input.h"
 #include "ss_test.h"
 
 #include <limits.h>

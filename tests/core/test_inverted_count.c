@@ -19,8 +19,8 @@
  *    90 degrees to the crushed triangle under it and was counted here. */
 #include <stdio.h>
 
-#include "skin_sim/ss_run.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_run.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 static ss_run_stats run_sized(const char *name, int tris, double orient, double tether,

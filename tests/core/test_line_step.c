@@ -19,7 +19,7 @@
 
 #include "sim_fixtures.h"
 #include "sim_internal.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 typedef struct line_fixture {

@@ -10,8 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "skin_sim/ss_reference.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_reference.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 static void test_settings(void) {

@@ -12,8 +12,8 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "skin_sim/ss_run.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_run.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 /* slide -30 ln(1 - share): that share of the way per 1/30 s frame */

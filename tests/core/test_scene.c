@@ -4,7 +4,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 static int cmp_ll(const void *a, const void *b) {

@@ -10,16 +10,6 @@
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
 
-static double max_dist(const double *a, const double *b, int n) {
-  double m = 0.0;
-  for (int v = 0; v < n; v++) {
-    double d = 0.0;
-    for (int i = 0; i < 3; i++) d += (a[3 * v + i] - b[3 * v + i]) * (a[3 * v + i] - b[3 * v + i]);
-    m = fmax(m, sqrt(d));
-  }
-  return m;
-}
-
 static int all_finite(const double *a, int n) {
   for (int i = 0; i < n; i++)
     if (!isfinite(a[i])) return 0;
@@ -49,7 +39,7 @@ static void test_rest_stays_put(void) {
       if (!sim) continue;
       ss_sim_stats st;
       for (int f = 0; f < 10; f++) CHECK_EQ_INT(ss_sim_step(sim, g.pos, 0.0, &st, NULL, 0), SS_OK);
-      double d = max_dist(ss_sim_skin_positions(sim), g.pos, g.nvert);
+      double d = ss_test_max_dist(ss_sim_skin_positions(sim), g.pos, g.nvert);
       CHECK_MSG(d < 1e-13, "solver %d bending %d: moved %g at rest", solver, bending, d);
       CHECK(st.converged);
       CHECK_EQ_INT(st.failures, 0);
@@ -79,10 +69,10 @@ static void test_stretched_returns(void) {
       x[3 * v + 2] = 0.1 * sin(7.0 * g.pos[3 * v]);
     }
     CHECK_EQ_INT(ss_sim_set_state(sim, x, NULL, NULL, 0), SS_OK);
-    double d0 = max_dist(ss_sim_skin_positions(sim), g.pos, g.nvert);
+    double d0 = ss_test_max_dist(ss_sim_skin_positions(sim), g.pos, g.nvert);
     ss_sim_stats st;
     for (int f = 0; f < 120; f++) ss_sim_step(sim, g.pos, 0.0, &st, NULL, 0);
-    double d = max_dist(ss_sim_skin_positions(sim), g.pos, g.nvert);
+    double d = ss_test_max_dist(ss_sim_skin_positions(sim), g.pos, g.nvert);
     CHECK_MSG(d < 1e-4 * d0, "solver %d: %g from rest after release (started %g)", solver, d, d0);
     CHECK_EQ_INT(st.failures, 0);
     free(x);
@@ -210,8 +200,8 @@ static void test_solvers_agree(void) {
     memcpy(res[solver], ss_sim_skin_positions(sim), 3 * (size_t)g.nvert * sizeof(double));
     ss_sim_destroy(sim);
   }
-  double d = max_dist(res[0], res[1], g.nvert);
-  double moved = max_dist(res[0], g.pos, g.nvert);
+  double d = ss_test_max_dist(res[0], res[1], g.nvert);
+  double moved = ss_test_max_dist(res[0], g.pos, g.nvert);
   CHECK_MSG(d < 1e-6 && moved > 0.05, "Newton vs quasi-Newton differ by %g (moved %g)", d, moved);
   free(res[0]);
   free(res[1]);
@@ -245,7 +235,7 @@ static void test_face_mask(void) {
   double worst_fixed = 0.0, most_free = 0.0;
   for (int v = 0; v < g.nvert; v++) {
     int i = v % 9, j = v / 9;
-    double d = max_dist(p + 3 * v, pose + 3 * v, 1);
+    double d = ss_test_max_dist(p + 3 * v, pose + 3 * v, 1);
     if (i >= 3 && i <= 5 && j >= 3 && j <= 5)
       most_free = fmax(most_free, d);
     else
@@ -265,7 +255,7 @@ static void test_face_mask(void) {
     CHECK_EQ_INT(ss_sim_ndof(sim), 0);
     fx_pose(&g, 0.2, pose);
     CHECK_EQ_INT(ss_sim_step(sim, pose, 0.0, &st, NULL, 0), SS_OK);
-    CHECK(max_dist(ss_sim_skin_positions(sim), pose, g.nvert) < 1e-12);
+    CHECK(ss_test_max_dist(ss_sim_skin_positions(sim), pose, g.nvert) < 1e-12);
     ss_sim_destroy(sim);
   }
   free(none);
@@ -452,7 +442,7 @@ static void test_coarse_skin(void) {
   ss_sim_anchor_positions(sim, ap);
   const double *p = ss_sim_skin_positions(sim);
   double worst = 0.0;
-  for (int v = 0; v < skin.nvert; v++) worst = fmax(worst, max_dist(p + 3 * v, ap + 3 * v, 1));
+  for (int v = 0; v < skin.nvert; v++) worst = fmax(worst, ss_test_max_dist(p + 3 * v, ap + 3 * v, 1));
   /* Edge length of the skin: 1/6. */
   CHECK_MSG(worst < 0.1 / 6.0, "coarse skin: %g from its anchors", worst);
   CHECK(st.min_area_ratio > 0.5 && st.max_area_ratio < 2.0);
@@ -582,7 +572,7 @@ static void test_small_meshes(void) {
     if (!sim) continue;
     CHECK_EQ_INT(ss_sim_ndof(sim), 3);
     for (int i = 0; i < 60; i++) CHECK_EQ_INT(ss_sim_step(sim, q, 0.0, NULL, NULL, 0), SS_OK);
-    CHECK(max_dist(ss_sim_skin_positions(sim), q, 3) < 1e-3);
+    CHECK(ss_test_max_dist(ss_sim_skin_positions(sim), q, 3) < 1e-3);
     ss_sim_destroy(sim);
   }
   double p2[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 5, 2, 0, 0}, q2[15];
@@ -594,7 +584,7 @@ static void test_small_meshes(void) {
     ss_sim_stats st;
     CHECK_EQ_INT(ss_sim_step(sim, q2, 0.0, &st, NULL, 0), SS_OK);
     CHECK(all_finite(ss_sim_skin_positions(sim), 15));
-    CHECK(max_dist(ss_sim_skin_positions(sim) + 9, q2 + 9, 1) < 1e-15);
+    CHECK(ss_test_max_dist(ss_sim_skin_positions(sim) + 9, q2 + 9, 1) < 1e-15);
     CHECK_EQ_INT(st.failures, 0);
     ss_sim_destroy(sim);
   }

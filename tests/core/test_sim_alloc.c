@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
 

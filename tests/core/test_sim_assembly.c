@@ -1,5 +1,5 @@
 /* Tests of the assembled incremental potential (src/core/sim_energy.c,
- * sim_pattern.c) through the internal interface: the total gradient against
+ * model_pattern.c) through the internal interface: the total gradient against
  * central differences of the total energy, and the sparse Newton matrix
  * (pattern, slot map, upper-triangle storage) against central differences of
  * the gradient, with every term on (inertia, damping, gravity, vertex and

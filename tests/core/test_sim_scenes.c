@@ -6,19 +6,9 @@
  * behaves like the built-in copy. */
 #include <string.h>
 
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
-
-static double max_dist(const double *a, const double *b, int n) {
-  double m = 0.0;
-  for (int v = 0; v < n; v++) {
-    double d = 0.0;
-    for (int i = 0; i < 3; i++) d += (a[3 * v + i] - b[3 * v + i]) * (a[3 * v + i] - b[3 * v + i]);
-    m = fmax(m, sqrt(d));
-  }
-  return m;
-}
 
 static double mean_edge(const ss_scene *sc) {
   const int *f = ss_scene_faces(sc);
@@ -84,7 +74,7 @@ int main(void) {
       set.solver = solver;
       double *x = run(sc, &set, NULL, 5, 0, &failures, &unconverged, &amin, &amax);
       if (!x) continue;
-      double d = max_dist(x, ss_scene_rest(sc), nv);
+      double d = ss_test_max_dist(x, ss_scene_rest(sc), nv);
       CHECK_MSG(d < 1e-12 * (1.0 + edge), "%s solver %d: moved %g at rest", name, solver, d);
       free(x);
     }
@@ -120,7 +110,7 @@ int main(void) {
       CHECK_MSG(amin > 0.05 && amax < 20.0, "%s solver %d: area ratios [%g, %g]", name, solver, amin, amax);
     }
     if (res[0] && res[1]) {
-      double d = max_dist(res[0], res[1], nv);
+      double d = ss_test_max_dist(res[0], res[1], nv);
       printf("%-9s quasi-Newton vs Newton after %d frames: %.3g edge lengths\n", name, frames, d / edge);
       CHECK_MSG(d < 1e-5 * edge, "%s: quasi-Newton vs Newton %g edge lengths", name, d / edge);
     }
@@ -136,7 +126,7 @@ int main(void) {
       ss_sim_mesh skin = {nv, ss_scene_rest(sc), ss_scene_nface(sc), ss_scene_faces(sc)};
       double *x = run(sc, &set, &skin, frames, 1, &failures, &unconverged, &amin, &amax);
       if (x && res[0]) {
-        double d = max_dist(x, res[0], nv);
+        double d = ss_test_max_dist(x, res[0], nv);
         printf("%-9s bound skin vs copied skin after %d frames: %.3g edge lengths\n", name, frames, d / edge);
         /* Closest-point anchors sit where the copy's are, up to round-off
          * and ties between faces sharing the point: in `slivers` the

@@ -9,7 +9,7 @@
 
 #include "isa.h"
 #include "sim_internal.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "skin_sim/ss_sim.h"
 #include "ss_test.h"
 

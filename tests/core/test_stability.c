@@ -5,7 +5,7 @@
  * springs snag where the paper says they do (armpit, fold). */
 #include <string.h>
 
-#include "skin_sim/ss_run.h"
+#include "ss_run.h"
 #include "ss_test.h"
 
 static ss_run_stats run_sized(const char *name, int tris, int method, double orient);

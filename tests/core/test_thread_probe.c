@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "sim_internal.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 /* The sim as threads 0 leaves it at create on a 2-core machine. */

@@ -2,7 +2,7 @@
  * degenerate meshes, and the one clear error for each kind of bad input. */
 #include <string.h>
 
-#include "skin_sim/ss_mesh.h"
+#include "topo.h"
 #include "ss_test.h"
 #include "ss_test_mesh.h"
 

@@ -2,7 +2,7 @@
  * the walk never snags or fails, while "projection springs" snag where the
  * body folds onto itself (armpit, thin fold, the quadruped's legs in its
  * belly). */
-#include "skin_sim/ss_track.h"
+#include "ss_track.h"
 #include "ss_test.h"
 
 /* Runs the experiment on scene `name` at about `tris` triangles (0: default). */

@@ -12,8 +12,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "skin_sim/ss_reference.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_reference.h"
+#include "ss_scene.h"
 #include "ss_test.h"
 
 #define FRAMES 12

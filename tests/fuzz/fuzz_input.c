@@ -1,5 +1,5 @@
 /* libFuzzer harness: what a node checks before it trusts a received mesh and
- * its stamp (include/skin_sim/ss_input.h): ss_input_mesh_check and
+ * its stamp (src/stream/ss_input.h): ss_input_mesh_check and
  * ss_input_same_topology on arbitrary arrays, ss_input_classify_time on any
  * pair of stamps (issue 14: a wild difference overflowed signed arithmetic),
  * ss_input_split_steps, ss_input_slide and its colours. Asserts the documented
@@ -8,7 +8,7 @@
 #include <assert.h>
 
 #include "fuzz_util.h"
-#include "skin_sim/ss_input.h"
+#include "ss_input.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

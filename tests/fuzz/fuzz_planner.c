@@ -1,5 +1,5 @@
 /* libFuzzer harness: the stream planner as skin_sim_node drives it
- * (include/skin_sim/ss_input.h): a sequence of arrivals (header.seq, stamp) goes
+ * (src/stream/ss_input.h): a sequence of arrivals (header.seq, stamp) goes
  * through ss_input_stream_arrive, and each one the node would step goes through
  * ss_input_plan_step with the skin's clock and the last step's periods carried
  * over, as the node carries them; sometimes the carried values are wild (the
@@ -12,7 +12,7 @@
 #include <limits.h>
 
 #include "fuzz_util.h"
-#include "skin_sim/ss_input.h"
+#include "ss_input.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

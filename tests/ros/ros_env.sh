@@ -1,8 +1,8 @@
 # shellcheck shell=bash
 # tests/ros/ros_env.sh: a private ROS master for one test script. Source it, then:
 #
-#   . "$src/tests/ros/ros_env.sh"
-#   ros_env_setup "$bld" || exit $?       # 77 (CTest: skipped) only if ROS is absent
+#   . "$(dirname "$0")/ros_env.sh"
+#   ros_env_start "$@" || exit $?         # 77 (CTest: skipped) only if ROS is absent
 #   ros_env_bg echo "$bld/tests/ros/rosc_echo" echo   # a tracked background process
 #   ros_env_wait_node /rosc_echo 10 || exit 1
 #   ...
@@ -23,13 +23,16 @@
 # temporary folder is removed when the script succeeds and kept (its path printed,
 # the logs' tails shown) when it fails; ROS_ENV_KEEP=1 always keeps it.
 #
+# ros_env_start BUILD_DIR [SOURCE_DIR]: the scripts' usual start: sets bld and src (the
+# tree this file is in unless given), then ros_env_setup "$bld".
+#
 # After ros_env_setup: ROS_MASTER_URI, ROS_ENV_PORT, ROS_HOME, ROS_LOG_DIR (rosout.log,
 # the master's log), ROS_ENV_DIR (NAME.log of each ros_env_bg process). Functions:
 # ros_env_bg, ros_env_stop PID..., ros_env_wait_node NODE [S] (ROS_ENV_START_S: the
 # start-up bound the tests use, default 60),
 # ros_env_wait_subscribers TOPIC N [S], ros_env_free_port, ros_env_now_ms; for the test
-# scripts' common steps: ros_env_check NAME EXPR (ok/FAIL lines, ROS_ENV_FAIL: the exit
-# status), ros_env_node_exe, ros_env_helper_exe, ros_env_run, ros_env_sigint,
+# scripts' common steps: check NAME EXPR (tests/check.sh: ok/FAIL lines, fail: the exit
+# status), ros_env_check NAME EXPR (the same, also setting ROS_ENV_FAIL), ros_env_node_exe, ros_env_helper_exe, ros_env_run, ros_env_sigint,
 # ros_env_launch_skin, ros_env_set_robot_description, ros_env_ellipsoid_obj,
 # ros_env_hostile_meshes, ros_env_check_sanitizer (each described where defined).
 # Everything here works under `set -euo pipefail` as well as without it.
@@ -48,6 +51,8 @@ ROS_ENV_FAIL=0
 ROS_ENV_BUILD=
 # the source tree this file belongs to (the scripts source it as SRC/tests/ros/ros_env.sh)
 ROS_ENV_SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=../check.sh
+. "$ROS_ENV_SRC/tests/check.sh"
 
 ros_env_log() { echo "ros_env: $*" >&2; }
 
@@ -286,11 +291,19 @@ ros_env_setup() {
   return 1
 }
 
+# ros_env_start BUILD_DIR [SOURCE_DIR]: bld, src, then ros_env_setup (see the top of this file).
+# shellcheck disable=SC2034  # bld, src: the scripts'
+ros_env_start() {
+  bld="$1"
+  src="${2:-$ROS_ENV_SRC}"
+  ros_env_setup "$bld"
+}
+
 # ---- steps the test scripts share (after ros_env_setup)
 
-# ros_env_check NAME EXPR: evals EXPR, prints "ok: NAME" or "FAIL: NAME" (then ROS_ENV_FAIL=1).
+# ros_env_check NAME EXPR: check (tests/check.sh) that also sets ROS_ENV_FAIL=1 on a failure.
 # shellcheck disable=SC2034  # ROS_ENV_FAIL: the scripts' exit status
-ros_env_check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; ROS_ENV_FAIL=1; fi; }
+ros_env_check() { check "$@" || { ROS_ENV_FAIL=1; return 1; }; }
 
 # ros_env_node_exe NODE: prints the path of the package's node NODE (BUILD/devel/lib/skin_sim), or says FAIL and returns 1.
 ros_env_node_exe() {

@@ -157,6 +157,18 @@ static int connect_skin(got *g, int want_marker)
   return 0;
 }
 
+/* The start of each run against the skin node: the sheet at rest, g set to
+ * receive the skin (the last positions into out_pos, unless NULL), this probe
+ * named name and connected (also to the marker when want_marker). 0 on failure. */
+static int start_skin_run(got *g, float *out_pos, const char *name, int want_marker)
+{
+  g->last_out_pos = out_pos;
+  make_sheet(0.0);
+  g->tri = g_tri;
+  g->ntri = 3 * NT;
+  return setup_skin(g, name) && connect_skin(g, want_marker);
+}
+
 static int finish(void)
 {
   rosc_pub_destroy(g_pub);
@@ -215,12 +227,8 @@ static int run_stream(int n, double hz)
 {
   static got g;
   static float out_pos[3 * NV];
-  g.last_out_pos = out_pos;
-  make_sheet(0.0);
-  g.tri = g_tri;
-  g.ntri = 3 * NT;
   if (n > MAX_MSG) n = MAX_MSG;
-  if (!setup_skin(&g, "skin_probe_stream") || !connect_skin(&g, 1)) return 1;
+  if (!start_skin_run(&g, out_pos, "skin_probe_stream", 1)) return 1;
   static double sent_wall[MAX_MSG];
   int64_t period = (int64_t)(1e9 / hz + 0.5);
   double start = 0;
@@ -296,12 +304,8 @@ static int run_burst(int n)
 {
   static got g;
   static float out_pos[3 * NV];
-  g.last_out_pos = out_pos;
-  make_sheet(0.0);
-  g.tri = g_tri;
-  g.ntri = 3 * NT;
   if (n > 60) n = 60;
-  if (!setup_skin(&g, "skin_probe_burst") || !connect_skin(&g, 0)) return 1;
+  if (!start_skin_run(&g, out_pos, "skin_probe_burst", 0)) return 1;
   int64_t period = 33333333;
   send_mesh(T0, 7, g_pos, 3 * NV, g_tri, 3 * NT); /* creates the skin */
   wait_for(&g, 1, 10.0);
@@ -332,11 +336,7 @@ static int run_bad(void)
 {
   static got g;
   static float out_pos[3 * NV];
-  g.last_out_pos = out_pos;
-  make_sheet(0.0);
-  g.tri = g_tri;
-  g.ntri = 3 * NT;
-  if (!setup_skin(&g, "skin_probe_bad") || !connect_skin(&g, 0)) return 1;
+  if (!start_skin_run(&g, out_pos, "skin_probe_bad", 0)) return 1;
   static float pos[3 * NV + 3];
   static uint32_t tri[3 * NT];
   int64_t period = 33333333;
@@ -408,11 +408,7 @@ static int run_jump(void)
 {
   static got g;
   static float out_pos[3 * NV];
-  g.last_out_pos = out_pos;
-  make_sheet(0.0);
-  g.tri = g_tri;
-  g.ntri = 3 * NT;
-  if (!setup_skin(&g, "skin_probe_jump") || !connect_skin(&g, 0)) return 1;
+  if (!start_skin_run(&g, out_pos, "skin_probe_jump", 0)) return 1;
   int64_t period = 33333333;
   int64_t stamps[64];
   int n = 0;
@@ -583,11 +579,7 @@ static int run_reset(const char *cmd)
 {
   static got g;
   static float out_pos[3 * NV];
-  g.last_out_pos = out_pos;
-  make_sheet(0.0);
-  g.tri = g_tri;
-  g.ntri = 3 * NT;
-  if (!setup_skin(&g, "skin_probe_reset") || !connect_skin(&g, 0)) return 1;
+  if (!start_skin_run(&g, out_pos, "skin_probe_reset", 0)) return 1;
   int64_t period = 33333333;
   int n = 45;
   for (int i = 0; i < n; i++) {
@@ -639,10 +631,7 @@ static int run_reset(const char *cmd)
 static int run_badstream(double seconds, double hz)
 {
   static got g;
-  make_sheet(0.0);
-  g.tri = g_tri;
-  g.ntri = 3 * NT;
-  if (!setup_skin(&g, "skin_probe_badstream") || !connect_skin(&g, 0)) return 1;
+  if (!start_skin_run(&g, NULL, "skin_probe_badstream", 0)) return 1;
   g_pos[5] = NAN;
   int n = (int)(seconds * hz);
   for (int i = 0; i < n; i++) {

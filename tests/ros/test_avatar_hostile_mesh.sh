@@ -5,10 +5,8 @@
 # at start with exit 1 and one error naming the file -- no hang, no crash, no
 # memory bomb. Usage: test_avatar_hostile_mesh.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 exe=$(ros_env_node_exe avatar_node) || exit 1
 ros_env_set_robot_description "$src/urdf/mannequin.urdf"
 d="$ROS_ENV_DIR/hostile"

@@ -5,10 +5,8 @@
 # counted (avatar_stats) while the node keeps running; unknown names beside known ones
 # are ignored and counted. Usage: test_avatar_node.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 probe=$(ros_env_helper_exe skin_probe) || exit 1
 exe=$(ros_env_node_exe avatar_node) || exit 1
 t0=$(ros_env_now_ms)

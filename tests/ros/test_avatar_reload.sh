@@ -8,10 +8,8 @@
 # swaps it in (new vertex count and topology). Then the node exits 0 on SIGINT.
 # Usage: test_avatar_reload.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 exe=$(ros_env_node_exe avatar_node) || exit 1
 ros_env_set_robot_description "$src/urdf/mannequin.urdf"
 d="$ROS_ENV_DIR/meshes"

@@ -4,7 +4,9 @@
 # from the install space alone (a clean environment that sources only
 # install/setup.bash), counting skin_mesh messages for a few seconds.
 # Also: the install space holds what a user runs (nodes, skinsim, bench_sim,
-# library, headers, launch, urdf, rviz, messages) and no test programs.
+# library, headers, launch, urdf, rviz, messages) and no test programs; its C
+# headers are the public API alone (the core's and the avatars', each compiling
+# on its own), not the lab's, the nodes' stream policy or the core's inside.
 # Usage: test_catkin_install.sh BUILD_DIR [SOURCE_DIR].
 #
 # The workspace build is the same in the normal and the sanitizer build of the
@@ -21,8 +23,6 @@ fi
 command -v catkin_make > /dev/null || { echo "skipped: catkin_make not installed"; exit 77; }
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 
 ws="$ROS_ENV_DIR/ws"
 mkdir -p "$ws/src"
@@ -47,6 +47,20 @@ for f in lib/skin_sim/skin_sim_node lib/skin_sim/avatar_node lib/skin_sim/motion
          share/skin_sim/scripts/plot_bench.py; do
   check "installed: $f" "[ -e '$inst/$f' ]"
 done
+# the C API installed: these six headers and no other ss_*.h (the lab's, the
+# stream's and the core's internal headers stay in the source tree)
+api="ss_anchor.h ss_common.h ss_mesh.h ss_settings.h ss_sim.h ssa_avatar.h"
+got=$(cd "$inst/include/skin_sim" 2> /dev/null && LC_ALL=C ls ss_*.h ssa_*.h 2> /dev/null | tr '\n' ' ')
+check "the installed C headers are the public API ($got)" "[ '${got% }' = '$api' ]"
+for h in $api; do
+  check "installed $h compiles alone (C11)" \
+    "echo '#include <skin_sim/$h>' | cc -std=c11 -Wall -Wextra -Werror -fsyntax-only -I'$inst/include' -x c -"
+done
+for l in libskin_sim_lab.a libskin_sim_stream.a; do
+  check "not installed: lib/$l" "[ ! -e '$inst/lib/$l' ]"
+done
+check "ss_topo is opaque in the installed ss_mesh.h" \
+  "! grep -q 'struct ss_topo *{' '$inst/include/skin_sim/ss_mesh.h'"
 check "no test program in lib/skin_sim" \
   "! ls '$inst/lib/skin_sim' '$ws/devel/lib/skin_sim' | grep -q 'test_\|rosc_echo\|skin_probe'"
 check "skinsim from the install space runs" "'$inst/lib/skin_sim/skinsim' scenes > /dev/null"

@@ -13,8 +13,7 @@ set -u
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
 export PATH=/usr/bin:/bin:$PATH
 command -v catkin_test_results > /dev/null || { echo "skipped: catkin_test_results not installed"; exit 77; }
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+. "$src/tests/check.sh"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/proj" "$tmp/build"
 cat > "$tmp/proj/CMakeLists.txt" <<'CM'

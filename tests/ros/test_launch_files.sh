@@ -3,12 +3,8 @@
 # resolvable) and `roslaunch --nodes` lists the nodes it should.
 # Usage: test_launch_files.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 rlc=/usr/share/roslaunch/scripts/roslaunch-check
 if [ -f "$rlc" ]; then
   # one run over the folder (each run costs seconds of Python start-up)

@@ -12,15 +12,11 @@
 #   Y_UP Collada mesh: one warning naming ~mesh_up_axis, none with ~mesh_up_axis:=file.
 # Usage: test_node_inputs.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 lib="$bld/devel/lib/skin_sim"
 skin="$lib/skin_sim_node"; avatar="$lib/avatar_node"; motion="$lib/motion_node"
 [ -x "$skin" ] && [ -x "$avatar" ] && [ -x "$motion" ] || { echo "FAIL: nodes not built"; exit 1; }
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 t0=$(ros_env_now_ms)
 D="$ROS_ENV_DIR"
 # stop_int PID: SIGINT (the node logs its summary line) and wait for it

@@ -17,7 +17,6 @@ urdf="$erd/robots/solo_description/robots/solo.urdf"
 [ -f "$urdf" ] || { echo "skipped: $urdf is absent (../shared/data)"; exit 77; }
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-check() { ros_env_check "$@"; }
 D="$ROS_ENV_DIR"
 
 /usr/bin/python3 "$src/scripts/skin_rviz.py" --urdf "$urdf" --config "$src/rviz/skin_sim.rviz" \
@@ -57,4 +56,4 @@ sed 's/\x1b\[[0-9;]*m//g' "$D/robot.log" | grep -E "avatar '|skin created|skin_s
 check "no node died" "! grep -q 'process has died' '$D/robot.log'"
 ros_env_sigint "$lpid" 20
 check "roslaunch stops cleanly on SIGINT" "[ $? -eq 0 ]"
-exit $ROS_ENV_FAIL
+exit $fail

@@ -6,12 +6,8 @@
 # it), and each must hold one skin_mesh per recorded kinematic_mesh, with its stamp.
 # Usage: test_rosbag_roundtrip.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 t0=$(ros_env_now_ms)
 D="$ROS_ENV_DIR"
 seconds=${ROUNDTRIP_SECONDS:-5}

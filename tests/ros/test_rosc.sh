@@ -7,15 +7,11 @@
 # publisher (tests/ros/pub_mesh.py) checks that rosc reads messages it did not write.
 # Usage: test_rosc.sh BUILD_DIR [SOURCE_DIR]. Exit 77 only if ROS is not installed.
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 
 exe="$bld/tests/ros/rosc_echo"
 [ -x "$exe" ] || { echo "FAIL: $exe not built"; exit 1; }
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 t0=$(ros_env_now_ms)
 
 ros_env_bg relay "$exe" relay mesh_in:=mesh_a stats_in:=stats_a joints_in:=joints_a \

@@ -15,8 +15,6 @@ for c in xvfb-run import rviz convert; do
 done
 . "$src/tests/ros/ros_env.sh"
 ros_env_setup "$bld" || exit $?
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 D="$ROS_ENV_DIR"
 # one colour (orange), so that any spread of the marker's brightness is its shading
 ros_env_bg demo roslaunch "$src/launch/demo.launch" rviz:=false tris:=3000 marker_rate:=10 \

@@ -14,10 +14,8 @@
 #    /diagnostics; with ~step_budget -1 the settings' 4 x 2 stay.
 # Usage: test_skin_carry.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 avatar="$(ros_env_node_exe avatar_node)" || exit 1
 skin="$(ros_env_node_exe skin_sim_node)" || exit 1
 motion="$(ros_env_node_exe motion_node)" || exit 1

@@ -12,10 +12,8 @@
 #    /skin_sim/reset` (the user's way).
 # Usage: test_skin_diag.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 probe=$(ros_env_helper_exe skin_probe) || exit 1
 export PATH=/usr/bin:$PATH
 

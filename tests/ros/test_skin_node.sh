@@ -10,10 +10,8 @@
 #  - jump: time going backwards and a gap over ~max_gap each reset the skin (counted).
 # Each part gets a fresh skin node. Usage: test_skin_node.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 probe=$(ros_env_helper_exe skin_probe) || exit 1
 t0=$(ros_env_now_ms)
 

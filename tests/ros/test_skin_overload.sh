@@ -11,15 +11,11 @@
 # SKIN_SIM_NODE=PATH measures another skin_sim_node binary (no assertions then).
 # Usage: test_skin_overload.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 probe="$bld/tests/ros/overload_probe"
 skin=${SKIN_SIM_NODE:-$(find "$bld/devel/lib/skin_sim" -name skin_sim_node -type f | head -n 1)}
 [ -x "$probe" ] && [ -x "$skin" ] || { echo "FAIL: overload_probe or skin_sim_node not built"; exit 1; }
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 secs=${OVERLOAD_SECONDS:-20}
 mode=check
 [ -n "${SKIN_SIM_NODE:-}" ] && mode=measure

@@ -13,10 +13,8 @@
 #    barycenter anchors (the log says so, skin_stats counts one reset), output goes on.
 # Usage: test_skin_reconfigure.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 probe=$(ros_env_helper_exe skin_probe) || exit 1
 [ -x /usr/lib/dynamic_reconfigure/dynparam ] || [ -n "$(command -v dynparam)" ] || \
   /usr/bin/python3 -c 'import dynamic_reconfigure.client' 2>/dev/null || {

@@ -15,15 +15,11 @@
 # SKIN_SIM_NODE=PATH runs another skin_sim_node binary (to measure an older one).
 # Usage: test_skin_seams.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 avatar=$(find "$bld/devel/lib/skin_sim" -name avatar_node -type f | head -n 1)
 skin=${SKIN_SIM_NODE:-$(find "$bld/devel/lib/skin_sim" -name skin_sim_node -type f | head -n 1)}
 [ -x "$avatar" ] && [ -x "$skin" ] || { echo "FAIL: avatar_node or skin_sim_node not built"; exit 1; }
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 secs=${SEAM_SECONDS:-8}
 t0=$(ros_env_now_ms)
 

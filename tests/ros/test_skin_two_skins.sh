@@ -6,16 +6,12 @@
 # skin_probe's waving sheet on /kinematic_mesh (remapped into both nodes).
 # Usage: test_skin_two_skins.sh BUILD_DIR [SOURCE_DIR].
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-. "$src/tests/ros/ros_env.sh"
-ros_env_setup "$bld" || exit $?
+. "$(dirname "$0")/ros_env.sh"
+ros_env_start "$@" || exit $?
 probe="$bld/tests/ros/skin_probe"
 skin="$bld/devel/lib/skin_sim/skin_sim_node"
 [ -x "$probe" ] && [ -x "$skin" ] || { echo "FAIL: $probe or $skin not built"; exit 1; }
 export PATH=/usr/bin:$PATH
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 
 ros_env_bg left "$skin" __name:=skin_sim __ns:=/left kinematic_mesh:=/kinematic_mesh \
   _tf_prefix:=left

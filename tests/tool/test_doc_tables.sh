@@ -9,8 +9,7 @@
 set -u
 bld="$1"
 src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+. "$src/tests/check.sh"
 bash "$src/scripts/doc_tables.sh" --check "$bld" > /tmp/doc_tables.$$ 2>&1; rc=$?
 cat /tmp/doc_tables.$$
 check "doc/*.md's generated tables agree with skinsim settings --markdown" "[ $rc -eq 0 ]"

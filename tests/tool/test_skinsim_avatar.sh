@@ -7,18 +7,10 @@
 # (--mesh-up-axis), joint values outside the limits (--strict-limits). Bad input:
 # one clear message, exit 2, no crash.
 set -u
-bld="$1"
-src="$2"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 if ! "$exe" help | grep -q -- '--asset'; then echo "skinsim built without avatars: skipped"; exit 77; fi
 shared="${SS_SHARED_DIR:-$src/../shared}"
 models=/usr/share/assimp/models
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
-py=/usr/bin/python3
 field() { $py -c "import json,sys; print(json.load(open('$1'))['$2'])"; }
 
 # run <name> <args...>: must exit 0 with 0 failures (and print the summary)

@@ -4,16 +4,9 @@
 # every body (built-in scenes and avatars), with error_vs_reference filled in.
 # Usage: test_skinsim_bench.sh BUILD_DIR SOURCE_DIR
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 /usr/bin/python3 -c 'import matplotlib' 2> /dev/null ||
   { echo "SKIP: python3-matplotlib missing (scripts/install_deps.sh installs it)"; exit 77; }
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 
 # BLAS threads only slow the references' small factorisations down here
 start=$(date +%s)

@@ -2,13 +2,7 @@
 # skinsim from the command line: scenes listing, track JSON with every field
 # the issue names, and one clear error (exit 2, no crash) for bad input.
 set -u
-bld="$1"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 
 "$exe" scenes > "$tmp/scenes.txt"; rc=$?
 check "scenes exits 0" "[ $rc -eq 0 ]"

@@ -4,15 +4,8 @@
 # every flag; a limit a file breaks refuses it with one error naming the file and
 # the limit (exit 2), and the same run without it works.
 set -u
-bld="$1"
-src="${2:-$(cd "$(dirname "$0")/../.." && pwd)}"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 if ! "$exe" help | grep -q -- '--max-file-mb'; then echo "skinsim built without avatars: skipped"; exit 77; fi
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
 bad() { # bad <description> <words wanted in the message> <args...>: exit 2, one line
   local what="$1" want="$2"; shift 2
   "$exe" "$@" > /dev/null 2> "$tmp/err"; local rc=$?

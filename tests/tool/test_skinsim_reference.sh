@@ -5,13 +5,7 @@
 # a coarser run has error > 0, and an unusable cache folder is one clear error.
 # Usage: test_skinsim_reference.sh BUILD_DIR [SOURCE_DIR]
 set -u
-bld="$1"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 field() { /usr/bin/python3 -c "import json,sys; v=json.load(open(sys.argv[1]))[sys.argv[2]]; print(v)" "$1" "$2"; }
 export OPENBLAS_NUM_THREADS=1
 run=(run --scene elbow --tris 300 --frames 8 --reference --cache "$tmp/cache")

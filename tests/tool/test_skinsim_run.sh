@@ -4,14 +4,7 @@
 # readable PLY of skin and body per frame, and bad input gets one clear
 # error (exit 2, no crash).
 set -u
-bld="$1"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
-py=/usr/bin/python3
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 
 "$exe" run --scene fold --tris 800 --frames 6 --json "$tmp/a.json" --out "$tmp/out" > /dev/null; rc=$?
 check "run exits 0" "[ $rc -eq 0 ]"

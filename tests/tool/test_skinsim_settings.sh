@@ -10,15 +10,7 @@
 # with the table's range (a value just outside is refused naming the flag, the bound
 # inside is taken). Fails on any disagreement.
 set -u
-bld="$1"
-src="$(cd "$(dirname "$0")/../.." && pwd)"
-# -L: in a catkin workspace BUILD/devel is a link to the workspace's devel space
-exe=$(find -L "$bld" -type f -name skinsim -perm -u+x 2> /dev/null | head -n 1)
-[ -x "$exe" ] || { echo "skinsim not built under $bld"; exit 1; }
-fail=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAIL: $1"; fail=1; fi; }
-py=/usr/bin/python3
+. "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
 
 "$exe" settings --tsv > "$tmp/table.tsv"; rc=$?
 check "skinsim settings --tsv exits 0" "[ $rc -eq 0 ]"

@@ -4,7 +4,7 @@
 #ifndef SKINSIM_AVATAR_BODY_H
 #define SKINSIM_AVATAR_BODY_H
 
-#include "skin_sim/ss_run.h"
+#include "ss_run.h"
 
 typedef struct avatar_args {
   const char *avatar;       /* "demo" (the built-in mannequin) or NULL */

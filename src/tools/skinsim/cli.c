@@ -11,7 +11,7 @@
 
 #include "skin_sim/ss_anchor.h"
 #include "skin_sim/ss_settings.h"
-#include "skin_sim/ss_track.h"
+#include "ss_track.h"
 
 void cli_error(const char *fmt, ...) {
   va_list ap;

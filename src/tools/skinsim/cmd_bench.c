@@ -32,7 +32,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "measure.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 
 #ifndef SS_SOURCE_DIR
 #define SS_SOURCE_DIR "."

@@ -22,7 +22,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "measure.h"
-#include "skin_sim/ss_scene.h"
+#include "ss_scene.h"
 
 #define MAX_LEVELS 5 /* 16 .. 256 substeps */
 

@@ -10,7 +10,7 @@
 #include "cli.h"
 #include "measure.h"
 #include "commands.h"
-#include "skin_sim/ss_run.h"
+#include "ss_run.h"
 
 /* Binary little-endian PLY of float positions and int triangles. */
 static int write_ply(const char *path, int nvert, const double *pos, int nface, const int *faces) {

@@ -4,7 +4,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "skin_sim/ss_track.h"
+#include "ss_track.h"
 
 int cmd_scenes(int argc, char **argv) {
   if (argc > 1) {

@@ -5,8 +5,8 @@
 
 #include <stdio.h>
 
-#include "skin_sim/ss_run.h"
-#include "skin_sim/ss_track.h"
+#include "ss_run.h"
+#include "ss_track.h"
 
 int cmd_scenes(int argc, char **argv);
 int cmd_track(int argc, char **argv);

@@ -5,8 +5,8 @@
 #define SKINSIM_MEASURE_H
 
 #include "cli.h"
-#include "skin_sim/ss_reference.h"
-#include "skin_sim/ss_run.h"
+#include "ss_reference.h"
+#include "ss_run.h"
 
 typedef struct measure_result {
   ss_run_stats st;

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sim_internal.h"
+#include "model.h"
 #include "ss_err.h"
 
 static int cmp_ll(const void *a, const void *b) {
@@ -25,12 +25,12 @@ static int cmp_ll(const void *a, const void *b) {
 }
 
 /* Rank of block row i in block column j, or -1 if not there. */
-static int block_rank(const ss_sim *sim, int i, int j) {
-  int lo = sim->m->bcolp[j], hi = sim->m->bcolp[j + 1] - 1;
+static int block_rank(const ss_model *m, int i, int j) {
+  int lo = m->bcolp[j], hi = m->bcolp[j + 1] - 1;
   while (lo <= hi) {
     int mid = lo + (hi - lo) / 2;
-    if (sim->m->brow[mid] == i) return mid - sim->m->bcolp[j];
-    if (sim->m->brow[mid] < i)
+    if (m->brow[mid] == i) return mid - m->bcolp[j];
+    if (m->brow[mid] < i)
       lo = mid + 1;
     else
       hi = mid - 1;
@@ -39,32 +39,32 @@ static int block_rank(const ss_sim *sim, int i, int j) {
 }
 
 /* Fills ranks for the corners verts[0..n-1] into rank[n x n]. */
-static void element_ranks(const ss_sim *sim, const int *verts, int n, int *rank) {
+static void element_ranks(const ss_model *m, const int *verts, int n, int *rank) {
   for (int a = 0; a < n; a++) {
     for (int b = 0; b < n; b++) {
-      int i = sim->m->dof[verts[a]], j = sim->m->dof[verts[b]];
+      int i = m->dof[verts[a]], j = m->dof[verts[b]];
       if (i < 0 || j < 0) {
         rank[n * a + b] = -1;
         continue;
       }
       int lo = i < j ? i : j, hi = i < j ? j : i;
-      rank[n * a + b] = block_rank(sim, lo, hi);
+      rank[n * a + b] = block_rank(m, lo, hi);
     }
   }
 }
 
-int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
-  int n = sim->m->ndof;
+int ss_model_build_pattern(ss_model *m, char *err, int err_sz) {
+  int n = m->ndof;
   /* Candidate pairs: diagonal, simulated faces' corner pairs, hinges. */
-  size_t cap = (size_t)n + 3 * (size_t)sim->m->nface + 6 * (size_t)sim->m->nhinge;
+  size_t cap = (size_t)n + 3 * (size_t)m->nface + 6 * (size_t)m->nhinge;
   long long *key = malloc((cap ? cap : 1) * sizeof *key);
   if (!key) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building the sparsity pattern");
   size_t nk = 0;
   for (int k = 0; k < n; k++) key[nk++] = (long long)k * n + k;
-  for (int f = 0; f < sim->m->nface; f++) {
-    const int *fv = sim->m->faces + 3 * f;
+  for (int f = 0; f < m->nface; f++) {
+    const int *fv = m->faces + 3 * f;
     for (int a = 0; a < 3; a++) {
-      int i = sim->m->dof[fv[a]], j = sim->m->dof[fv[(a + 1) % 3]];
+      int i = m->dof[fv[a]], j = m->dof[fv[(a + 1) % 3]];
       if (i < 0 || j < 0 || i == j) continue;
       if (i > j) {
         int t = i;
@@ -74,11 +74,11 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
       key[nk++] = (long long)j * n + i;
     }
   }
-  for (int e = 0; e < sim->m->nhinge; e++) {
-    const int *hv = sim->m->hinge_vert + 4 * e;
+  for (int e = 0; e < m->nhinge; e++) {
+    const int *hv = m->hinge_vert + 4 * e;
     for (int a = 0; a < 4; a++)
       for (int b = a + 1; b < 4; b++) {
-        int i = sim->m->dof[hv[a]], j = sim->m->dof[hv[b]];
+        int i = m->dof[hv[a]], j = m->dof[hv[b]];
         if (i < 0 || j < 0 || i == j) continue;
         if (i > j) {
           int t = i;
@@ -92,32 +92,32 @@ int ss_sim_build_pattern(ss_sim *sim, char *err, int err_sz) {
   size_t nu = 0;
   for (size_t q = 0; q < nk; q++)
     if (nu == 0 || key[q] != key[nu - 1]) key[nu++] = key[q];
-  sim->m->nblock = (int)nu;
+  m->nblock = (int)nu;
   /* bcolp, colp3 (zeroed), brow (nu <= cap), face_rank, hinge_rank: the model's arena */
   /* Keys sorted by (column, row): the CSC order directly. */
   for (size_t q = 0; q < nu; q++) {
     int j = (int)(key[q] / n), i = (int)(key[q] % n);
-    sim->m->brow[q] = i;
-    sim->m->bcolp[j + 1]++;
+    m->brow[q] = i;
+    m->bcolp[j + 1]++;
   }
   free(key);
-  for (int j = 0; j < n; j++) sim->m->bcolp[j + 1] += sim->m->bcolp[j];
+  for (int j = 0; j < n; j++) m->bcolp[j + 1] += m->bcolp[j];
   /* 3n columns: block column j with nb blocks (the diagonal last) gives
    * columns of 3 (nb - 1) + 1, + 2, + 3 entries. */
   long long nnz3 = 0;
   for (int j = 0; j < n; j++) {
-    int nb = sim->m->bcolp[j + 1] - sim->m->bcolp[j];
+    int nb = m->bcolp[j + 1] - m->bcolp[j];
     for (int b = 0; b < 3; b++) {
-      sim->m->colp3[3 * j + b] = (int)nnz3;
+      m->colp3[3 * j + b] = (int)nnz3;
       nnz3 += 3LL * (nb - 1) + b + 1;
     }
   }
   if (nnz3 > 2000000000LL)
     return ss_fail(err, err_sz, SS_E_ARG, "skin too large: %lld matrix entries", nnz3);
-  sim->m->colp3[3 * n] = (int)nnz3;
-  sim->m->nnz3 = (int)nnz3;
-  for (int f = 0; f < sim->m->nface; f++) element_ranks(sim, sim->m->faces + 3 * f, 3, sim->m->face_rank + 9 * f);
-  for (int e = 0; e < sim->m->nhinge; e++)
-    element_ranks(sim, sim->m->hinge_vert + 4 * e, 4, sim->m->hinge_rank + 16 * e);
+  m->colp3[3 * n] = (int)nnz3;
+  m->nnz3 = (int)nnz3;
+  for (int f = 0; f < m->nface; f++) element_ranks(m, m->faces + 3 * f, 3, m->face_rank + 9 * f);
+  for (int e = 0; e < m->nhinge; e++)
+    element_ranks(m, m->hinge_vert + 4 * e, 4, m->hinge_rank + 16 * e);
   return SS_OK;
 }

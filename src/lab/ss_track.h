@@ -1,4 +1,4 @@
-/* skin_sim core: the anchor tracking experiment (no dynamics).
+/* skin_sim lab (src/lab, not installed): the anchor tracking experiment (no dynamics).
  *
  * Anchors are seeded on the body at rest, one at each vertex and one at each
  * face barycenter (as the skin's anchors would be). Each frame the body moves
@@ -12,7 +12,7 @@
 #ifndef SKIN_SIM_SS_TRACK_H
 #define SKIN_SIM_SS_TRACK_H
 
-#include "ss_anchor.h"
+#include "skin_sim/ss_anchor.h"
 #include "ss_scene.h"
 
 #ifdef __cplusplus

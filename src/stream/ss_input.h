@@ -1,4 +1,8 @@
-/* skin_sim core: meshes and stamps arriving from outside (ROS messages, files).
+/* skin_sim stream: meshes and stamps arriving from outside (ROS messages, files).
+ *
+ * The nodes' stream policy, in the node library (src/stream, libskin_sim_stream,
+ * not installed): built on the core's public API, with no ROS in it, so that it
+ * is tested without ROS.
  *
  * What a node needs to decide before handing a received mesh to ss_sim, with
  * no ROS in it: is the mesh well formed (sizes agree, indices in range, every
@@ -15,7 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ss_common.h"
+#include "skin_sim/ss_common.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,4 +1,5 @@
-/* skin_sim core: a real-time budget for a node's skin steps.
+/* skin_sim stream: a real-time budget for a node's skin steps (the node library,
+ * src/stream, not installed).
  *
  * A node on a robot's computer must finish each step within the input's
  * period, whatever else the computer is doing. The budget trades accuracy

@@ -1,5 +1,5 @@
 /* skin_sim core: the real-time budget of a node's skin steps (ss_budget.h). */
-#include "skin_sim/ss_budget.h"
+#include "ss_budget.h"
 
 #include <math.h>
 

@@ -1,4 +1,4 @@
-/* skin_sim core: reference runs and the error of a run against its reference
+/* skin_sim lab (src/lab, not installed): reference runs and the error of a run against its reference
  * (doc/model.md, "Accuracy").
  *
  * The reference of a run configuration is the same body, skin model and

@@ -1,4 +1,4 @@
-/* skin_sim core: the dynamic skin run over a built-in scene, with the
+/* skin_sim lab (src/lab, not installed): the dynamic skin run over a built-in scene, with the
  * measurements the benchmark and the stability suite need (no ROS, no I/O).
  *
  * Each frame the scene's body moves to its next pose and the skin takes one
@@ -54,7 +54,7 @@
 #include <stddef.h>
 
 #include "ss_scene.h"
-#include "ss_sim.h"
+#include "skin_sim/ss_sim.h"
 #include "ss_track.h"
 
 #ifdef __cplusplus

@@ -3,7 +3,7 @@
  * Plain loops over flat arrays; nothing allocates. Written for the ROS skin
  * node, which rejects a bad SkinMesh before it reaches ss_sim, and for any
  * other caller receiving meshes as float arrays. */
-#include "skin_sim/ss_input.h"
+#include "ss_input.h"
 #include "ss_vec.h"
 
 #include <limits.h>

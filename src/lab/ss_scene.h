@@ -1,4 +1,4 @@
-/* skin_sim core: procedural scenes where anchor methods fail.
+/* skin_sim lab (src/lab, not installed): procedural scenes where anchor methods fail.
  *
  * Each scene is a body mesh generated in code at any resolution plus a scripted
  * motion: the body's positions at any (fractional) frame. Frames are 1/fps
@@ -7,7 +7,7 @@
 #ifndef SKIN_SIM_SS_SCENE_H
 #define SKIN_SIM_SS_SCENE_H
 
-#include "ss_common.h"
+#include "skin_sim/ss_common.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -26,7 +26,7 @@
 
 #include "bvh.h"
 #include "energy.h"
-#include "sim_internal.h"
+#include "model.h"
 #include "ss_err.h"
 
 /* A separate skin's vertex v, bound by closest point: its rest offset from its
@@ -65,12 +65,12 @@ int ss_sim_face_frame(const double e1[3], const double e2[3], double t1[3], doub
   return 1;
 }
 
-int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, char *err,
+int ss_model_bind(ss_model *m, const ss_sim_mesh *skin, const double *body_rest, char *err,
                 int err_sz) {
-  int nv = sim->m->nvert, nf = sim->m->nface;
-  for (int a = 0; a < sim->m->nanchor; a++) {
-    sim->m->anchor_face0[a] = -1;
-    sim->m->anchor_uv0[2 * a] = sim->m->anchor_uv0[2 * a + 1] = 0.0;
+  int nv = m->nvert, nf = m->nface;
+  for (int a = 0; a < m->nanchor; a++) {
+    m->anchor_face0[a] = -1;
+    m->anchor_uv0[2 * a] = m->anchor_uv0[2 * a + 1] = 0.0;
   }
   if (!skin) {
     static const double corner_uv[3][2] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
@@ -86,8 +86,8 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
     if (!area) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory binding the skin");
     double e2 = 0.0;
     for (int f = 0; f < nf; f++) {
-      const double *p0 = body_rest + 3 * sim->m->faces[3 * f], *p1 = body_rest + 3 * sim->m->faces[3 * f + 1],
-                   *p2 = body_rest + 3 * sim->m->faces[3 * f + 2];
+      const double *p0 = body_rest + 3 * m->faces[3 * f], *p1 = body_rest + 3 * m->faces[3 * f + 1],
+                   *p2 = body_rest + 3 * m->faces[3 * f + 2];
       double u[3], w[3], n[3];
       for (int i = 0; i < 3; i++) u[i] = p1[i] - p0[i], w[i] = p2[i] - p0[i];
       n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2], n[2] = u[0] * w[1] - u[1] * w[0];
@@ -99,35 +99,35 @@ int ss_sim_bind(ss_sim *sim, const ss_sim_mesh *skin, const double *body_rest, c
       for (int f = 0; f < nf; f++) {
         if (pass == 0 && !(area[f] >= min_area)) continue;
         for (int c = 0; c < 3; c++) {
-          int v = sim->m->faces[3 * f + c];
-          if (sim->m->anchor_face0[v] >= 0) continue;
-          sim->m->anchor_face0[v] = f;
-          sim->m->anchor_uv0[2 * v] = corner_uv[c][0];
-          sim->m->anchor_uv0[2 * v + 1] = corner_uv[c][1];
+          int v = m->faces[3 * f + c];
+          if (m->anchor_face0[v] >= 0) continue;
+          m->anchor_face0[v] = f;
+          m->anchor_uv0[2 * v] = corner_uv[c][0];
+          m->anchor_uv0[2 * v + 1] = corner_uv[c][1];
         }
       }
     free(area);
-    if (sim->set.barycenter_anchors)
+    if (m->set.barycenter_anchors)
       for (int f = 0; f < nf; f++) {
-        sim->m->anchor_face0[nv + f] = f;
-        sim->m->anchor_uv0[2 * (nv + f)] = sim->m->anchor_uv0[2 * (nv + f) + 1] = 1.0 / 3.0;
+        m->anchor_face0[nv + f] = f;
+        m->anchor_uv0[2 * (nv + f)] = m->anchor_uv0[2 * (nv + f) + 1] = 1.0 / 3.0;
       }
     return SS_OK;
   }
-  int status = ss_sim_model_bvh(sim->m, body_rest);
+  int status = ss_sim_model_bvh(m, body_rest);
   if (status != SS_OK) return ss_fail(err, err_sz, status, "cannot build the body's BVH to bind the skin");
-  const ss_bvh *bvh = sim->m->bvh_rest;
-  for (int a = 0; a < sim->m->nanchor; a++) {
+  const ss_bvh *bvh = m->bvh_rest;
+  for (int a = 0; a < m->nanchor; a++) {
     double p[3];
     if (a < nv) {
-      memcpy(p, sim->m->rest + 3 * a, sizeof p);
+      memcpy(p, m->rest + 3 * a, sizeof p);
     } else {
-      const int *fv = sim->m->faces + 3 * (a - nv);
+      const int *fv = m->faces + 3 * (a - nv);
       for (int i = 0; i < 3; i++)
-        p[i] = (sim->m->rest[3 * fv[0] + i] + sim->m->rest[3 * fv[1] + i] + sim->m->rest[3 * fv[2] + i]) / 3.0;
+        p[i] = (m->rest[3 * fv[0] + i] + m->rest[3 * fv[1] + i] + m->rest[3 * fv[2] + i]) / 3.0;
     }
-    ss_bvh_closest(bvh, body_rest, p, &sim->m->anchor_face0[a], sim->m->anchor_uv0 + 2 * a);
-    if (a < nv) follow_offset(sim->m, body_rest, a);
+    ss_bvh_closest(bvh, body_rest, p, &m->anchor_face0[a], m->anchor_uv0 + 2 * a);
+    if (a < nv) follow_offset(m, body_rest, a);
   }
   return SS_OK;
 }
@@ -144,15 +144,15 @@ static int cmp_half_edge(const void *pa, const void *pb) {
   return (a->face > b->face) - (a->face < b->face);
 }
 
-static int build_hinges(ss_sim *sim, char *err, int err_sz) {
-  int nf = sim->m->nface;
+static int build_hinges(ss_model *m, char *err, int err_sz) {
+  int nf = m->nface;
   half_edge *he = malloc(3 * (size_t)(nf ? nf : 1) * sizeof *he);
   if (!he) return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory building hinges");
   int nhe = 0;
   for (int f = 0; f < nf; f++) {
-    if (sim->m->rest_area[f] <= 0.0) continue;
+    if (m->rest_area[f] <= 0.0) continue;
     for (int c = 0; c < 3; c++) {
-      int a = sim->m->faces[3 * f + c], b = sim->m->faces[3 * f + (c + 1) % 3];
+      int a = m->faces[3 * f + c], b = m->faces[3 * f + (c + 1) % 3];
       if (a == b) continue;
       he[nhe].lo = a < b ? a : b;
       he[nhe].hi = a < b ? b : a;
@@ -171,23 +171,23 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
       while (r < nhe && he[r].lo == he[q].lo && he[r].hi == he[q].hi) r++;
       if (r - q == 2) {
         const half_edge *h0 = &he[q], *h1 = &he[q + 1];
-        const int *f0 = sim->m->faces + 3 * h0->face, *f1 = sim->m->faces + 3 * h1->face;
+        const int *f0 = m->faces + 3 * h0->face, *f1 = m->faces + 3 * h1->face;
         int e0 = f0[h0->corner], e1 = f0[(h0->corner + 1) % 3], o0 = f0[(h0->corner + 2) % 3];
         int opposite = f1[h1->corner] == e1 && f1[(h1->corner + 1) % 3] == e0;
         int o1 = f1[(h1->corner + 2) % 3];
-        int any_free = sim->m->dof[e0] >= 0 || sim->m->dof[e1] >= 0 || sim->m->dof[o0] >= 0 || sim->m->dof[o1] >= 0;
-        int simulated = sim->m->mask[h0->face] || sim->m->mask[h1->face];
+        int any_free = m->dof[e0] >= 0 || m->dof[e1] >= 0 || m->dof[o0] >= 0 || m->dof[o1] >= 0;
+        int simulated = m->mask[h0->face] || m->mask[h1->face];
         if (opposite && any_free && simulated && o0 != o1) {
           if (pass == 1) {
-            int *hv = sim->m->hinge_vert + 4 * e;
+            int *hv = m->hinge_vert + 4 * e;
             hv[0] = e0, hv[1] = e1, hv[2] = o0, hv[3] = o1;
             double x12[12];
-            for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, sim->m->rest + 3 * hv[c], 3 * sizeof(double));
+            for (int c = 0; c < 4; c++) memcpy(x12 + 3 * c, m->rest + 3 * hv[c], 3 * sizeof(double));
             double el2 = 0.0;
             for (int i = 0; i < 3; i++) el2 += (x12[3 + i] - x12[i]) * (x12[3 + i] - x12[i]);
-            sim->m->hinge_theta0[e] = ss_hinge_angle(x12);
-            sim->m->hinge_weight[e] =
-                sim->set.bending * el2 / (sim->m->rest_area[h0->face] + sim->m->rest_area[h1->face]);
+            m->hinge_theta0[e] = ss_hinge_angle(x12);
+            m->hinge_weight[e] =
+                m->set.bending * el2 / (m->rest_area[h0->face] + m->rest_area[h1->face]);
           }
           e++;
         }
@@ -196,84 +196,84 @@ static int build_hinges(ss_sim *sim, char *err, int err_sz) {
     }
     if (pass == 0) {
       count = e;
-      sim->m->nhinge = count; /* <= nhinge_max, the hinge arrays' size (sim_internal.h) */
-      assert(count <= sim->m->nhinge_max);
+      m->nhinge = count; /* <= nhinge_max, the hinge arrays' size (sim_internal.h) */
+      assert(count <= m->nhinge_max);
     }
   }
   free(he);
   return SS_OK;
 }
 
-void ss_sim_build_material(ss_sim *sim) {
-  const int nv = sim->m->nvert, nf = sim->m->nface;
-  const ss_sim_settings *set = &sim->set;
-  ss_membrane_lame(set->young, set->poisson, &sim->m->mu, &sim->m->lam);
+void ss_model_build_material(ss_model *m) {
+  const int nv = m->nvert, nf = m->nface;
+  const ss_sim_settings *set = &m->set;
+  ss_membrane_lame(set->young, set->poisson, &m->mu, &m->lam);
   double area_sum = 0.0;
-  for (int f = 0; f < nf; f++) area_sum += sim->m->rest_area[f];
+  for (int f = 0; f < nf; f++) area_sum += m->rest_area[f];
   /* A vertex whose faces all have zero area still needs a little mass. */
   double mass_floor = 1e-6 * set->density * area_sum / nf;
-  for (int v = 0; v < nv; v++) sim->m->mass[v] = fmax(set->density * sim->m->vert_area[v], mass_floor);
+  for (int v = 0; v < nv; v++) m->mass[v] = fmax(set->density * m->vert_area[v], mass_floor);
   /* Springs: vertices (free only) and barycenters of faces with a free corner. */
   double share = set->barycenter_anchors ? 0.5 : 1.0;
   for (int f = 0; f < nf; f++) {
-    const int *fv = sim->m->faces + 3 * f;
-    int any_free = sim->m->dof[fv[0]] >= 0 || sim->m->dof[fv[1]] >= 0 || sim->m->dof[fv[2]] >= 0;
-    int has_area = sim->m->rest_area[f] > 0.0;
+    const int *fv = m->faces + 3 * f;
+    int any_free = m->dof[fv[0]] >= 0 || m->dof[fv[1]] >= 0 || m->dof[fv[2]] >= 0;
+    int has_area = m->rest_area[f] > 0.0;
     /* A zero-area face represents no skin: no spring. */
-    sim->m->k_face[f] = set->barycenter_anchors && any_free && has_area
-                         ? share * set->anchor_stiffness * sim->m->rest_area[f] : 0.0;
+    m->k_face[f] = set->barycenter_anchors && any_free && has_area
+                         ? share * set->anchor_stiffness * m->rest_area[f] : 0.0;
   }
   for (int v = 0; v < nv; v++)
-    sim->m->k_vert[v] = sim->m->dof[v] >= 0 ? share * set->anchor_stiffness * sim->m->vert_area[v] : 0.0;
+    m->k_vert[v] = m->dof[v] >= 0 ? share * set->anchor_stiffness * m->vert_area[v] : 0.0;
 }
 
-int ss_sim_build_model(ss_sim *sim, char *err, int err_sz) {
-  int nv = sim->m->nvert, nf = sim->m->nface;
-  const ss_sim_settings *set = &sim->set;
+int ss_model_build_kinds(ss_model *m, char *err, int err_sz) {
+  int nv = m->nvert, nf = m->nface;
+  const ss_sim_settings *set = &m->set;
   /* Rest data and lumped areas. */
   double edge_sum = 0.0, area_sum = 0.0;
   int edge_count = 0;
-  memset(sim->m->vert_area, 0, (size_t)nv * sizeof(double));
+  memset(m->vert_area, 0, (size_t)nv * sizeof(double));
   for (int f = 0; f < nf; f++) {
-    const int *fv = sim->m->faces + 3 * f;
-    const double *p0 = sim->m->rest + 3 * fv[0], *p1 = sim->m->rest + 3 * fv[1], *p2 = sim->m->rest + 3 * fv[2];
-    ss_membrane_rest(p0, p1, p2, sim->m->dm_inv + 4 * f, &sim->m->rest_area[f]);
-    area_sum += sim->m->rest_area[f];
-    for (int c = 0; c < 3; c++) sim->m->vert_area[fv[c]] += sim->m->rest_area[f] / 3.0;
+    const int *fv = m->faces + 3 * f;
+    const double *p0 = m->rest + 3 * fv[0], *p1 = m->rest + 3 * fv[1], *p2 = m->rest + 3 * fv[2];
+    ss_membrane_rest(p0, p1, p2, m->dm_inv + 4 * f, &m->rest_area[f]);
+    area_sum += m->rest_area[f];
+    for (int c = 0; c < 3; c++) m->vert_area[fv[c]] += m->rest_area[f] / 3.0;
     for (int c = 0; c < 3; c++) {
-      const double *a = sim->m->rest + 3 * fv[c], *b = sim->m->rest + 3 * fv[(c + 1) % 3];
+      const double *a = m->rest + 3 * fv[c], *b = m->rest + 3 * fv[(c + 1) % 3];
       double d2 = 0.0;
       for (int i = 0; i < 3; i++) d2 += (a[i] - b[i]) * (a[i] - b[i]);
       edge_sum += sqrt(d2);
       edge_count++;
     }
   }
-  sim->m->edge_len = edge_count && edge_sum > 0.0 ? edge_sum / edge_count : 1.0;
+  m->edge_len = edge_count && edge_sum > 0.0 ? edge_sum / edge_count : 1.0;
   if (!(area_sum > 0.0)) return ss_fail(err, err_sz, SS_E_MESH, "the skin has no area at rest");
 
   /* Vertex kinds: free if it touches only simulated faces. */
-  unsigned char *touch_in = sim->m->kind; /* bit 1: simulated face, bit 2: other face */
+  unsigned char *touch_in = m->kind; /* bit 1: simulated face, bit 2: other face */
   memset(touch_in, 0, (size_t)nv);
   for (int f = 0; f < nf; f++)
-    for (int c = 0; c < 3; c++) touch_in[sim->m->faces[3 * f + c]] |= sim->m->mask[f] ? 1 : 2;
-  sim->m->ndof = 0;
+    for (int c = 0; c < 3; c++) touch_in[m->faces[3 * f + c]] |= m->mask[f] ? 1 : 2;
+  m->ndof = 0;
   for (int v = 0; v < nv; v++) {
     unsigned char t = touch_in[v];
-    sim->m->kind[v] = t == 1 ? SS_VERT_FREE : (t & 1) ? SS_VERT_PINNED : SS_VERT_FOLLOWER;
-    sim->m->dof[v] = sim->m->kind[v] == SS_VERT_FREE ? sim->m->ndof++ : -1;
+    m->kind[v] = t == 1 ? SS_VERT_FREE : (t & 1) ? SS_VERT_PINNED : SS_VERT_FOLLOWER;
+    m->dof[v] = m->kind[v] == SS_VERT_FREE ? m->ndof++ : -1;
   }
   for (int v = 0; v < nv; v++)
-    if (sim->m->dof[v] >= 0) sim->m->dof_vert[sim->m->dof[v]] = v;
+    if (m->dof[v] >= 0) m->dof_vert[m->dof[v]] = v;
 
   /* Simulated faces. */
-  sim->m->nsimface = 0;
+  m->nsimface = 0;
   for (int f = 0; f < nf; f++) {
-    const int *fv = sim->m->faces + 3 * f;
-    int any_free = sim->m->dof[fv[0]] >= 0 || sim->m->dof[fv[1]] >= 0 || sim->m->dof[fv[2]] >= 0;
-    if (any_free && sim->m->rest_area[f] > 0.0) sim->m->simface[sim->m->nsimface++] = f;
+    const int *fv = m->faces + 3 * f;
+    int any_free = m->dof[fv[0]] >= 0 || m->dof[fv[1]] >= 0 || m->dof[fv[2]] >= 0;
+    if (any_free && m->rest_area[f] > 0.0) m->simface[m->nsimface++] = f;
   }
-  ss_sim_build_material(sim);
-  if (set->bending > 0.0) return build_hinges(sim, err, err_sz);
-  sim->m->nhinge = 0;
+  ss_model_build_material(m);
+  if (set->bending > 0.0) return build_hinges(m, err, err_sz);
+  m->nhinge = 0;
   return SS_OK;
 }
