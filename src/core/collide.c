@@ -25,10 +25,11 @@
  * them, by the pseudo-normal there (the sum of the normals of the faces of
  * the ring that are nearest: one face's inside it, an edge's two, a
  * corner's ring; Baerentzen and Aanaes 2005): behind the surface when
- * (x - c) . n < thickness. A vertex farther than `reach` out of its anchor
- * face's plane is skipped (the ring cannot be under it), and so is a vertex
- * whose anchor has lagged more than a ring behind it: what it is under is
- * not searched (a global search is what the anchors are there to avoid).
+ * (x - c) . n < thickness. A vertex in front of its anchor face's plane is
+ * skipped (inside a convex body is behind every face's plane; in front of
+ * one and behind its neighbour is a concave crease, which the skin bridges),
+ * and what lies beyond the ring of a vertex whose anchor has lagged further
+ * is not searched (a global search is what the anchors are there to avoid).
  *
  * Not against the body where it passes through itself: the nearest face of
  * a vertex found behind the surface must be on the body's clean surface,
@@ -37,8 +38,8 @@
  * elbow's crushed crease) or turned inside out by the pose is not collided
  * against, so the skin is never pushed into the body's own artefacts. The
  * test runs only for the faces of vertices more than SS_COLLIDE_SHALLOW
- * behind, once per face and step, on a tree refitted only in steps that
- * have any.
+ * behind, kept for SS_COLLIDE_RECHECK steps per face, on a tree refitted
+ * only in steps that test any.
  *
  * Deterministic: the search per vertex alone (on the threads), the test and
  * the moves in vertex order on one thread. */
@@ -58,9 +59,8 @@ struct ss_collider {
   ss_bvh *bvh;
   ss_wind *wind;
   int nbface;
-  unsigned *face_stamp;        /* (nbface) pass of the cached face_buried */
+  long long *face_step;        /* (nbface) step of the cached face_buried (-1: none) */
   unsigned char *face_buried;  /* (nbface) */
-  unsigned pass;               /* stamp of the faces tested in this step */
   long long step_refit;        /* the step the tree was last refitted in (-1: none) */
   int *cand_face;              /* (nvert) nearest face of a vertex behind the surface, or -1 */
   double *cand_x;              /* (nvert x 3) where it goes */
@@ -80,11 +80,13 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     ss_bvh_refit(c->bvh, body_rest); /* builds the tree: nothing to allocate later */
     status = ss_wind_create(&c->wind, c->bvh, btopo);
   }
-  c->face_stamp = calloc((size_t)btopo->nface + 1, sizeof *c->face_stamp);
+  c->face_step = malloc(((size_t)btopo->nface + 1) * sizeof *c->face_step);
+  if (c->face_step)
+    for (int f = 0; f < btopo->nface; f++) c->face_step[f] = -1;
   c->face_buried = calloc((size_t)btopo->nface + 1, 1);
   c->cand_face = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->cand_x = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
-  if (!status && !(c->face_stamp && c->face_buried && c->cand_face && c->cand_x)) status = SS_E_NOMEM;
+  if (!status && !(c->face_step && c->face_buried && c->cand_face && c->cand_x)) status = SS_E_NOMEM;
   if (status) {
     ss_collider_destroy(c);
     return status;
@@ -97,7 +99,7 @@ void ss_collider_destroy(ss_collider *c) {
   if (!c) return;
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
-  free(c->face_stamp);
+  free(c->face_step);
   free(c->face_buried);
   free(c->cand_face);
   free(c->cand_x);
@@ -127,6 +129,8 @@ static inline int seen_before(const ss_topo *t, const int *fav, int upto, int g)
  * of their area on the elbow and the mannequin. Not collided against, nor
  * from an anchor on such a face. */
 #define SS_COLLIDE_CRUSHED 0.5
+#define SS_COLLIDE_RING 64   /* faces of a ring looked at, at most */
+#define SS_COLLIDE_RECHECK 8 /* steps a face's clean-surface test is kept */
 
 /* Vertex v at x: its nearest face of the ring if it is behind the surface
  * there (and where it goes into out), -2 - that face if the move is
@@ -139,50 +143,57 @@ static int judge_vertex(const ss_collide_in *in, int v, const double x[3], doubl
   const int *fav = t->face_vert + 3 * fa;
   const double *a0 = in->body + 3 * fav[0];
   const double above[3] = {x[0] - a0[0], x[1] - a0[1], x[2] - a0[2]};
-  if (dot3(above, fr->normal + 3 * fa) > in->reach) return -1;
-  /* the nearest point of the ring, then the pseudo-normal of the faces there */
-  double best = INFINITY, bc[3] = {0, 0, 0};
-  int bf = -1;
-  for (int pass = 0; pass < 2; pass++) {
-    double n[3] = {0, 0, 0};
-    const double tie = best + 1e-12 * in->reach * in->reach; /* reach: an edge length */
-    for (int c = 0; c < 3; c++) {
-      const int w = t->vert_weld[fav[c]];
-      for (int i = t->vf_start[w]; i < t->vf_start[w + 1]; i++) {
-        const int g = t->vf_face[i];
-        if (t->face_degenerate[g] || !(fr->area[g] > 0.0) || seen_before(t, fav, c, g)) continue;
-        const int *gv = t->face_vert + 3 * g;
-        const double *p0 = in->body + 3 * gv[0], *p1 = in->body + 3 * gv[1], *p2 = in->body + 3 * gv[2];
-        double uv[2];
-        const double d2 = ss_closest_point_triangle(x, p0, p1, p2, uv);
-        if (pass == 0) {
-          if (d2 < best) {
-            best = d2, bf = g;
-            for (int k = 0; k < 3; k++) bc[k] = p0[k] + uv[0] * (p1[k] - p0[k]) + uv[1] * (p2[k] - p0[k]);
-          }
-        } else if (d2 <= tie) {
-          for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * g + k];
-        }
-      }
+  /* in front of its anchor face's plane: not looked at. Inside a convex
+   * body means behind every face's plane, and that is where skin cuts in;
+   * in front of it and behind a neighbour is a concave crease, which skin
+   * bridges over (and where the body is crushed or passes through itself) */
+  const double sa = dot3(above, fr->normal + 3 * fa);
+  if (!(sa < in->thickness)) return -1;
+  /* the faces of the ring and their distances, once; the nearest point,
+   * then the pseudo-normal of the faces there */
+  int ring[SS_COLLIDE_RING];
+  double dist[SS_COLLIDE_RING], cp[3 * SS_COLLIDE_RING];
+  int nring = 0;
+  for (int c = 0; c < 3; c++) {
+    const int w = t->vert_weld[fav[c]];
+    for (int i = t->vf_start[w]; i < t->vf_start[w + 1] && nring < SS_COLLIDE_RING; i++) {
+      const int g = t->vf_face[i];
+      if (t->face_degenerate[g] || !(fr->area[g] > 0.0) || seen_before(t, fav, c, g)) continue;
+      const int *gv = t->face_vert + 3 * g;
+      const double *p0 = in->body + 3 * gv[0], *p1 = in->body + 3 * gv[1], *p2 = in->body + 3 * gv[2];
+      double uv[2];
+      dist[nring] = ss_closest_point_triangle(x, p0, p1, p2, uv);
+      for (int k = 0; k < 3; k++)
+        cp[3 * nring + k] = p0[k] + uv[0] * (p1[k] - p0[k]) + uv[1] * (p2[k] - p0[k]);
+      ring[nring++] = g;
     }
-    if (bf < 0) return -1;
-    if (in->area0 && (!(fr->area[bf] >= SS_COLLIDE_CRUSHED * in->area0[bf]) ||
-                      !(fr->area[fa] >= SS_COLLIDE_CRUSHED * in->area0[fa])))
-      return -1;
-    if (pass == 0) continue;
-    const double len = sqrt(dot3(n, n));
-    if (!(len > 0.0)) return -1;
-    for (int k = 0; k < 3; k++) n[k] /= len;
-    const double rel[3] = {x[0] - bc[0], x[1] - bc[1], x[2] - bc[2]};
-    const double sd = dot3(rel, n);
-    if (!(sd < in->thickness)) return -1;
-    /* along the pseudo-normal by the depth, not onto c: vertices deep under
-     * a corner or an edge would all land on that one point and their faces
-     * collapse (area ratios of 0.02 on the elbow) */
-    for (int k = 0; k < 3; k++) out[k] = x[k] + (in->thickness - sd) * n[k];
-    /* the clean-surface test only for a vertex a move would carry far */
-    if (in->thickness - sd <= SS_COLLIDE_SHALLOW * in->reach) return -2 - bf;
   }
+  int best = -1;
+  for (int i = 0; i < nring; i++)
+    if (best < 0 || dist[i] < dist[best]) best = i;
+  if (best < 0) return -1;
+  const int bf = ring[best];
+  if (in->area0 && (!(fr->area[bf] >= SS_COLLIDE_CRUSHED * in->area0[bf]) ||
+                    !(fr->area[fa] >= SS_COLLIDE_CRUSHED * in->area0[fa])))
+    return -1;
+  const double tie = dist[best] + 1e-12 * in->reach * in->reach; /* reach: an edge length */
+  double n[3] = {0, 0, 0};
+  for (int i = 0; i < nring; i++)
+    if (dist[i] <= tie)
+      for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * ring[i] + k];
+  const double len = sqrt(dot3(n, n));
+  if (!(len > 0.0)) return -1;
+  for (int k = 0; k < 3; k++) n[k] /= len;
+  const double *bc = cp + 3 * best;
+  const double rel[3] = {x[0] - bc[0], x[1] - bc[1], x[2] - bc[2]};
+  const double sd = dot3(rel, n);
+  if (!(sd < in->thickness)) return -1;
+  /* along the pseudo-normal by the depth, not onto c: vertices deep under
+   * a corner or an edge would all land on that one point and their faces
+   * collapse (area ratios of 0.02 on the elbow) */
+  for (int k = 0; k < 3; k++) out[k] = x[k] + (in->thickness - sd) * n[k];
+  /* the clean-surface test only for a vertex a move would carry far */
+  if (in->thickness - sd <= SS_COLLIDE_SHALLOW * in->reach) return -2 - bf;
   return bf;
 }
 
@@ -208,10 +219,10 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
     }
   }
   if (ncand == 0) return 0;
-  /* the clean-surface test of the faces met, on the pose of the first
-   * substep of this step that needs it (refitted then): the body's
-   * self-intersections move with the pose far slower than a substep */
-  int fresh = 0;
+  /* the clean-surface test of the faces met, kept SS_COLLIDE_RECHECK steps
+   * (the body's self-intersections move far slower than a step: a leg
+   * through the belly takes a tenth of a second), each face's age its own so
+   * that the tests of a step are few; the tree refitted in a step that tests */
   int moved = 0;
   for (int k = 0; k < ndof; k++) {
     int g = c->cand_face[k];
@@ -221,20 +232,14 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
       moved++;
       continue;
     }
-    if (!fresh && c->step_refit != step) {
-      ss_bvh_refit(c->bvh, in->body);
-      ss_wind_refit(c->wind, in->body);
-      c->step_refit = step;
-      if (++c->pass == 0) { /* wrapped: every stamp is stale */
-        memset(c->face_stamp, 0, sizeof *c->face_stamp * (size_t)c->nbface);
-        c->pass = 1;
+    if (c->face_step[g] < 0 || step - c->face_step[g] >= SS_COLLIDE_RECHECK || step < c->face_step[g]) {
+      if (c->step_refit != step) {
+        ss_bvh_refit(c->bvh, in->body);
+        ss_wind_refit(c->wind, in->body);
+        c->step_refit = step;
       }
-    }
-    fresh = 1;
-    if (c->face_stamp[g] != c->pass) {
-      c->face_stamp[g] = c->pass;
+      c->face_step[g] = step;
       c->face_buried[g] = (unsigned char)ss_wind_face_buried(c->wind, in->body, g);
-
     }
     if (c->face_buried[g]) continue;
     memcpy(x + 3 * dof_vert[k], c->cand_x + 3 * k, 3 * sizeof(double));

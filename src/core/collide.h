@@ -12,8 +12,7 @@ typedef struct ss_collide_in {
   const int *anchor_face;     /* per skin vertex: the body face it is anchored on now */
   const double *area0;        /* body face areas at rest, or NULL */
   double thickness;           /* metres kept between skin and body (>= 0) */
-  double reach;               /* metres: a vertex farther out of its anchor face's plane than
-                                 this is not looked at */
+  double reach;               /* metres: the scale of the body (its mean edge length) */
 } ss_collide_in;
 
 /* Scratch and the body's winding-number hierarchy of one sim: made at
