@@ -24,11 +24,12 @@ void ss_collider_destroy(ss_collider *c);
 
 /* One pass over the skin vertices dof_vert[0 .. ndof) of x (in place, on
  * nthread threads, the same bits for any count): each behind the body's
- * clean surface around its anchor is put on it, thickness in front. `step`
- * counts the caller's steps (the surface test is cached per step). Returns
- * how many moved. */
+ * clean surface around its anchor is put on it, thickness in front, and
+ * its velocity in vel (if not NULL) loses its part into the body. `step`
+ * counts the caller's steps (the surface test is kept for some steps).
+ * Returns how many moved. */
 int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int *dof_vert,
-                    int nthread, long long step, double *x);
+                    int nthread, long long step, double *x, double *vel);
 
 /* The sim's pass (sim.c, after each substep's solve, settings collide). */
 struct ss_sim;

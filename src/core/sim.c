@@ -197,8 +197,6 @@ static void stage_guard(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, sub
       out->converged = 0;
     }
     ss_sim_scatter(sim, sim->xd, sim->x);
-    /* contact: the skin back out of the body before its velocity is taken */
-    if (sim->set.collide && in->last && out->nonfinite == 0) ss_sim_collide(sim);
   }
   st->converged &= out->converged;
   st->stalled += out->stalled;
@@ -211,6 +209,8 @@ static void stage_guard(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, sub
     if (!isfinite(sim->v[i])) sim->v[i] = 0.0, v_overflow = 1;
   }
   st->failures += v_overflow;
+  /* contact: the skin out of the clean body, its velocity into it dropped */
+  if (sim->set.collide && in->last && sim->m->ndof > 0 && out->nonfinite == 0) ss_sim_collide(sim);
 }
 
 /* ---- 4. anchors (sim_anchor.c) ---- */

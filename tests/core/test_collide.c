@@ -61,7 +61,7 @@ int main(void) {
     memcpy(x + 3 * i, sv[i].x, sizeof sv[i].x);
   }
   ss_collide_in in = {topo, fr, pos, anchor_face, NULL, 0.0, edge};
-  const int moved = ss_collider_run(col, &in, NSKIN, dof_vert, 1, 0, x);
+  const int moved = ss_collider_run(col, &in, NSKIN, dof_vert, 1, 0, x, NULL);
   CHECK_EQ_INT(moved, 4);
   for (int i = 0; i < NSKIN; i++)
     for (int k = 0; k < 3; k++) CHECK_NEAR(x[3 * i + k], sv[i].expect[k], 1e-12);
@@ -70,22 +70,35 @@ int main(void) {
   double xt[3 * NSKIN];
   for (int i = 0; i < NSKIN; i++) memcpy(xt + 3 * i, sv[i].x, sizeof sv[i].x);
   in.thickness = 0.01;
-  ss_collider_run(col, &in, NSKIN, dof_vert, 1, 1, xt);
+  ss_collider_run(col, &in, NSKIN, dof_vert, 1, 1, xt, NULL);
   CHECK_NEAR(xt[2], 1.01, 1e-12);
   CHECK_NEAR(xt[3 * 4 + 2], 0.81, 1e-12);
   CHECK_NEAR(xt[3 * 1 + 2], 1.02, 1e-12); /* 0.02 in front: stays */
+
+  /* the velocity into the body is dropped, the rest kept */
+  double xv[3 * NSKIN], vel[3 * NSKIN];
+  for (int i = 0; i < NSKIN; i++) {
+    memcpy(xv + 3 * i, sv[i].x, sizeof sv[i].x);
+    vel[3 * i] = 1.0, vel[3 * i + 1] = 2.0, vel[3 * i + 2] = -3.0;
+  }
+  ss_collider_run(col, &in, NSKIN, dof_vert, 1, 4, xv, vel);
+  CHECK_NEAR(vel[0], 1.0, 1e-15);
+  CHECK_NEAR(vel[1], 2.0, 1e-15);
+  CHECK_NEAR(vel[2], 0.0, 1e-15);      /* moved out of A's top: -z dropped */
+  CHECK_NEAR(vel[3 * 1 + 2], -3.0, 1e-15); /* not moved: kept */
+  CHECK_NEAR(vel[3 * 2 + 2], -3.0, 1e-15); /* by the buried end: kept */
 
   /* one thread and two: the same bits */
   double x2[3 * NSKIN];
   for (int i = 0; i < NSKIN; i++) memcpy(x2 + 3 * i, sv[i].x, sizeof sv[i].x);
   in.thickness = 0.0;
-  ss_collider_run(col, &in, NSKIN, dof_vert, 2, 2, x2);
+  ss_collider_run(col, &in, NSKIN, dof_vert, 2, 2, x2, NULL);
   CHECK(memcmp(x, x2, sizeof x) == 0);
 
   /* a second pass leaves the skin where the first put it */
   double x3[3 * NSKIN];
   memcpy(x3, x, sizeof x);
-  ss_collider_run(col, &in, NSKIN, dof_vert, 1, 3, x3);
+  ss_collider_run(col, &in, NSKIN, dof_vert, 1, 3, x3, NULL);
   for (int i = 0; i < 3 * NSKIN; i++) CHECK_NEAR(x3[i], x[i], 1e-15);
 
   ss_collider_destroy(col);
