@@ -1,7 +1,7 @@
 /* bench_sim: times ss_sim on a built-in scene (a benchmark, not a test).
  *
- *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads] [orient] [anchors] [tether]
- *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings) 0  (default)
+ *   bench_sim [scene] [tris] [frames] [solver] [substeps] [iterations] [tol] [method] [threads] [orient] [anchors] [tether] [collide]
+ *   defaults:  twist   19000  60      quasi-newton 1  8   1e-4  walk   (ss_sim_default_settings) 0  (default) 0
  *
  * Prints one line of medians per frame (ms): total, pose (body frames, anchor
  * positions), walk (anchor updates), assemble, factor, solve; mean iterations,
@@ -171,6 +171,7 @@ int main(int argc, char **argv) {
   if (argc > 10) set.orient = atof(argv[10]);
   const int anchors = argc > 11 ? atoi(argv[11]) : 0;
   if (argc > 12) set.tether = atof(argv[12]);
+  if (argc > 13) set.collide = atoi(argv[13]);
   char err[256];
   ss_scene *scene = NULL;
   if (ss_scene_create(&scene, scene_name, tris, err, sizeof err) != SS_OK) {

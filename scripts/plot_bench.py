@@ -167,12 +167,13 @@ def plot_stability(rows, out):
     with open(os.path.join(out, "stability.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
-    fig, axes = plt.subplots(1, 8, figsize=(36, 0.42 * len(scenes) + 1.8))
+    fig, axes = plt.subplots(1, 9, figsize=(40, 0.42 * len(scenes) + 1.8))
     keys = [("snags", "snags (count)"), ("failures", "failed frames"),
             ("inverted_faces_max", "inverted faces (most in a frame)"),
             ("faces_turned_max", "faces turned, plain count (most in a frame)"),
             ("hug_far_max", "vertices over an edge off (most in a frame)"),
             ("inside_max", "inside the body (edge lengths)"),
+            ("inside_clean_max", "inside the clean body, winding number (edge lengths)"),
             ("hug_rms", "hug RMS (edge lengths)"),
             ("error_vs_truth", "error vs truth (edge lengths)")]
     for ax, (key, title) in zip(axes, keys):
@@ -310,11 +311,13 @@ def plot_options(rows, out):
              "the body; coarse-skin: the same scene at a quarter of the triangles as skin; "
              "stiff-compression: compression 1, the Stable Neo-Hookean membrane, as stiff "
              "pushed together as pulled apart (the default skin is 0.1 as stiff in "
-             "compression). hug rms: distance of the skin to the body (silhouette); inverted: "
-             "most skin faces turned against the body in a frame.", "",
+             "compression). collide: the skin moved out of the clean body (contact). hug rms: "
+             "distance of the skin to the body (silhouette); inverted: most skin faces turned "
+             "against the body in a frame; clean depth: the deepest skin vertex inside the "
+             "body where the body is clean (winding number, every 10th frame).", "",
              "| scene | option | skin triangles | ms/frame | x base | error | vs default "
-             "| snags | hug rms | inverted |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "| snags | hug rms | inverted | clean depth |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for s in scenes:
         base = num(cell[(s, "base")], "ms_per_frame_median") if (s, "base") in cell else None
         for o in options:
@@ -324,18 +327,20 @@ def plot_options(rows, out):
             ms = num(r, "ms_per_frame_median") or 0.0
             e = num(r, "error_vs_reference")
             d = num(r, "error_vs_base_reference")
-            lines.append("| %s | %s | %s | %.2f | %s | %s | %s | %s | %.3f | %s |" % (
+            lines.append("| %s | %s | %s | %.2f | %s | %s | %s | %s | %.3f | %s | %.3f |" % (
                 s, o, r["skin_triangles"], ms, "%.2f" % (ms / base) if base else "-",
                 "%.3g" % e if e is not None else "-", "%.3g" % d if d is not None else "-",
-                r["snags"], num(r, "hug_rms") or 0.0, inverted_cell(r)))
+                r["snags"], num(r, "hug_rms") or 0.0, inverted_cell(r),
+                num(r, "inside_clean_max") or 0.0))
     with open(os.path.join(out, "options.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.2))
     width = 0.8 / max(1, len(scenes))
     for k, (key, title) in enumerate([
             ("ms_per_frame_median", "ms per frame (median)"),
             ("error_vs_reference", "error vs the same model's reference"),
-            ("error_vs_base_reference", "distance to the default model's reference")]):
+            ("error_vs_base_reference", "distance to the default model's reference"),
+            ("inside_clean_max", "deepest inside the clean body (edge lengths)")]):
         ax = axes[k]
         for i, s in enumerate(scenes):
             vals = [num(cell[(s, o)], key) if (s, o) in cell else 0 for o in options]

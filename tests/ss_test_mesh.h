@@ -82,4 +82,36 @@ static inline test_mesh test_seamed_cube(void) {
   return m;
 }
 
+/* A closed box [lo, hi] whose every side is a grid x grid grid, wound
+ * outwards, its sides' vertices not shared (seams, as mesh files have them):
+ * TEST_BOX_NVERT(grid) vertices into pos, TEST_BOX_NFACE(grid) faces into
+ * faces, indices from vbase. */
+#define TEST_BOX_NVERT(grid) (6 * ((grid) + 1) * ((grid) + 1))
+#define TEST_BOX_NFACE(grid) (12 * (grid) * (grid))
+static inline void test_box(const double lo[3], const double hi[3], int grid, double *pos,
+                            int *faces, int vbase) {
+  int nv = 0, nf = 0;
+  for (int a = 0; a < 3; a++)
+    for (int side = 0; side < 2; side++) {
+      const int u = (a + 1) % 3, v = (a + 2) % 3, v0 = nv;
+      for (int j = 0; j <= grid; j++)
+        for (int i = 0; i <= grid; i++) {
+          double *p = pos + 3 * nv++;
+          p[a] = side ? hi[a] : lo[a];
+          p[u] = lo[u] + (hi[u] - lo[u]) * i / grid;
+          p[v] = lo[v] + (hi[v] - lo[v]) * j / grid;
+        }
+      for (int j = 0; j < grid; j++)
+        for (int i = 0; i < grid; i++) {
+          const int p00 = vbase + v0 + j * (grid + 1) + i, p10 = p00 + 1;
+          const int p01 = p00 + grid + 1, p11 = p01 + 1;
+          /* e_u x e_v = e_a: counter-clockwise seen from +a on the high side */
+          int t[6] = {p00, p10, p11, p00, p11, p01};
+          if (!side) t[1] = p11, t[2] = p10, t[4] = p01, t[5] = p11;
+          for (int k = 0; k < 6; k++) faces[3 * nf + k] = t[k];
+          nf += 2;
+        }
+    }
+}
+
 #endif

@@ -119,6 +119,11 @@ typedef struct ss_sim_settings {
                             a mesh as stiff in compression as in tension buckles in folds one
                             edge wide that turn over where the body under them is crushed.
                             1 = the Stable Neo-Hookean membrane */
+  int collide;           /* 1: after the last substep's solve, free skin vertices behind the
+                            body's surface around their anchor are moved out of it (collide.c;
+                            not where the body passes through itself) */
+  double collide_thickness; /* mean rest edge lengths kept between skin and body by collide,
+                            in [0, 1] */
   ss_mover_settings mover; /* how anchors move (walk/project/nring), ss_mover_default_settings() */
   int threads;           /* threads for per-face energies and anchor walks (OpenMP); 0: all
                             cores for a skin of 4000 faces or more, else 1, and only while

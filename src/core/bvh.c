@@ -268,3 +268,8 @@ double ss_bvh_closest(const ss_bvh *b, const double *pos, const double p[3], int
   }
   return best;
 }
+
+ss_bvh_shape ss_bvh_get_shape(const ss_bvh *b) {
+  ss_bvh_shape s = {b->nnode, b->left, b->right, b->first, b->count, b->face_order};
+  return s;
+}

@@ -19,5 +19,14 @@ void ss_bvh_refit(ss_bvh *bvh, const double *pos);
  * ties go to the lower face index. Returns the squared distance. */
 double ss_bvh_closest(const ss_bvh *bvh, const double *pos, const double p[3], int *face,
                       double uv[2]);
+/* The tree's shape (read-only; 0 nodes before the first refit): nodes in
+ * depth-first order, parent before children; left/right -1 at a leaf, whose
+ * faces are face_order[first .. first + count). Lets another hierarchy over
+ * the same faces (inside.c's winding-number moments) share the tree. */
+typedef struct ss_bvh_shape {
+  int nnode;
+  const int *left, *right, *first, *count, *face_order;
+} ss_bvh_shape;
+ss_bvh_shape ss_bvh_get_shape(const ss_bvh *bvh);
 
 #endif

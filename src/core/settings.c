@@ -93,6 +93,13 @@ static const ss_setting table[] = {
      "membrane stiffness under compression, as a share of that in tension (skin wrinkles "
      "below an edge's scale); 1 the Stable Neo-Hookean membrane",
      SS_SCOPE_MODEL},
+    {"collide", NULL, SS_SETTING_BOOL, OFF(collide), 0, 0, 1, 0, 0, "", SS_APPLY_STEP, 1, NULL,
+     "skin vertices behind the body's clean surface around their anchor are moved out of it "
+     "at the end of each step (not where the body passes through itself); false off",
+     SS_SCOPE_RUN},
+    {"collide_thickness", "collide-thickness", SS_SETTING_DOUBLE, OFF(collide_thickness), 0.0, 0,
+     1, 0, 0, "edge lengths", SS_APPLY_STEP, 1, NULL,
+     "distance collide keeps between skin and body, in mean rest edge lengths", SS_SCOPE_RUN},
     {"threads", NULL, SS_SETTING_INT, OFF(threads), 0, 0, 64, 0, 0, "", SS_APPLY_RECREATE, 0,
      NULL, "threads for energies and anchor walks; 0: all cores where they pay (the same bits "
      "for any count)", SS_SCOPE_RUN},

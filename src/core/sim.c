@@ -33,6 +33,7 @@
 #include <omp.h>
 #endif
 
+#include "collide.h"
 #include "sim_internal.h"
 #include "ss_err.h"
 #include "ss_vec.h"
@@ -208,6 +209,8 @@ static void stage_guard(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, sub
     if (!isfinite(sim->v[i])) sim->v[i] = 0.0, v_overflow = 1;
   }
   st->failures += v_overflow;
+  /* contact: the skin out of the clean body, its velocity into it dropped */
+  if (sim->set.collide && in->last && sim->m->ndof > 0 && out->nonfinite == 0) ss_sim_collide(sim);
 }
 
 /* ---- 4. anchors (sim_anchor.c) ---- */

@@ -101,6 +101,7 @@ struct ss_sim {
   void *arena;                /* every array of SS_DATA_ARRAYS */
   size_t arena_bytes;
   ss_mover *mover;            /* body frames and BVH in the current pose */
+  struct ss_collider *collider; /* contact scratch (collide.c) */
   int nthread;                /* threads the current step uses (OpenMP; 1 without it) */
   int nthread_max;            /* threads made at create (walkers, team) */
   int isa;                    /* vector instruction set of the kernels (isa.h): the widest the

@@ -19,6 +19,7 @@
 #include <omp.h>
 #endif
 
+#include "collide.h"
 #include "energy.h"
 #include "isa.h"
 #include "sim_internal.h"
@@ -278,6 +279,8 @@ void ss_sim_set_isa(ss_sim *sim, int isa) {
 static int sim_data(ss_sim *sim, char *err, int err_sz) {
   int status = ss_mover_create(&sim->mover, sim->m->btopo, &sim->set.mover, sim->m->bvh_rest, err, err_sz);
   if (status != SS_OK) return status;
+  if (ss_collider_create(&sim->collider, sim->m->btopo, sim->m->body_rest, sim->m->nvert))
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
   /* one walker per thread; the team is started here, so that stepping
    * allocates nothing (the OpenMP runtime keeps its threads) */
   sim->nthread = 1;
@@ -337,6 +340,7 @@ void ss_sim_destroy(ss_sim *sim) {
     cholmod_finish(&sim->cc_z);
   }
   ss_mover_destroy(sim->mover);
+  ss_collider_destroy(sim->collider);
   if (sim->walkers)
     for (int t = 0; t < sim->nthread_max; t++) ss_walker_destroy(sim->walkers[t]);
   free(sim->arena);

@@ -325,6 +325,7 @@ int ss_reference_get(ss_reference **out, const ss_body *body, const ss_run_setti
   }
   ss_run_settings rs = ss_reference_settings(run);
   rs.frames = ref->frames;
+  rs.inside_every = 0; /* its skin is compared, not measured */
   collector c = {ref, 0};
   status = ss_run_body(body, &rs, collect_frame, &c, progress, progress_user, &ref->stats, err,
                        err_sz);

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bvh.h"
+#include "inside.h"
 #include "snag.h"
 #include "ss_err.h"
 #include "ss_util.h"
@@ -24,6 +25,7 @@ ss_run_settings ss_run_default_settings(void) {
   s.frames = 0;
   s.snag_factor = 3.0;
   s.settle = 0.0;
+  s.inside_every = 10;
   s.skin = NULL;
   s.model = NULL;
   return s;
@@ -79,6 +81,8 @@ typedef struct run_meas {
   const ss_topo *topo;
   ss_frames *fr;
   ss_bvh *bvh;
+  ss_wind *wind;            /* on bvh's tree: made at the first measured frame */
+  long long inside_sum;     /* skin vertices inside, summed over measured frames */
   snag_judge judge;
   int nanchor, skin_nvert, skin_nface;
   const int *skin_faces;
@@ -240,6 +244,47 @@ static int measure_frame(run_meas *m, const ss_sim *sim, const double *pos,
   return frame_failed;
 }
 
+/* The skin inside the body by winding number (inside.h), after
+ * measure_frame refitted the BVH to this pose: counts and depths into stats.
+ * A vertex on the surface (within 1e-6 edge: a carried piece, the rest pose)
+ * is not inside, whatever the rounding of its winding number. */
+static int measure_inside(run_meas *m, const ss_sim *sim, const double *pos, int frame,
+                          ss_run_stats *stats) {
+  if (!m->wind) {
+    int status = ss_wind_create(&m->wind, m->bvh, m->topo);
+    if (status) return status;
+  }
+  ss_wind_refit(m->wind, pos);
+  const double *x = ss_sim_skin_positions(sim);
+  const double edge = m->edge;
+  const int *anchor_face = ss_sim_anchor_faces(sim); /* vertex anchors first */
+  int inside = 0, over005 = 0, over01 = 0;
+  for (int v = 0; v < m->skin_nvert; v++) {
+    double depth;
+    const int kind = ss_inside_classify(m->wind, m->bvh, pos, x + 3 * v, anchor_face[v], &depth);
+    depth /= edge;
+    if (kind == SS_INSIDE_OUT || !(depth > 1e-6)) continue;
+    inside++;
+    if (kind == SS_INSIDE_BURIED) {
+      if (depth > stats->inside_buried_max) stats->inside_buried_max = depth;
+      continue;
+    }
+    over005 += depth > 0.05;
+    over01 += depth > 0.1;
+    if (depth > stats->inside_clean_max) {
+      stats->inside_clean_max = depth;
+      stats->inside_clean_worst_frame = frame;
+    }
+  }
+  stats->inside_samples++;
+  m->inside_sum += inside;
+  stats->inside_mean = (double)m->inside_sum / stats->inside_samples;
+  if (inside > stats->inside_count_max) stats->inside_count_max = inside;
+  if (over005 > stats->inside_clean_over_005_max) stats->inside_clean_over_005_max = over005;
+  if (over01 > stats->inside_clean_over_01_max) stats->inside_clean_over_01_max = over01;
+  return SS_OK;
+}
+
 /* Before a frame: the anchors as they are, for the snag test. */
 static void remember_anchors(run_meas *m, const ss_sim *sim) {
   memcpy(m->old_face, ss_sim_anchor_faces(sim), sizeof(int) * (size_t)m->nanchor);
@@ -286,6 +331,7 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
   if (!(settings->snag_factor > 0.0 && isfinite(settings->snag_factor)))
     return ss_fail(err, err_sz, SS_E_ARG, "run: snag factor must be a finite number > 0");
   if (settings->frames < 0) return ss_fail(err, err_sz, SS_E_ARG, "run: frames must be >= 0");
+  if (settings->inside_every < 0) return ss_fail(err, err_sz, SS_E_ARG, "run: inside_every must be >= 0");
   if (!(settings->settle >= 0.0 && settings->settle <= 1e6))
     return ss_fail(err, err_sz, SS_E_ARG, "run: settle must be in [0, 1e6] s (got %g)",
                    settings->settle);
@@ -415,6 +461,13 @@ int ss_run_body(const ss_body *body, const ss_run_settings *settings, ss_frame_f
     stats->anchors_at_step_limit += st.anchors_step_limit;
 
     frame_failed |= measure_frame(&m, sim, pos, settings, stats);
+    if (settings->inside_every > 0 && frame % settings->inside_every == 0) {
+      status = measure_inside(&m, sim, pos, frame, stats);
+      if (status) {
+        ss_fail(err, err_sz, status, "run: out of memory for the inside test");
+        break;
+      }
+    }
     stats->failures += frame_failed;
     done_frames++;
     if (on_frame && on_frame(frame_user, frame, sim, pos)) { stopped = 1; break; }
@@ -505,6 +558,7 @@ done:
   free(m.face_sign);
   free(ms);
   snag_judge_free(&m.judge);
+  ss_wind_destroy(m.wind);
   ss_bvh_destroy(m.bvh);
   ss_frames_destroy(m.fr);
   ss_sim_destroy(sim);

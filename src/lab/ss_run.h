@@ -32,7 +32,9 @@
  *    area, which the area ratios do not see;
  *  - inside: how deep a skin vertex goes under the body surface (behind the
  *    plane of the closest body face), the deepest over all frames, in mean
- *    edge lengths;
+ *    edge lengths; and every inside_every frames, the skin vertices inside
+ *    the body by its winding number, split into those where the body is
+ *    clean and those where it passes through itself (inside.h);
  *  - slide: the largest distance of an anchor from where it was bound,
  *    measured in the current pose, over the motion's frames;
  *  - rest return (settle > 0): after the last frame the body goes back to
@@ -67,6 +69,8 @@ typedef struct ss_run_settings {
                           it still this long and measure the rest return; 0 (default): no */
   const ss_sim_mesh *skin; /* a skin mesh of its own (e.g. coarser than the body), placed
                               on the body at rest; NULL (default): a welded copy of the body */
+  int inside_every;        /* measure the skin inside the body (winding number) every this many
+                              motion frames (default 10); 0: never */
   ss_model *model;         /* a model to run on, shared with other runs of this body and skin
                               (ss_run_model_create; its model settings must be sim's); NULL
                               (default): the run builds its own */
@@ -107,6 +111,18 @@ typedef struct ss_run_stats {
                                       body surface in a frame */
   int triangles_carried;           /* skin faces carried rigidly with the body (not simulated) */
   double inside_max;               /* deepest skin vertex under the body surface, mean edge lengths */
+  /* inside the body by winding number (inside_every): skin vertices with the body's winding
+   * number above 1/2 around them, deeper than 1e-6 mean edge lengths; "buried" where the body
+   * face nearest to the vertex lies inside the body itself (the body passes through itself
+   * there), else "clean". Depths: to the nearest body point, in mean edge lengths. */
+  int inside_samples;              /* frames measured */
+  double inside_mean;              /* skin vertices inside per measured frame, mean */
+  int inside_count_max;            /* ... the most in one frame */
+  double inside_buried_max;        /* deepest buried */
+  double inside_clean_max;         /* deepest clean */
+  int inside_clean_over_005_max;   /* most clean vertices deeper than 0.05 edge in a frame */
+  int inside_clean_over_01_max;    /* most clean vertices deeper than 0.1 edge in a frame */
+  int inside_clean_worst_frame;    /* frame of the deepest clean vertex (0: none) */
   double slide_max, slide_max_m;   /* farthest anchor from where it was bound during the motion:
                                       mean edge lengths, metres */
   int settle_frames;               /* frames stepped after the motion (blend + hold) */

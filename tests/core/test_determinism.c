@@ -56,6 +56,8 @@ static ss_sim_settings sim_settings(int threads) {
       .tether = 3.0,
       .orient = 200.0,
       .compression = 0.1,
+      .collide = 0,
+      .collide_thickness = 0.0,
       .mover = {.method = SS_METHOD_WALK, .walk_max_steps = 512, .nring_rings = 2},
       .threads = threads,
       .face_mask = NULL,

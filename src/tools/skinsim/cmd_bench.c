@@ -40,9 +40,11 @@
 
 #define BCN_ASSET "/usr/share/assimp/models/X/BCN_Epileptic.X"
 
-enum { OPT_NONE, OPT_NO_BARY, OPT_BENDING, OPT_GRAVITY, OPT_REGION, OPT_COARSE, OPT_STIFF };
+enum { OPT_NONE, OPT_NO_BARY, OPT_BENDING, OPT_GRAVITY, OPT_REGION, OPT_COARSE, OPT_STIFF,
+       OPT_COLLIDE };
 static const char *const option_names[] = {"base", "no-barycenters", "bending", "gravity",
-                                           "region", "coarse-skin", "stiff-compression"};
+                                           "region", "coarse-skin", "stiff-compression",
+                                           "collide"};
 
 /* One run of the sweep. */
 typedef struct bench_case {
@@ -160,7 +162,7 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
   static const char *const opt_scenes_quick[] = {"elbow"};
   const char *const *os = quick ? opt_scenes_quick : opt_scenes_full;
   for (int i = 0; i < (quick ? 1 : 3); i++) {
-    for (int o = OPT_NONE; o <= OPT_STIFF; o++) {
+    for (int o = OPT_NONE; o <= OPT_COLLIDE; o++) {
       bench_case c = base_case("options", os[i], 0, scene_tris, frames);
       c.option = o;
       c.variant = option_names[o];
@@ -287,6 +289,7 @@ static int run_case(bench_ctx *ctx, const bench_case *c, int index, int count, d
       case OPT_BENDING: s.sim.bending = 1e-3; break;
       case OPT_GRAVITY: s.sim.gravity[2] = -9.81; break;
       case OPT_STIFF: s.sim.compression = 1.0; break; /* the Stable Neo-Hookean membrane */
+      case OPT_COLLIDE: s.sim.collide = 1; break;     /* contact with the clean body */
       case OPT_REGION:
         mask = half_mask(&body);
         if (!mask) status = SS_E_NOMEM;

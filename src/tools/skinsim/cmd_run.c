@@ -97,6 +97,9 @@ int cmd_run(int argc, char **argv) {
     } else if (strcmp(a, "--frames") == 0) {
       if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 1, 1000000, &s.frames))
         return EXIT_USAGE;
+    } else if (strcmp(a, "--inside-every") == 0) {
+      if (!(v = cli_value(argc, argv, &i)) || cli_int(a, v, 0, 1000000, &s.inside_every))
+        return EXIT_USAGE;
     } else if (strcmp(a, "--avatar") == 0) {
       if (!(av.avatar = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--urdf") == 0) {

@@ -19,7 +19,7 @@ static void usage(FILE *f) {
       "                              edge lengths off the surface, default 0.1) and moved there by\n"
       "                              the method; counts snags and failures\n"
       "  compare [--frames N]        every scene with every method: the table of where methods snag\n"
-      "  run BODY [--frames N] [SETTINGS] [--settle SECONDS] [--truth]\n"
+      "  run BODY [--frames N] [SETTINGS] [--settle SECONDS] [--truth] [--inside-every N]\n"
       "        [--reference [--cache DIR]] [--json FILE|-] [--out DIR]\n"
       "                              the dynamic skin over a scene: one step per frame; JSON\n"
       "                              summary (speed, snags, failures, hugging, area ratios,\n"

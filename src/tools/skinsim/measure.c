@@ -148,6 +148,15 @@ void measure_fields(json_out *j, const char *scene, const ss_run_settings *s,
   json_int(j, "triangles_carried", st->triangles_carried);
   json_int(j, "body_folds_max", st->body_folds_max);
   json_num(j, "inside_max", st->inside_max);
+  json_int(j, "inside_every", s->inside_every);
+  json_int(j, "inside_samples", st->inside_samples);
+  json_num(j, "inside_mean", st->inside_mean);
+  json_int(j, "inside_count_max", st->inside_count_max);
+  json_num(j, "inside_buried_max", st->inside_buried_max);
+  json_num(j, "inside_clean_max", st->inside_clean_max);
+  json_int(j, "inside_clean_over_005_max", st->inside_clean_over_005_max);
+  json_int(j, "inside_clean_over_01_max", st->inside_clean_over_01_max);
+  json_int(j, "inside_clean_worst_frame", st->inside_clean_worst_frame);
   json_num(j, "slide_max", st->slide_max);
   json_num(j, "slide_max_m", st->slide_max_m);
   json_num(j, "settle", s->settle);

@@ -1,0 +1,97 @@
+/* The inside test (inside.h): the fast winding number against the exact
+ * per-triangle sum, and the split of skin points inside the body into
+ * "clean" and "buried" on a body built to have both: two overlapping closed
+ * boxes (the second's end and the parts of its sides within the first lie
+ * inside the body, as linear blend skinning buries a crushed crease), with
+ * points placed inside at known depths. */
+#include <string.h>
+
+#include "bvh.h"
+#include "inside.h"
+#include "ss_test.h"
+#include "ss_test_mesh.h"
+
+#define GRID 8 /* quads per box face side */
+#define NV_BOX TEST_BOX_NVERT(GRID)
+#define NF_BOX TEST_BOX_NFACE(GRID)
+
+static void make_box(const double lo[3], const double hi[3], double *pos, int *faces, int vbase) {
+  test_box(lo, hi, GRID, pos, faces, vbase);
+}
+
+int main(void) {
+  /* A = [0,2] x [0,1] x [0,1]; B = [1.5,3] x [0.2,0.8]^2 enters A through
+   * A's end x = 2: B's end x = 1.5 and its sides for x < 2 are inside A */
+  static double pos[2 * 3 * NV_BOX];
+  static int faces[2 * 3 * NF_BOX];
+  const double alo[3] = {0, 0, 0}, ahi[3] = {2, 1, 1}, blo[3] = {1.5, 0.2, 0.2}, bhi[3] = {3, 0.8, 0.8};
+  make_box(alo, ahi, pos, faces, 0);
+  make_box(blo, bhi, pos + 3 * NV_BOX, faces + 3 * NF_BOX, NV_BOX);
+  const int nvert = 2 * NV_BOX, nface = 2 * NF_BOX;
+  char err[256];
+  ss_topo *topo = NULL;
+  ss_bvh *bvh = NULL;
+  ss_wind *w = NULL;
+  CHECK_EQ_INT(ss_topo_create(&topo, nvert, pos, nface, faces, -1.0, err, sizeof err), SS_OK);
+  CHECK_EQ_INT(ss_bvh_create(&bvh, topo), SS_OK);
+  if (!topo || !bvh) return ss_test_finish("test_inside");
+  ss_bvh_refit(bvh, pos);
+  CHECK_EQ_INT(ss_wind_create(&w, bvh, topo), SS_OK);
+  if (!w) return ss_test_finish("test_inside");
+  ss_wind_refit(w, pos);
+
+  /* the fast sum against the exact one, near and far, inside and out */
+  unsigned long long s = 7;
+  double worst = 0.0;
+  for (int trial = 0; trial < 400; trial++) {
+    double p[3] = {4.0 * ss_test_rand(&s) - 0.5, 1.6 * ss_test_rand(&s) - 0.3, 1.6 * ss_test_rand(&s) - 0.3};
+    double exact = 0.0;
+    for (int f = 0; f < nface; f++) {
+      const int *fv = faces + 3 * f;
+      exact += ss_wind_triangle(p, pos + 3 * fv[0], pos + 3 * fv[1], pos + 3 * fv[2]);
+    }
+    const double fast = ss_wind_number(w, pos, p);
+    const double e = fabs(fast - exact);
+    if (e > worst) worst = e;
+    /* the exact sum is an integer off the surface: 0, 1 or 2 here */
+    const int inA = p[0] > 0 && p[0] < 2 && p[1] > 0 && p[1] < 1 && p[2] > 0 && p[2] < 1;
+    const int inB = p[0] > 1.5 && p[0] < 3 && p[1] > 0.2 && p[1] < 0.8 && p[2] > 0.2 && p[2] < 0.8;
+    CHECK_NEAR(exact, inA + inB, 1e-6);
+  }
+  CHECK_MSG(worst < 0.02, "fast winding number off by %g", worst);
+
+  /* points at known depths */
+  struct {
+    double p[3];
+    int kind;
+    double depth;
+  } pt[] = {
+      {{0.5, 0.5, 0.9}, SS_INSIDE_CLEAN, 0.1},    /* under A's top, far from B */
+      {{0.5, 0.03, 0.5}, SS_INSIDE_CLEAN, 0.03},  /* just inside A's side */
+      {{2.5, 0.5, 0.75}, SS_INSIDE_CLEAN, 0.05},  /* under B's top, out of A */
+      {{1.55, 0.5, 0.5}, SS_INSIDE_BURIED, 0.05}, /* by B's end, which is inside A */
+      {{1.8, 0.25, 0.5}, SS_INSIDE_BURIED, 0.05}, /* by B's side where it runs in A */
+      {{-0.1, 0.5, 0.5}, SS_INSIDE_OUT, 0.0},
+      {{2.5, 0.9, 0.5}, SS_INSIDE_OUT, 0.0},
+  };
+  for (size_t i = 0; i < sizeof pt / sizeof pt[0]; i++) {
+    double depth = -1.0;
+    const int kind = ss_inside_classify(w, bvh, pos, pt[i].p, -1, &depth);
+    CHECK_MSG(kind == pt[i].kind, "point %zu: kind %d, expected %d", i, kind, pt[i].kind);
+    CHECK_NEAR(depth, pt[i].depth, 1e-12);
+  }
+  /* a face of B's end lies inside A; one of A's top does not */
+  double c[3] = {1.5, 0.5, 0.5};
+  int face;
+  double uv[2];
+  ss_bvh_closest(bvh, pos, c, &face, uv);
+  CHECK(ss_wind_face_buried(w, pos, face));
+  double c2[3] = {0.5, 0.5, 1.0};
+  ss_bvh_closest(bvh, pos, c2, &face, uv);
+  CHECK(!ss_wind_face_buried(w, pos, face));
+
+  ss_wind_destroy(w);
+  ss_bvh_destroy(bvh);
+  ss_topo_destroy(topo);
+  return ss_test_finish("test_inside");
+}
