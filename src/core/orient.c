@@ -120,23 +120,6 @@ static inline double face_ratio(const ss_model *m, const double *xfull, int f, c
   return s;
 }
 
-/* The unit normal free vertex q (dof) is judged against for its depth
- * under the body surface at its anchor, -(x - a) . n: halfway between its
- * anchor's face and the face it was bound to. 0 (not judged) where they
- * disagree by over 120 degrees, where it has no anchor face or no spring. */
-static int vertex_normal(const ss_sim *sim, const ss_frames *fr, int q, double n[3]) {
-  const int v = sim->m->dof_vert[q], fa = sim->anchor_face[v], fh = sim->m->anchor_face0[v];
-  if (fa < 0 || fh < 0 || sim->m->k_vert[v] == 0.0) return 0; /* held on the body only */
-  /* a sliver's normal swings with the smallest move of its corners: not trusted */
-  const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
-  if (!(fr->area[fa] >= min_area && fr->area[fh] >= min_area)) return 0;
-  for (int k = 0; k < 3; k++) n[k] = fr->normal[3 * fa + k] + fr->normal[3 * fh + k];
-  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 1.0)) return 0;
-  for (int k = 0; k < 3; k++) n[k] /= len;
-  return 1;
-}
-
 /* The depth spring: SS_ORIENT_DEPTH orient per rest area, the depth in mean
  * edge lengths (a vertex one edge length deep pays a tenth of a face turned
  * on edge). Stiffer springs cost line-search halvings in the quasi-Newton
@@ -193,15 +176,128 @@ static inline void face_normal_begin(const ss_sim *sim, const ss_frames *fr, int
   else n[0] = n[1] = n[2] = 0.0;
 }
 
-static inline void dof_normal_begin(const ss_sim *sim, const ss_frames *fr, int q) {
-  double *n = sim->orient_n + 4 * ((size_t)sim->m->nface + q);
-  n[0] = n[1] = n[2] = n[3] = 0.0;
-  if (vertex_normal(sim, fr, q, n)) n[3] = 1.0;
-  else n[0] = n[1] = n[2] = 0.0;
+/* The same for faces [q0, q1) and dofs [k0, k1), SS_ORIENT_LANES at a time
+ * in vector lanes: inputs gathered into lanes, one elementwise loop (the
+ * same operations in the same order as face_normal_begin, and for a dof as
+ * one at a time, so the same bits at any width), written back. A face
+ * off the usual case (not judged, its barycenter or a corner without an
+ * anchor face, or anchored away from home: two normals) is done again by
+ * face_normal_begin. One face at a time, the chain of two square roots and
+ * seven divisions per face, every substep, was a tenth of a 4 x 2 frame. */
+#define SS_ORIENT_LANES 8
+static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_frames *fr, int q0, int q1,
+                                                   int k0, int k1) {
+  enum { L = SS_ORIENT_LANES };
+  const ss_model *m = sim->m;
+  const int nv = m->nvert, bary = m->nanchor > nv;
+  const int *af = sim->anchor_face, *af0 = m->anchor_face0;
+  const double *bn = fr->normal, *ba = fr->area;
+  for (int qb = q0; qb < q1; qb += L) {
+    const int cnt = q1 - qb < L ? q1 - qb : L;
+    double nb[3][L], nc[3][3][L], ar[L], ar0[L], sg[L], ra[L], ok[L];
+    double on[4][L];
+    for (int l = 0; l < L; l++) {
+      ok[l] = 0.0;
+      int b = 0, c3[3] = {0, 0, 0};
+      sg[l] = 1.0, ra[l] = 1.0;
+      if (l < cnt && bary) {
+        const int q = qb + l, f = m->simface[q];
+        const int *fv = m->faces + 3 * f;
+        b = af[nv + f];
+        c3[0] = af[fv[0]], c3[1] = af[fv[1]], c3[2] = af[fv[2]];
+        /* anchored_at_home, every anchor on a face */
+        if (m->orient_sign[f] && b >= 0 && c3[0] >= 0 && c3[1] >= 0 && c3[2] >= 0 && b == af0[nv + f] &&
+            c3[0] == af0[fv[0]] && c3[1] == af0[fv[1]] && c3[2] == af0[fv[2]]) {
+          ok[l] = 1.0;
+          sg[l] = m->orient_sign[f], ra[l] = m->rest_area[f];
+        } else {
+          b = c3[0] = c3[1] = c3[2] = 0;
+        }
+      }
+      for (int i = 0; i < 3; i++) nb[i][l] = bn[3 * (size_t)b + i];
+      for (int c = 0; c < 3; c++)
+        for (int i = 0; i < 3; i++) nc[c][i][l] = bn[3 * (size_t)c3[c] + i];
+      ar[l] = ba[b], ar0[l] = m->body_area0[b];
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      /* normal_under (ss_body_normal.h): crush_share, then the corners */
+      const double r = ar[l] / ar0[l];
+      const double w = !(ar0[l] > 0.0) ? 1.0 : r >= 1.0 ? 0.0 : r > 0.0 ? 1.0 - r : 1.0;
+      const double s0 = ((nb[0][l] + w * nc[0][0][l]) + w * nc[1][0][l]) + w * nc[2][0][l];
+      const double s1 = ((nb[1][l] + w * nc[0][1][l]) + w * nc[1][1][l]) + w * nc[2][1][l];
+      const double s2 = ((nb[2][l] + w * nc[0][2][l]) + w * nc[1][2][l]) + w * nc[2][2][l];
+      const double sl = sqrt(s0 * s0 + s1 * s1 + s2 * s2);
+      const int norm = sl > 0.0;
+      const double t0 = norm ? s0 / sl : s0, t1 = norm ? s1 / sl : s1, t2 = norm ? s2 / sl : s2;
+      const int corners = w > 0.0;
+      const double a0 = corners ? t0 : nb[0][l], a1 = corners ? t1 : nb[1][l], a2 = corners ? t2 : nb[2][l];
+      /* ss_sim_orient_normal at home: halfway between a and itself */
+      const double n0 = a0 + a0, n1 = a1 + a1, n2 = a2 + a2;
+      const double len = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+      const int judged = (len > 1.0) & (ok[l] != 0.0);
+      on[0][l] = judged ? n0 / len : 0.0;
+      on[1][l] = judged ? n1 / len : 0.0;
+      on[2][l] = judged ? n2 / len : 0.0;
+      on[3][l] = judged ? sg[l] / (2.0 * ra[l]) : 0.0; /* face_c */
+    }
+    for (int l = 0; l < cnt; l++) {
+      if (ok[l] == 0.0) {
+        face_normal_begin(sim, fr, qb + l);
+        continue;
+      }
+      double *n = sim->orient_n + 4 * (size_t)(qb + l);
+      n[0] = on[0][l], n[1] = on[1][l], n[2] = on[2][l], n[3] = on[3][l];
+    }
+  }
+  /* The unit normal free vertex q (dof) is judged against for its depth
+   * under the body surface at its anchor, -(x - a) . n: halfway between its
+   * anchor's face and the face it was bound to. 0 (not judged) where they
+   * disagree by over 120 degrees, where it has no anchor face or no spring,
+   * or where either face is a sliver (its normal swings with the smallest
+   * move of its corners: not trusted). */
+  const double min_area = SS_ORIENT_MIN_AREA * m->edge_len * m->edge_len;
+  double *nd = sim->orient_n + 4 * (size_t)m->nface;
+  for (int kb = k0; kb < k1; kb += L) {
+    const int cnt = k1 - kb < L ? k1 - kb : L;
+    double na[3][L], nh[3][L], aa[L], ah[L], ok[L], on[3][L], jd[L];
+    for (int l = 0; l < L; l++) {
+      int fa = 0, fh = 0;
+      ok[l] = 0.0;
+      if (l < cnt) {
+        const int v = m->dof_vert[kb + l];
+        if (af[v] >= 0 && af0[v] >= 0 && m->k_vert[v] != 0.0) ok[l] = 1.0, fa = af[v], fh = af0[v];
+      }
+      for (int i = 0; i < 3; i++) na[i][l] = bn[3 * (size_t)fa + i], nh[i][l] = bn[3 * (size_t)fh + i];
+      aa[l] = ba[fa], ah[l] = ba[fh];
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      const double n0 = na[0][l] + nh[0][l], n1 = na[1][l] + nh[1][l], n2 = na[2][l] + nh[2][l];
+      const double len = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+      const int judged = (ok[l] != 0.0) & (aa[l] >= min_area) & (ah[l] >= min_area) & (len > 1.0);
+      on[0][l] = judged ? n0 / len : 0.0;
+      on[1][l] = judged ? n1 / len : 0.0;
+      on[2][l] = judged ? n2 / len : 0.0;
+      jd[l] = judged ? 1.0 : 0.0;
+    }
+    for (int l = 0; l < cnt; l++) {
+      double *n = nd + 4 * (size_t)(kb + l);
+      n[0] = on[0][l], n[1] = on[1][l], n[2] = on[2][l], n[3] = jd[l];
+    }
+  }
 }
 
+SS_ISA_VARIANTS(normals, (const ss_sim *sim, const ss_frames *fr, int q0, int q1, int k0, int k1),
+                normals_kernel(sim, fr, q0, q1, k0, k1);)
+
 /* Each face and dof its own: on the sim's threads with the same bits (once
- * per substep, a share of a frame worth both cores). Nothing with orient 0. */
+ * per substep, a share of a frame worth both cores), in blocks of lanes.
+ * Nothing with orient 0. */
 void ss_sim_orient_begin(ss_sim *sim) {
   /* without the term nothing reads them (its energy and line model return
    * first); a new orient takes effect at the next substep, which calls this */
@@ -210,18 +306,20 @@ void ss_sim_orient_begin(ss_sim *sim) {
   const int nsim = sim->m->nsimface, ndof = sim->m->ndof;
 #ifdef _OPENMP
   if (sim->nthread > 1 && nsim + ndof > 256) {
-#pragma omp parallel num_threads(sim->nthread)
-    {
-#pragma omp for schedule(static) nowait
-      for (int q = 0; q < nsim; q++) face_normal_begin(sim, fr, q);
-#pragma omp for schedule(static)
-      for (int q = 0; q < ndof; q++) dof_normal_begin(sim, fr, q);
+    enum { B = 64 * SS_ORIENT_LANES };
+    const int nbf = (nsim + B - 1) / B, nbd = (ndof + B - 1) / B;
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int b = 0; b < nbf + nbd; b++) {
+      if (b < nbf)
+        SS_ISA_CALL(sim->isa, normals, (sim, fr, b * B, (b + 1) * B < nsim ? (b + 1) * B : nsim, 0, 0));
+      else
+        SS_ISA_CALL(sim->isa, normals,
+                    (sim, fr, 0, 0, (b - nbf) * B, (b - nbf + 1) * B < ndof ? (b - nbf + 1) * B : ndof));
     }
     return;
   }
 #endif
-  for (int q = 0; q < nsim; q++) face_normal_begin(sim, fr, q);
-  for (int q = 0; q < ndof; q++) dof_normal_begin(sim, fr, q);
+  SS_ISA_CALL(sim->isa, normals, (sim, fr, 0, nsim, 0, ndof));
 }
 
 /* Depth of dof q's vertex under the body at its anchor, against its cached
