@@ -192,10 +192,15 @@ static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_f
   const int nv = m->nvert, bary = m->nanchor > nv;
   const int *af = sim->anchor_face, *af0 = m->anchor_face0;
   const double *bn = fr->normal, *ba = fr->area;
+  /* The lane loops are short and each its own: a value chosen by a select
+   * is stored before it is divided by, and every division's result stored
+   * on every lane, the choices left to the write-back. A division under a
+   * condition is not if-converted for AVX2 (it might trap), and GCC sinks a
+   * division into the branch of a select that alone uses it. */
   for (int qb = q0; qb < q1; qb += L) {
     const int cnt = q1 - qb < L ? q1 - qb : L;
-    double nb[3][L], nc[3][3][L], ar[L], ar0[L], sg[L], ra[L], ok[L];
-    double on[4][L];
+    double nb[3][L], nc[3][3][L], ar[L], ar0[L], r[L], w[L], sg[L], ra[L], ok[L];
+    double sv[3][L], sd[L], t[3][L], nn[3][L], len[L], u[3][L], c[L];
     for (int l = 0; l < L; l++) {
       ok[l] = 0.0;
       int b = 0, c3[3] = {0, 0, 0};
@@ -215,41 +220,64 @@ static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_f
         }
       }
       for (int i = 0; i < 3; i++) nb[i][l] = bn[3 * (size_t)b + i];
-      for (int c = 0; c < 3; c++)
-        for (int i = 0; i < 3; i++) nc[c][i][l] = bn[3 * (size_t)c3[c] + i];
-      ar[l] = ba[b], ar0[l] = m->body_area0[b];
+      for (int k = 0; k < 3; k++)
+        for (int i = 0; i < 3; i++) nc[k][i][l] = bn[3 * (size_t)c3[k] + i];
+      const double area0 = m->body_area0[b];
+      ar[l] = ba[b], ar0[l] = area0 > 0.0 ? area0 : 1.0, w[l] = area0 > 0.0 ? 0.0 : 1.0;
+    }
+    /* normal_under's weight of the corners, crush_share (ss_body_normal.h):
+     * its division in lanes, its branches after (w already 1 where the rest
+     * area is not > 0, divided by 1.0 instead) */
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) r[l] = ar[l] / ar0[l];
+    for (int l = 0; l < L; l++) w[l] = w[l] != 0.0 ? 1.0 : r[l] >= 1.0 ? 0.0 : r[l] > 0.0 ? 1.0 - r[l] : 1.0;
+    /* normal_under (ss_body_normal.h): the barycenter's normal and the
+     * corners' weighted, normalised where the sum is not zero */
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      for (int i = 0; i < 3; i++) sv[i][l] = ((nb[i][l] + w[l] * nc[0][i][l]) + w[l] * nc[1][i][l]) + w[l] * nc[2][i][l];
+      const double sl = sqrt(sv[0][l] * sv[0][l] + sv[1][l] * sv[1][l] + sv[2][l] * sv[2][l]);
+      sd[l] = sl > 0.0 ? sl : 1.0; /* x / 1.0 is x: the sum as it is */
     }
 #ifdef _OPENMP
 #pragma omp simd
 #endif
     for (int l = 0; l < L; l++) {
-      /* normal_under (ss_body_normal.h): crush_share, then the corners */
-      const double r = ar[l] / ar0[l];
-      const double w = !(ar0[l] > 0.0) ? 1.0 : r >= 1.0 ? 0.0 : r > 0.0 ? 1.0 - r : 1.0;
-      const double s0 = ((nb[0][l] + w * nc[0][0][l]) + w * nc[1][0][l]) + w * nc[2][0][l];
-      const double s1 = ((nb[1][l] + w * nc[0][1][l]) + w * nc[1][1][l]) + w * nc[2][1][l];
-      const double s2 = ((nb[2][l] + w * nc[0][2][l]) + w * nc[1][2][l]) + w * nc[2][2][l];
-      const double sl = sqrt(s0 * s0 + s1 * s1 + s2 * s2);
-      const int norm = sl > 0.0;
-      const double t0 = norm ? s0 / sl : s0, t1 = norm ? s1 / sl : s1, t2 = norm ? s2 / sl : s2;
-      const int corners = w > 0.0;
-      const double a0 = corners ? t0 : nb[0][l], a1 = corners ? t1 : nb[1][l], a2 = corners ? t2 : nb[2][l];
-      /* ss_sim_orient_normal at home: halfway between a and itself */
-      const double n0 = a0 + a0, n1 = a1 + a1, n2 = a2 + a2;
-      const double len = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
-      const int judged = (len > 1.0) & (ok[l] != 0.0);
-      on[0][l] = judged ? n0 / len : 0.0;
-      on[1][l] = judged ? n1 / len : 0.0;
-      on[2][l] = judged ? n2 / len : 0.0;
-      on[3][l] = judged ? sg[l] / (2.0 * ra[l]) : 0.0; /* face_c */
+      for (int i = 0; i < 3; i++) t[i][l] = sv[i][l] / sd[l];
+      c[l] = sg[l] / (2.0 * ra[l]); /* face_c */
     }
+    /* where the barycenter's body face keeps its area (w 0), its own unit
+     * normal as it is; then ss_sim_orient_normal at home, halfway between it
+     * and itself (the select on its own: in a lane loop it too was made a
+     * branch) */
+    for (int l = 0; l < L; l++)
+      for (int i = 0; i < 3; i++) {
+        const double a = w[l] > 0.0 ? t[i][l] : nb[i][l];
+        nn[i][l] = a + a;
+      }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++)
+      for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
     for (int l = 0; l < cnt; l++) {
       if (ok[l] == 0.0) {
         face_normal_begin(sim, fr, qb + l);
         continue;
       }
       double *n = sim->orient_n + 4 * (size_t)(qb + l);
-      n[0] = on[0][l], n[1] = on[1][l], n[2] = on[2][l], n[3] = on[3][l];
+      if (len[l] > 1.0)
+        n[0] = u[0][l], n[1] = u[1][l], n[2] = u[2][l], n[3] = c[l];
+      else
+        n[0] = n[1] = n[2] = n[3] = 0.0;
     }
   }
   /* The unit normal free vertex q (dof) is judged against for its depth
@@ -262,32 +290,32 @@ static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_f
   double *nd = sim->orient_n + 4 * (size_t)m->nface;
   for (int kb = k0; kb < k1; kb += L) {
     const int cnt = k1 - kb < L ? k1 - kb : L;
-    double na[3][L], nh[3][L], aa[L], ah[L], ok[L], on[3][L], jd[L];
+    double nn[3][L], len[L], u[3][L], ok[L];
     for (int l = 0; l < L; l++) {
       int fa = 0, fh = 0;
       ok[l] = 0.0;
       if (l < cnt) {
         const int v = m->dof_vert[kb + l];
-        if (af[v] >= 0 && af0[v] >= 0 && m->k_vert[v] != 0.0) ok[l] = 1.0, fa = af[v], fh = af0[v];
+        if (af[v] >= 0 && af0[v] >= 0 && m->k_vert[v] != 0.0 && ba[af[v]] >= min_area && ba[af0[v]] >= min_area)
+          ok[l] = 1.0, fa = af[v], fh = af0[v];
       }
-      for (int i = 0; i < 3; i++) na[i][l] = bn[3 * (size_t)fa + i], nh[i][l] = bn[3 * (size_t)fh + i];
-      aa[l] = ba[fa], ah[l] = ba[fh];
+      for (int i = 0; i < 3; i++) nn[i][l] = bn[3 * (size_t)fa + i] + bn[3 * (size_t)fh + i];
     }
 #ifdef _OPENMP
 #pragma omp simd
 #endif
-    for (int l = 0; l < L; l++) {
-      const double n0 = na[0][l] + nh[0][l], n1 = na[1][l] + nh[1][l], n2 = na[2][l] + nh[2][l];
-      const double len = sqrt(n0 * n0 + n1 * n1 + n2 * n2);
-      const int judged = (ok[l] != 0.0) & (aa[l] >= min_area) & (ah[l] >= min_area) & (len > 1.0);
-      on[0][l] = judged ? n0 / len : 0.0;
-      on[1][l] = judged ? n1 / len : 0.0;
-      on[2][l] = judged ? n2 / len : 0.0;
-      jd[l] = judged ? 1.0 : 0.0;
-    }
+    for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++)
+      for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
     for (int l = 0; l < cnt; l++) {
       double *n = nd + 4 * (size_t)(kb + l);
-      n[0] = on[0][l], n[1] = on[1][l], n[2] = on[2][l], n[3] = jd[l];
+      if (ok[l] != 0.0 && len[l] > 1.0)
+        n[0] = u[0][l], n[1] = u[1][l], n[2] = u[2][l], n[3] = 1.0;
+      else
+        n[0] = n[1] = n[2] = n[3] = 0.0;
     }
   }
 }
