@@ -69,6 +69,12 @@ typedef struct scatter_ctx {
 static void scatter_block(void *ctx, int k0, int k1, double *sums) {
   const scatter_ctx *c = ctx;
   (void)sums;
+  /* every vertex free (dofs are the free vertices in increasing order, so
+   * dof k is vertex k): one copy, not one per vertex through dof_vert */
+  if (c->sim->m->ndof == c->sim->m->nvert) {
+    memcpy(c->xfull + 3 * (size_t)k0, c->xd + 3 * (size_t)k0, 3 * (size_t)(k1 - k0) * sizeof(double));
+    return;
+  }
   for (int k = k0; k < k1; k++) memcpy(c->xfull + 3 * c->sim->m->dof_vert[k], c->xd + 3 * k, 3 * sizeof(double));
 }
 
