@@ -492,19 +492,23 @@ typedef struct line_ctx {
   double a, prev; /* the step of this pass, of the last (prev < 0: none) */
 } line_ctx;
 
-/* Each dof's spring along the line into depth_line (depth, rate, stiffness;
- * stiffness 0: not judged or out of reach of a full step, where d_v and
- * d_v - b_v are both <= 0, so it stays off on all of [0, 1]); sums[0] the
- * springs' slope at 0. */
+/* The springs along the line of the dofs of block [q0, q1) into depth_line
+ * from 3 q0 on, packed in dof order (depth, rate, stiffness), up to the
+ * first of stiffness 0 or the block's end: a dof not judged or out of reach
+ * of a full step (d_v and d_v - b_v both <= 0, so it stays off on all of
+ * [0, 1]) is left out, and line_slope's passes, several per line search,
+ * read only the springs that can act (a third to a half of the dofs); the
+ * same terms in the same order, so the same sums. sums[0] the springs'
+ * slope at 0. */
 static void line_springs(void *ctx, int q0, int q1, double *sums) {
   const line_ctx *c = ctx;
   const ss_sim *sim = c->sim;
   const double *nd = sim->orient_n + 4 * (size_t)sim->m->nface;
   double *dl = sim->depth_line;
   double slope = 0.0;
+  int j = q0; /* the next packed slot */
   for (int q = q0; q < q1; q++) {
     const double *n = nd + 4 * (size_t)q;
-    dl[3 * q] = dl[3 * q + 1] = dl[3 * q + 2] = 0.0;
     if (n[3] == 0.0) continue;
     const double *x = c->xd + 3 * q, *a = sim->anchor_pos + 3 * (size_t)sim->m->dof_vert[q];
     const double *d = c->dir + 3 * q;
@@ -513,8 +517,11 @@ static void line_springs(void *ctx, int q0, int q1, double *sums) {
     if (!(depth > 0.0) && !(depth - rate > 0.0)) continue;
     const double w = depth_weight(sim, q);
     if (depth > 0.0) slope -= w * rate * depth;
-    dl[3 * q] = depth, dl[3 * q + 1] = rate, dl[3 * q + 2] = w;
+    if (w == 0.0) continue; /* nothing along the line (line_slope's sums skip it) */
+    dl[3 * j] = depth, dl[3 * j + 1] = rate, dl[3 * j + 2] = w;
+    j++;
   }
+  if (j < q1) dl[3 * j + 2] = 0.0; /* the end of the block's springs */
   sums[0] = slope;
 }
 
@@ -527,7 +534,7 @@ static void line_slope(void *ctx, int q0, int q1, double *sums) {
   double d1 = 0.0, d2 = 0.0, turned = 0.0;
   for (int q = q0; q < q1; q++) {
     const double w = dl[3 * q + 2];
-    if (w == 0.0) continue;
+    if (w == 0.0) break; /* the block's springs end (line_springs) */
     const double depth = dl[3 * q], rate = dl[3 * q + 1];
     const int on = depth - c->a * rate > 0.0;
     if (on) {
