@@ -120,23 +120,6 @@ static inline double face_ratio(const ss_model *m, const double *xfull, int f, c
   return s;
 }
 
-/* The unit normal free vertex q (dof) is judged against for its depth
- * under the body surface at its anchor, -(x - a) . n: halfway between its
- * anchor's face and the face it was bound to. 0 (not judged) where they
- * disagree by over 120 degrees, where it has no anchor face or no spring. */
-static int vertex_normal(const ss_sim *sim, const ss_frames *fr, int q, double n[3]) {
-  const int v = sim->m->dof_vert[q], fa = sim->anchor_face[v], fh = sim->m->anchor_face0[v];
-  if (fa < 0 || fh < 0 || sim->m->k_vert[v] == 0.0) return 0; /* held on the body only */
-  /* a sliver's normal swings with the smallest move of its corners: not trusted */
-  const double min_area = SS_ORIENT_MIN_AREA * sim->m->edge_len * sim->m->edge_len;
-  if (!(fr->area[fa] >= min_area && fr->area[fh] >= min_area)) return 0;
-  for (int k = 0; k < 3; k++) n[k] = fr->normal[3 * fa + k] + fr->normal[3 * fh + k];
-  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 1.0)) return 0;
-  for (int k = 0; k < 3; k++) n[k] /= len;
-  return 1;
-}
-
 /* The depth spring: SS_ORIENT_DEPTH orient per rest area, the depth in mean
  * edge lengths (a vertex one edge length deep pays a tenth of a face turned
  * on edge). Stiffer springs cost line-search halvings in the quasi-Newton
@@ -193,15 +176,156 @@ static inline void face_normal_begin(const ss_sim *sim, const ss_frames *fr, int
   else n[0] = n[1] = n[2] = 0.0;
 }
 
-static inline void dof_normal_begin(const ss_sim *sim, const ss_frames *fr, int q) {
-  double *n = sim->orient_n + 4 * ((size_t)sim->m->nface + q);
-  n[0] = n[1] = n[2] = n[3] = 0.0;
-  if (vertex_normal(sim, fr, q, n)) n[3] = 1.0;
-  else n[0] = n[1] = n[2] = 0.0;
+/* The same for faces [q0, q1) and dofs [k0, k1), SS_ORIENT_LANES at a time
+ * in vector lanes: inputs gathered into lanes, one elementwise loop (the
+ * same operations in the same order as face_normal_begin, and for a dof as
+ * one at a time, so the same bits at any width), written back. A face
+ * off the usual case (not judged, its barycenter or a corner without an
+ * anchor face, or anchored away from home: two normals) is done again by
+ * face_normal_begin. One face at a time, the chain of two square roots and
+ * seven divisions per face, every substep, was a tenth of a 4 x 2 frame. */
+#define SS_ORIENT_LANES 8
+static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_frames *fr, int q0, int q1,
+                                                   int k0, int k1) {
+  enum { L = SS_ORIENT_LANES };
+  const ss_model *m = sim->m;
+  const int nv = m->nvert, bary = m->nanchor > nv;
+  const int *af = sim->anchor_face, *af0 = m->anchor_face0;
+  const double *bn = fr->normal, *ba = fr->area;
+  /* The lane loops are short and each its own: a value chosen by a select
+   * is stored before it is divided by, and every division's result stored
+   * on every lane, the choices left to the write-back. A division under a
+   * condition is not if-converted for AVX2 (it might trap), and GCC sinks a
+   * division into the branch of a select that alone uses it. */
+  for (int qb = q0; qb < q1; qb += L) {
+    const int cnt = q1 - qb < L ? q1 - qb : L;
+    double nb[3][L], nc[3][3][L], ar[L], ar0[L], r[L], w[L], sg[L], ra[L], ok[L];
+    double sv[3][L], sd[L], t[3][L], nn[3][L], len[L], u[3][L], c[L];
+    for (int l = 0; l < L; l++) {
+      ok[l] = 0.0;
+      int b = 0, c3[3] = {0, 0, 0};
+      sg[l] = 1.0, ra[l] = 1.0;
+      if (l < cnt && bary) {
+        const int q = qb + l, f = m->simface[q];
+        const int *fv = m->faces + 3 * f;
+        b = af[nv + f];
+        c3[0] = af[fv[0]], c3[1] = af[fv[1]], c3[2] = af[fv[2]];
+        /* anchored_at_home, every anchor on a face */
+        if (m->orient_sign[f] && b >= 0 && c3[0] >= 0 && c3[1] >= 0 && c3[2] >= 0 && b == af0[nv + f] &&
+            c3[0] == af0[fv[0]] && c3[1] == af0[fv[1]] && c3[2] == af0[fv[2]]) {
+          ok[l] = 1.0;
+          sg[l] = m->orient_sign[f], ra[l] = m->rest_area[f];
+        } else {
+          b = c3[0] = c3[1] = c3[2] = 0;
+        }
+      }
+      for (int i = 0; i < 3; i++) nb[i][l] = bn[3 * (size_t)b + i];
+      for (int k = 0; k < 3; k++)
+        for (int i = 0; i < 3; i++) nc[k][i][l] = bn[3 * (size_t)c3[k] + i];
+      const double area0 = m->body_area0[b];
+      ar[l] = ba[b], ar0[l] = area0 > 0.0 ? area0 : 1.0, w[l] = area0 > 0.0 ? 0.0 : 1.0;
+    }
+    /* normal_under's weight of the corners, crush_share (ss_body_normal.h):
+     * its division in lanes, its branches after (w already 1 where the rest
+     * area is not > 0, divided by 1.0 instead) */
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) r[l] = ar[l] / ar0[l];
+    for (int l = 0; l < L; l++) w[l] = w[l] != 0.0 ? 1.0 : r[l] >= 1.0 ? 0.0 : r[l] > 0.0 ? 1.0 - r[l] : 1.0;
+    /* normal_under (ss_body_normal.h): the barycenter's normal and the
+     * corners' weighted, normalised where the sum is not zero */
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      for (int i = 0; i < 3; i++) sv[i][l] = ((nb[i][l] + w[l] * nc[0][i][l]) + w[l] * nc[1][i][l]) + w[l] * nc[2][i][l];
+      const double sl = sqrt(sv[0][l] * sv[0][l] + sv[1][l] * sv[1][l] + sv[2][l] * sv[2][l]);
+      sd[l] = sl > 0.0 ? sl : 1.0; /* x / 1.0 is x: the sum as it is */
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      for (int i = 0; i < 3; i++) t[i][l] = sv[i][l] / sd[l];
+      c[l] = sg[l] / (2.0 * ra[l]); /* face_c */
+    }
+    /* where the barycenter's body face keeps its area (w 0), its own unit
+     * normal as it is; then ss_sim_orient_normal at home, halfway between it
+     * and itself (the select on its own: in a lane loop it too was made a
+     * branch) */
+    for (int l = 0; l < L; l++)
+      for (int i = 0; i < 3; i++) {
+        const double a = w[l] > 0.0 ? t[i][l] : nb[i][l];
+        nn[i][l] = a + a;
+      }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++)
+      for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
+    for (int l = 0; l < cnt; l++) {
+      if (ok[l] == 0.0) {
+        face_normal_begin(sim, fr, qb + l);
+        continue;
+      }
+      double *n = sim->orient_n + 4 * (size_t)(qb + l);
+      if (len[l] > 1.0)
+        n[0] = u[0][l], n[1] = u[1][l], n[2] = u[2][l], n[3] = c[l];
+      else
+        n[0] = n[1] = n[2] = n[3] = 0.0;
+    }
+  }
+  /* The unit normal free vertex q (dof) is judged against for its depth
+   * under the body surface at its anchor, -(x - a) . n: halfway between its
+   * anchor's face and the face it was bound to. 0 (not judged) where they
+   * disagree by over 120 degrees, where it has no anchor face or no spring,
+   * or where either face is a sliver (its normal swings with the smallest
+   * move of its corners: not trusted). */
+  const double min_area = SS_ORIENT_MIN_AREA * m->edge_len * m->edge_len;
+  double *nd = sim->orient_n + 4 * (size_t)m->nface;
+  for (int kb = k0; kb < k1; kb += L) {
+    const int cnt = k1 - kb < L ? k1 - kb : L;
+    double nn[3][L], len[L], u[3][L], ok[L];
+    for (int l = 0; l < L; l++) {
+      int fa = 0, fh = 0;
+      ok[l] = 0.0;
+      if (l < cnt) {
+        const int v = m->dof_vert[kb + l];
+        if (af[v] >= 0 && af0[v] >= 0 && m->k_vert[v] != 0.0 && ba[af[v]] >= min_area && ba[af0[v]] >= min_area)
+          ok[l] = 1.0, fa = af[v], fh = af0[v];
+      }
+      for (int i = 0; i < 3; i++) nn[i][l] = bn[3 * (size_t)fa + i] + bn[3 * (size_t)fh + i];
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++)
+      for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
+    for (int l = 0; l < cnt; l++) {
+      double *n = nd + 4 * (size_t)(kb + l);
+      if (ok[l] != 0.0 && len[l] > 1.0)
+        n[0] = u[0][l], n[1] = u[1][l], n[2] = u[2][l], n[3] = 1.0;
+      else
+        n[0] = n[1] = n[2] = n[3] = 0.0;
+    }
+  }
 }
 
+SS_ISA_VARIANTS(normals, (const ss_sim *sim, const ss_frames *fr, int q0, int q1, int k0, int k1),
+                normals_kernel(sim, fr, q0, q1, k0, k1);)
+
 /* Each face and dof its own: on the sim's threads with the same bits (once
- * per substep, a share of a frame worth both cores). Nothing with orient 0. */
+ * per substep, a share of a frame worth both cores), in blocks of lanes.
+ * Nothing with orient 0. */
 void ss_sim_orient_begin(ss_sim *sim) {
   /* without the term nothing reads them (its energy and line model return
    * first); a new orient takes effect at the next substep, which calls this */
@@ -210,18 +334,20 @@ void ss_sim_orient_begin(ss_sim *sim) {
   const int nsim = sim->m->nsimface, ndof = sim->m->ndof;
 #ifdef _OPENMP
   if (sim->nthread > 1 && nsim + ndof > 256) {
-#pragma omp parallel num_threads(sim->nthread)
-    {
-#pragma omp for schedule(static) nowait
-      for (int q = 0; q < nsim; q++) face_normal_begin(sim, fr, q);
-#pragma omp for schedule(static)
-      for (int q = 0; q < ndof; q++) dof_normal_begin(sim, fr, q);
+    enum { B = 64 * SS_ORIENT_LANES };
+    const int nbf = (nsim + B - 1) / B, nbd = (ndof + B - 1) / B;
+#pragma omp parallel for schedule(static) num_threads(sim->nthread)
+    for (int b = 0; b < nbf + nbd; b++) {
+      if (b < nbf)
+        SS_ISA_CALL(sim->isa, normals, (sim, fr, b * B, (b + 1) * B < nsim ? (b + 1) * B : nsim, 0, 0));
+      else
+        SS_ISA_CALL(sim->isa, normals,
+                    (sim, fr, 0, 0, (b - nbf) * B, (b - nbf + 1) * B < ndof ? (b - nbf + 1) * B : ndof));
     }
     return;
   }
 #endif
-  for (int q = 0; q < nsim; q++) face_normal_begin(sim, fr, q);
-  for (int q = 0; q < ndof; q++) dof_normal_begin(sim, fr, q);
+  SS_ISA_CALL(sim->isa, normals, (sim, fr, 0, nsim, 0, ndof));
 }
 
 /* Depth of dof q's vertex under the body at its anchor, against its cached
@@ -366,19 +492,23 @@ typedef struct line_ctx {
   double a, prev; /* the step of this pass, of the last (prev < 0: none) */
 } line_ctx;
 
-/* Each dof's spring along the line into depth_line (depth, rate, stiffness;
- * stiffness 0: not judged or out of reach of a full step, where d_v and
- * d_v - b_v are both <= 0, so it stays off on all of [0, 1]); sums[0] the
- * springs' slope at 0. */
+/* The springs along the line of the dofs of block [q0, q1) into depth_line
+ * from 3 q0 on, packed in dof order (depth, rate, stiffness), up to the
+ * first of stiffness 0 or the block's end: a dof not judged or out of reach
+ * of a full step (d_v and d_v - b_v both <= 0, so it stays off on all of
+ * [0, 1]) is left out, and line_slope's passes, several per line search,
+ * read only the springs that can act (a third to a half of the dofs); the
+ * same terms in the same order, so the same sums. sums[0] the springs'
+ * slope at 0. */
 static void line_springs(void *ctx, int q0, int q1, double *sums) {
   const line_ctx *c = ctx;
   const ss_sim *sim = c->sim;
   const double *nd = sim->orient_n + 4 * (size_t)sim->m->nface;
   double *dl = sim->depth_line;
   double slope = 0.0;
+  int j = q0; /* the next packed slot */
   for (int q = q0; q < q1; q++) {
     const double *n = nd + 4 * (size_t)q;
-    dl[3 * q] = dl[3 * q + 1] = dl[3 * q + 2] = 0.0;
     if (n[3] == 0.0) continue;
     const double *x = c->xd + 3 * q, *a = sim->anchor_pos + 3 * (size_t)sim->m->dof_vert[q];
     const double *d = c->dir + 3 * q;
@@ -387,8 +517,11 @@ static void line_springs(void *ctx, int q0, int q1, double *sums) {
     if (!(depth > 0.0) && !(depth - rate > 0.0)) continue;
     const double w = depth_weight(sim, q);
     if (depth > 0.0) slope -= w * rate * depth;
-    dl[3 * q] = depth, dl[3 * q + 1] = rate, dl[3 * q + 2] = w;
+    if (w == 0.0) continue; /* nothing along the line (line_slope's sums skip it) */
+    dl[3 * j] = depth, dl[3 * j + 1] = rate, dl[3 * j + 2] = w;
+    j++;
   }
+  if (j < q1) dl[3 * j + 2] = 0.0; /* the end of the block's springs */
   sums[0] = slope;
 }
 
@@ -401,7 +534,7 @@ static void line_slope(void *ctx, int q0, int q1, double *sums) {
   double d1 = 0.0, d2 = 0.0, turned = 0.0;
   for (int q = q0; q < q1; q++) {
     const double w = dl[3 * q + 2];
-    if (w == 0.0) continue;
+    if (w == 0.0) break; /* the block's springs end (line_springs) */
     const double depth = dl[3 * q], rate = dl[3 * q + 1];
     const int on = depth - c->a * rate > 0.0;
     if (on) {

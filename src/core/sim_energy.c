@@ -17,6 +17,7 @@
  * several threads, but every total is summed in one order, so the bits do
  * not depend on the thread count. A new term adds its energy to the total
  * and its gradient to g after the per-vertex gather, as the hinges do. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,6 +69,12 @@ typedef struct scatter_ctx {
 static void scatter_block(void *ctx, int k0, int k1, double *sums) {
   const scatter_ctx *c = ctx;
   (void)sums;
+  /* every vertex free (dofs are the free vertices in increasing order, so
+   * dof k is vertex k): one copy, not one per vertex through dof_vert */
+  if (c->sim->m->ndof == c->sim->m->nvert) {
+    memcpy(c->xfull + 3 * (size_t)k0, c->xd + 3 * (size_t)k0, 3 * (size_t)(k1 - k0) * sizeof(double));
+    return;
+  }
   for (int k = k0; k < k1; k++) memcpy(c->xfull + 3 * c->sim->m->dof_vert[k], c->xd + 3 * k, 3 * sizeof(double));
 }
 
@@ -334,9 +341,30 @@ double ss_sim_residual(const ss_sim *sim, const double *g) { return worst_residu
 
 double ss_sim_residual_along(const ss_sim *sim, const double *g) { return worst_residual(sim, g, 1); }
 
+/* The sum over dofs [k0, k1) of the squared residuals, added to *sum in
+ * dof order (as one at a time), each dof's computed in vector lanes first:
+ * its three divisions were a chain per dof at the end of every substep. */
+static inline SS_ALWAYS_INLINE void residual_sum_kernel(const ss_sim *sim, const double *g, int k0, int k1,
+                                                        double *sum) {
+  enum { L = 8 };
+  double r[L], s = *sum;
+  int k = k0;
+  for (; k + L <= k1; k += L) {
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) r[l] = dof_residual2(sim, g, k + l);
+    for (int l = 0; l < L; l++) s += r[l];
+  }
+  for (; k < k1; k++) s += dof_residual2(sim, g, k);
+  *sum = s;
+}
+SS_ISA_VARIANTS(residual_sum, (const ss_sim *sim, const double *g, int k0, int k1, double *sum),
+                residual_sum_kernel(sim, g, k0, k1, sum);)
+
 double ss_sim_residual_rms(const ss_sim *sim, const double *g) {
   double sum = 0.0;
-  for (int k = 0; k < sim->m->ndof; k++) sum += dof_residual2(sim, g, k);
+  SS_ISA_CALL(sim->isa, residual_sum, (sim, g, 0, sim->m->ndof, &sum));
   return sim->m->ndof ? sqrt(sum / sim->m->ndof) : 0.0;
 }
 
@@ -357,25 +385,50 @@ static inline void face_area_vector(const ss_sim *sim, const double *xfull, doub
   tri_area_vector(xfull + 3 * fv[0], xfull + 3 * fv[1], xfull + 3 * fv[2], n);
 }
 
-/* The skin normal of dof k: the sum of its simulated faces' area vectors fn,
- * gathered through its slots of grad_slot (simulated face order, so the same
- * sum in the same order as a scatter over the faces), normalised. A sliver's
- * zero adds nothing (a sum that is zero either way gives no normal). */
-static inline void dof_normal(const ss_sim *sim, const double *fn, int k) {
+/* The skin normals of dofs [k0, k1): each the sum of its simulated faces'
+ * area vectors fn, gathered through its slots of grad_slot (simulated face
+ * order, so the same sum in the same order as a scatter over the faces),
+ * normalised; zero (judged as along the skin) where the sum is zero or not
+ * finite. A sliver's zero adds nothing. The sums gathered into lanes, the
+ * square roots and divisions in one elementwise loop (the same bits at any
+ * width): one dof at a time they were a chain each, every substep. */
+#define SS_NORMAL_LANES 8
+static inline SS_ALWAYS_INLINE void dof_normals_kernel(const ss_sim *sim, const double *fn, int k0, int k1) {
+  enum { L = SS_NORMAL_LANES };
   const ss_model *m = sim->m;
-  double s[3] = {0.0, 0.0, 0.0};
-  for (int e = m->grad_ptr[k]; e < m->grad_ptr[k + 1]; e++) {
-    const double *n = fn + 3 * (size_t)(m->grad_slot[e] / 9);
-    for (int i = 0; i < 3; i++) s[i] += n[i]; /* area weighted */
+  for (int kb = k0; kb < k1; kb += L) {
+    const int cnt = k1 - kb < L ? k1 - kb : L;
+    double s[3][L], out[3][L], ok[L];
+    for (int l = 0; l < L; l++) {
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+      if (l < cnt)
+        for (int e = m->grad_ptr[kb + l]; e < m->grad_ptr[kb + l + 1]; e++) {
+          const double *n = fn + 3 * (size_t)(m->grad_slot[e] / 9);
+          s0 += n[0], s1 += n[1], s2 += n[2]; /* area weighted */
+        }
+      s[0][l] = s0, s[1][l] = s1, s[2][l] = s2;
+    }
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+    for (int l = 0; l < L; l++) {
+      const double len = sqrt(s[0][l] * s[0][l] + s[1][l] * s[1][l] + s[2][l] * s[2][l]);
+      /* divided on every lane, chosen at the write-back: a division under a
+       * condition is not if-converted for AVX2 (it might trap) */
+      out[0][l] = s[0][l] / len, out[1][l] = s[1][l] / len, out[2][l] = s[2][l] / len;
+      ok[l] = (double)(len > 0.0) * (double)(len <= DBL_MAX);
+    }
+    for (int l = 0; l < cnt; l++) {
+      double *nk = sim->skin_n + 3 * (size_t)(kb + l);
+      if (ok[l] != 0.0)
+        nk[0] = out[0][l], nk[1] = out[1][l], nk[2] = out[2][l];
+      else
+        nk[0] = nk[1] = nk[2] = 0.0;
+    }
   }
-  double *nk = sim->skin_n + 3 * k;
-  double len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-  if (!(len > 0.0) || !isfinite(len)) {
-    nk[0] = nk[1] = nk[2] = 0.0; /* judged as along the skin */
-    return;
-  }
-  for (int i = 0; i < 3; i++) nk[i] = s[i] / len;
 }
+SS_ISA_VARIANTS(dof_normals, (const ss_sim *sim, const double *fn, int k0, int k1),
+                dof_normals_kernel(sim, fn, k0, k1);)
 
 /* Each face, then each dof its own: on the sim's threads with the same
  * bits. The faces' area vectors go to face_grad, free outside an energy
@@ -390,14 +443,16 @@ void ss_sim_normals_begin(ss_sim *sim, const double *xfull) {
     {
 #pragma omp for schedule(static)
       for (int q = 0; q < nsim; q++) face_area_vector(sim, xfull, min_area, q, fn);
+      enum { B = 64 * SS_NORMAL_LANES };
 #pragma omp for schedule(static)
-      for (int k = 0; k < ndof; k++) dof_normal(sim, fn, k);
+      for (int b = 0; b < (ndof + B - 1) / B; b++)
+        SS_ISA_CALL(sim->isa, dof_normals, (sim, fn, b * B, (b + 1) * B < ndof ? (b + 1) * B : ndof));
     }
     return;
   }
 #endif
   for (int q = 0; q < nsim; q++) face_area_vector(sim, xfull, min_area, q, fn);
-  for (int k = 0; k < ndof; k++) dof_normal(sim, fn, k);
+  SS_ISA_CALL(sim->isa, dof_normals, (sim, fn, 0, ndof));
 }
 
 /* Current area over rest area of face f. */

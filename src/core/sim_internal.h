@@ -89,8 +89,8 @@
     SS_PAR_SUMS * (size_t)ss_par_nblocks(3 * m->nvert > m->nface ? 3 * m->nvert : m->nface) + 1,   \
     "par.h: the blocks' partial sums of one pass")                                               \
   X(depth_line, double, 3 * (size_t)m->ndof,                                                    \
-    "(ndof x 3) orient.c: each dof's depth, its rate along the search direction and its spring's " \
-    "stiffness, 0 where out of reach of a full step (ss_sim_orient_line_step)")                 \
+    "(ndof x 3) orient.c: the depth springs in reach of a full step, each block's (par.h) packed " \
+    "from its first dof on: depth, rate along the search direction, stiffness (0: the end)")     \
   X(orient_n, double, 4 * ((size_t)m->nface + m->nvert), "orient.c: per simface n, face_c (0: not judged); per dof at 4 nface n, judged")
 #define SS_SIM_QN_HISTORY(sim) \
   ((sim)->set.solver == SS_SOLVER_QUASI_NEWTON ? (size_t)(sim)->set.lbfgs_history : 0)
