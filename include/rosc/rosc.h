@@ -263,43 +263,33 @@ typedef struct rosc_pub rosc_pub;
  * subscribers get the last message. */
 int rosc_pub_create(rosc_pub **out, int type, const char *topic,
                     unsigned queue_size, int latch);
-/* Publish: ROSC_E_INVALID if the publisher has another message type, a pointer is
- * NULL with a non-zero count, or a string is not terminated within its buffer. */
-int rosc_publish_skin_mesh(rosc_pub *pub, const rosc_skin_mesh *msg);
-int rosc_publish_skin_stats(rosc_pub *pub, const rosc_skin_stats *msg);
-int rosc_publish_joint_state(rosc_pub *pub, const rosc_joint_state *msg);
-int rosc_publish_marker(rosc_pub *pub, const rosc_marker *msg);
+/* Publishes msg, the C view of message type `type` (rosc_skin_mesh for
+ * ROSC_MSG_SKIN_MESH, rosc_skin_stats, rosc_joint_state, rosc_marker, rosc_string):
+ * ROSC_E_INVALID if the publisher has another message type, a pointer is NULL with a
+ * non-zero count, or a string is not terminated within its buffer. */
+int rosc_publish(rosc_pub *pub, int type, const void *msg);
 /* Number of subscribers connected now. */
 int rosc_pub_num_subscribers(const rosc_pub *pub, unsigned *out);
 int rosc_pub_destroy(rosc_pub *pub);   /* unadvertises; NULL is fine */
 
 /* ------------------------------------------------------------------ subscribers */
 typedef struct rosc_sub rosc_sub;
-typedef void (*rosc_skin_mesh_cb)(const rosc_skin_mesh *msg, void *user);
-typedef void (*rosc_skin_stats_cb)(const rosc_skin_stats *msg, void *user);
-typedef void (*rosc_joint_state_cb)(const rosc_joint_state *msg, void *user);
-typedef void (*rosc_marker_cb)(const rosc_marker *msg, void *user);
-typedef void (*rosc_string_cb)(const rosc_string *msg, void *user);
-/* Subscribes `topic` (give it relative); cb(msg, user) runs inside rosc_spin_*.
+/* A received message: msg is the C view of the subscriber's message type (a
+ * const rosc_skin_mesh * for ROSC_MSG_SKIN_MESH, ...), valid during the call only. */
+typedef void (*rosc_msg_cb)(const void *msg, void *user);
+/* A received message's bytes (ROS 1's wire format) before anything is allocated for
+ * it: 1 takes the message, 0 drops it unread (the check says why itself). A node
+ * that takes input from outside sizes it here: roscpp's deserialiser trusts the
+ * length prefixes (see src/stream/ss_wire.h). */
+typedef int (*rosc_bytes_cb)(const uint8_t *buf, size_t len, void *user);
+/* Subscribes `topic` (give it relative) for one message type (a rosc_msg_type);
+ * check(bytes, user) (may be NULL) and then cb(msg, user) run inside rosc_spin_*.
  * queue_size: incoming messages kept before the oldest is dropped (>= 1); a node
- * that must not fall behind uses 1. TCP_NODELAY is requested (low latency).
- * A message whose frame_id or marker ns does not fit the C struct is dropped with a
- * throttled error. */
-int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
-                       rosc_skin_mesh_cb cb, void *user);
-int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
-                         rosc_joint_state_cb cb, void *user);
-/* A SkinMesh subscriber whose messages are sized before anything is allocated for
- * them: every array's length prefix is checked against the bytes the message has
- * left and against max_vertices (positions / 3, rigid_part) and max_triangles
- * (triangles / 3; 0: no limit but the message's bytes), so a small message claiming
- * a huge array costs nothing. A message refused so goes to refused(why, user) (why
- * names the field and the sizes), or, with refused NULL, is dropped with a throttled
- * error. rosc_sub_skin_mesh checks the bytes only. */
-typedef void (*rosc_refused_cb)(const char *why, void *user);
-int rosc_sub_skin_mesh_limited(rosc_sub **out, const char *topic, unsigned queue_size,
-                               size_t max_vertices, size_t max_triangles,
-                               rosc_skin_mesh_cb cb, rosc_refused_cb refused, void *user);
+ * that must not fall behind uses 1; a message dropped so is never read.
+ * TCP_NODELAY is requested (low latency). A message whose frame_id or marker ns
+ * does not fit the C struct is dropped with a throttled error. */
+int rosc_subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size,
+                   rosc_msg_cb cb, rosc_bytes_cb check, void *user);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */

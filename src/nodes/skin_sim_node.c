@@ -44,6 +44,7 @@
 #include "rosc/rosc.h"
 #include "ss_budget.h"
 #include "ss_input.h"
+#include "ss_wire.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_sim.h"
 #include "skin_sim/ssa_avatar.h"
@@ -155,8 +156,9 @@ static int grow(void **buf, size_t *cap, size_t n, size_t elem)
   return 1;
 }
 
-static void on_mesh(const rosc_skin_mesh *m, void *user)
+static void on_mesh(const void *msg, void *user)
 {
+  const rosc_skin_mesh *m = msg;
   node *nd = user;
   inbox *q = &nd->in;
   nd->frames_in++;
@@ -222,17 +224,22 @@ static void release_large(mailbox *b)
 #endif
 }
 
-/* A kinematic_mesh the shim refused for its sizes before reading it (a length
- * beyond the message's bytes, or beyond ~max_vertices / ~max_triangles): counted
- * as received and rejected, with a throttled error naming the field and sizes. */
-static void on_refused(const char *why, void *user)
+/* A kinematic_mesh's bytes, sized before roscpp allocates anything for them
+ * (ss_wire.h): one whose length is beyond the message's bytes, or beyond
+ * ~max_vertices / ~max_triangles, is refused unread, counted as received and
+ * rejected, with a throttled error naming the field and sizes. */
+static int check_mesh(const uint8_t *buf, size_t len, void *user)
 {
   node *nd = user;
+  ss_wire_limits lim = {(uint64_t)nd->p.max_vertices, (uint64_t)nd->p.max_triangles};
+  char why[320];
+  if (ss_wire_skin_mesh_check(buf, len, &lim, NULL, why, sizeof why)) return 1;
   nd->frames_in++;
   nd->rejected++;
   rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, 1.0, "skin_sim.size",
               "rejected kinematic_mesh unread: %s (%u rejected so far)", why,
               (unsigned)nd->rejected);
+  return 0;
 }
 
 /* Counts a rejected message and logs why, at most once a second per kind of
@@ -509,7 +516,7 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   out.n_positions = n3;
   out.triangles = nd->tri_out;
   out.n_triangles = 3 * (size_t)nd->nface;
-  if (rosc_publish_skin_mesh(nd->pub_mesh, &out) == ROSC_OK) nd->frames_out++;
+  if (rosc_publish(nd->pub_mesh, ROSC_MSG_SKIN_MESH, &out) == ROSC_OK) nd->frames_out++;
 
   double max_slide =
       ss_input_slide(nd->nanchor, ss_sim_anchor_faces(nd->sim), ss_sim_anchor_uv(nd->sim),
@@ -541,7 +548,7 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   s.step_budget_ms = (float)nd->budget_ms;
   s.faces_turned = (uint32_t)nd->faces_turned;
   s.vertices_far = (uint32_t)nd->vertices_far;
-  rosc_publish_skin_stats(nd->pub_stats, &s);
+  rosc_publish(nd->pub_stats, ROSC_MSG_SKIN_STATS, &s);
 
   if (nd->p.marker_rate == 0.0) return;
   double now = 0;
@@ -608,7 +615,7 @@ static void publish_marker(node *nd, const rosc_header *hdr)
   mk.n_points = 3 * (size_t)nd->nface;
   mk.colors = nd->mk_col;
   mk.n_colors = 3 * (size_t)nd->nface;
-  rosc_publish_marker(nd->pub_marker, &mk);
+  rosc_publish(nd->pub_marker, ROSC_MSG_MARKER, &mk);
 }
 
 /* Puts the run settings in force where they differ from the skin's (its
@@ -1006,9 +1013,8 @@ int main(int argc, char **argv)
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh_limited(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
-                                 (size_t)nd->p.max_vertices, (size_t)nd->p.max_triangles, on_mesh,
-                                 on_refused, nd) != ROSC_OK) {
+      rosc_subscribe(&sub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
+                     on_mesh, check_mesh, nd) != ROSC_OK) {
     if (rosc_ok()) ROSC_ERROR("cannot advertise or subscribe");
     else status = 0;
     goto done;
