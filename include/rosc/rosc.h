@@ -138,14 +138,11 @@ int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const ch
 int rosc_param_get_double(const char *name, double *out, double def, int *was_set);
 int rosc_param_get_int(const char *name, int *out, int def, int *was_set);
 int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
-/* One sentence for a getter's failure, for the node to log before it refuses to
- * start: status is what a getter returned for parameter name, expected what the
- * node wanted ("an int", "a double (or an int)", "a bool", "a string"). ROSC_E_TYPE:
- * "~substeps must be an int, but is the string 'abc'" (the value the server holds,
- * e.g. from _substeps:=abc); other errors name the parameter and the error. Returns
- * status; with ROSC_OK err gets "". */
-int rosc_param_explain(int status, const char *name, const char *expected, char *err,
-                       size_t err_size);
+/* What the server holds under name, in words: "the string 'abc'" (cut after 60
+ * characters), "the double 2.5", "the int 3", "the bool true", "a list", "a
+ * dictionary"; for a node to say why a getter returned ROSC_E_TYPE.
+ * ROSC_E_NOTFOUND if it is not set. */
+int rosc_param_describe(const char *name, char *buf, size_t buf_size);
 /* The URDF as robot_state_publisher finds it: the parameter "robot_description"
  * searched upwards from the node's namespace (so "/robot_description" for a node in
  * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND
@@ -237,9 +234,6 @@ typedef struct rosc_marker {
   const char *mesh_resource;    /* NULL means "" */
   int mesh_use_embedded_materials;
 } rosc_marker;
-/* Fills a marker with what rviz needs for a TRIANGLE_LIST: action ADD, identity
- * orientation, unit scale, opaque white, no arrays. */
-int rosc_marker_init_triangle_list(rosc_marker *m);
 
 /* std_msgs/String. */
 typedef struct rosc_string {

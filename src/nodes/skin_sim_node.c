@@ -606,8 +606,14 @@ static void publish_marker(node *nd, const rosc_header *hdr)
       memcpy(nd->mk_col + 4 * c, vc + 4 * (size_t)nd->vert_weld[v], 4 * sizeof(float));
     }
   }
+  /* what rviz needs of a TRIANGLE_LIST: action ADD (0), identity orientation (all
+   * zero draws with a warning), unit scale, opaque white; colours come per point */
   rosc_marker mk;
-  rosc_marker_init_triangle_list(&mk);
+  memset(&mk, 0, sizeof mk);
+  mk.type = ROSC_MARKER_TRIANGLE_LIST;
+  mk.orientation[3] = 1.0;
+  mk.scale[0] = mk.scale[1] = mk.scale[2] = 1.0;
+  mk.color[0] = mk.color[1] = mk.color[2] = mk.color[3] = 1.0f;
   mk.header = *hdr;
   snprintf(mk.ns, sizeof mk.ns, "skin");
   mk.id = 0;

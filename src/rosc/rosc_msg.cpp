@@ -373,18 +373,6 @@ void rosc_sub::drop(const char *why)
 }
 
 // ================================================================== the C API
-int rosc_marker_init_triangle_list(rosc_marker *m)
-{
-  if (m == nullptr) return ROSC_E_INVALID;
-  std::memset(m, 0, sizeof *m);
-  m->type = ROSC_MARKER_TRIANGLE_LIST;
-  m->action = ROSC_MARKER_ADD;
-  m->orientation[3] = 1.0;
-  m->scale[0] = m->scale[1] = m->scale[2] = 1.0;
-  m->color[0] = m->color[1] = m->color[2] = m->color[3] = 1.0f;
-  return ROSC_OK;
-}
-
 // ------------------------------------------------------------------ publishers
 int rosc_pub_create(rosc_pub **out, int type, const char *topic, unsigned queue_size, int latch)
 {

@@ -392,7 +392,9 @@ static void make_messages(outbox *o)
     /* Marker: TRIANGLE_LIST with per-vertex colours (i == 5: DELETEALL, empty) */
     marker_copy *mk = &o->marker[i];
     memset(mk, 0, sizeof *mk);
-    rosc_marker_init_triangle_list(&mk->m);
+    mk->m.type = ROSC_MARKER_TRIANGLE_LIST;
+    mk->m.scale[0] = mk->m.scale[2] = 1.0;
+    mk->m.color[0] = mk->m.color[1] = mk->m.color[2] = 1.0f;
     make_header(&mk->m.header, i, "marker");
     snprintf(mk->m.ns, sizeof mk->m.ns, "skin_%d", i);
     mk->m.id = -3 + i;
