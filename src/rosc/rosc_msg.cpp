@@ -71,6 +71,14 @@ void assign_array(V &dst, const T *p, size_t n)
   else dst.assign(p, p + n);
 }
 
+// A view's (pointer, count) pair over a received message's array.
+template <class V, class T>
+void view_array(const V &src, const T *&p, size_t &n)
+{
+  p = src.data();
+  n = src.size();
+}
+
 const char *const kLongFrameId = "frame_id too long";
 
 template <class C> struct Msg;
@@ -94,12 +102,9 @@ template <> struct Msg<rosc_skin_mesh> {
   {
     if (!header_from_ros(m.header, c.header)) return kLongFrameId;
     c.topology_id = m.topology_id;
-    c.positions = m.positions.data();
-    c.n_positions = m.positions.size();
-    c.triangles = m.triangles.data();
-    c.n_triangles = m.triangles.size();
-    c.rigid_part = m.rigid_part.data();
-    c.n_rigid_part = m.rigid_part.size();
+    view_array(m.positions, c.positions, c.n_positions);
+    view_array(m.triangles, c.triangles, c.n_triangles);
+    view_array(m.rigid_part, c.rigid_part, c.n_rigid_part);
     return nullptr;
   }
 };
@@ -172,14 +177,10 @@ template <> struct Msg<rosc_joint_state> {
     if (!header_from_ros(m.header, c.header)) return kLongFrameId;
     s.names.resize(m.name.size());
     for (size_t i = 0; i < m.name.size(); ++i) s.names[i] = m.name[i].c_str();
-    c.name = s.names.data();
-    c.n_name = s.names.size();
-    c.position = m.position.data();
-    c.n_position = m.position.size();
-    c.velocity = m.velocity.data();
-    c.n_velocity = m.velocity.size();
-    c.effort = m.effort.data();
-    c.n_effort = m.effort.size();
+    view_array(s.names, c.name, c.n_name);
+    view_array(m.position, c.position, c.n_position);
+    view_array(m.velocity, c.velocity, c.n_velocity);
+    view_array(m.effort, c.effort, c.n_effort);
     return nullptr;
   }
 };

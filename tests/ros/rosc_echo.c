@@ -231,30 +231,26 @@ typedef struct inbox {
 
 static void in_mesh(const void *msg, void *u)
 {
-  const rosc_skin_mesh *m = msg;
   inbox *b = u;
-  if (b->n_mesh < N_MSG) mesh_copy_set(&b->mesh[b->n_mesh++], m);
+  if (b->n_mesh < N_MSG) mesh_copy_set(&b->mesh[b->n_mesh++], msg);
   else b->overflow++;
 }
 static void in_stats(const void *msg, void *u)
 {
-  const rosc_skin_stats *m = msg;
   inbox *b = u;
-  if (b->n_stats < N_MSG) b->stats[b->n_stats++] = *m;
+  if (b->n_stats < N_MSG) b->stats[b->n_stats++] = *(const rosc_skin_stats *)msg;
   else b->overflow++;
 }
 static void in_joints(const void *msg, void *u)
 {
-  const rosc_joint_state *m = msg;
   inbox *b = u;
-  if (b->n_joints < N_MSG) joints_copy_set(&b->joints[b->n_joints++], m);
+  if (b->n_joints < N_MSG) joints_copy_set(&b->joints[b->n_joints++], msg);
   else b->overflow++;
 }
 static void in_marker(const void *msg, void *u)
 {
-  const rosc_marker *m = msg;
   inbox *b = u;
-  if (b->n_marker < N_MSG) marker_copy_set(&b->marker[b->n_marker++], m);
+  if (b->n_marker < N_MSG) marker_copy_set(&b->marker[b->n_marker++], msg);
   else b->overflow++;
 }
 static void in_string(const void *msg, void *u)
