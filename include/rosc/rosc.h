@@ -311,13 +311,23 @@ int rosc_diag_period(rosc_diag *d, double *out);
 /* Publishes the status now: level (ROSC_DIAG_*), a one-line message and n key/value
  * pairs (kv may be NULL with n 0; NULL keys or values are ROSC_E_INVALID). */
 int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv *kv, size_t n);
-/* Marks the start (what: e.g. "step") or the end (what NULL or "") of one long piece
- * of work in the spinning thread. While it lasts, a thread of the handle's own
- * publishes, every diagnostic period without a rosc_diag_update, the last status with
- * the message "WHAT in progress for N s" (and that figure as a key), at level WARN, or
- * ERROR once it has lasted error_after_s (<= 0: never); a worse last level is kept.
- * So /diagnostics does not go silent while one step takes long. */
-int rosc_diag_busy(rosc_diag *d, const char *what, double error_after_s);
+/* The status published in place of the last one while the spinning thread is busy:
+ * level (ROSC_DIAG_*), message, and one more key/value pair (key "" for none). */
+typedef struct rosc_diag_busy_status {
+  int level;
+  char message[256], key[64], value[64];
+} rosc_diag_busy_status;
+/* Called from the handle's own thread: the status to publish after busy_s seconds of
+ * work, the last status published at last_level. It must read nothing the spinning
+ * thread writes meanwhile (what it needs, the node sets before rosc_diag_busy). */
+typedef void (*rosc_diag_busy_cb)(double busy_s, int last_level, rosc_diag_busy_status *out,
+                                  void *user);
+/* Marks the start (cb non-NULL) or the end (cb NULL) of one long piece of work in the
+ * spinning thread. While it lasts, a thread of the handle's own publishes, every
+ * diagnostic period without a rosc_diag_update, the last status's key/value pairs
+ * with what cb(busy_s, last_level, out, user) gives, so that /diagnostics does not go
+ * silent while one step takes long. The node decides what it says. */
+int rosc_diag_busy(rosc_diag *d, rosc_diag_busy_cb cb, void *user);
 int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
 
 /* ------------------------------------------------------------------ dynamic_reconfigure */

@@ -35,7 +35,7 @@
  * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
  * core from the window's figures: ss_input_health), and while one step takes
  * longer, from the shim's own thread: "step in progress for N s" (rosc_diag_busy,
- * ss_input_busy_error_s); the ~reset service
+ * ss_input_busy); the ~reset service
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
  * Parameters: see doc/ros.md and launch/skin.launch. */
@@ -136,6 +136,7 @@ typedef struct node {
   /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
   rosc_diag *diag;
   double diag_wall;       /* wall time of the last status */
+  double busy_period_ms;  /* the input period while a step runs (read by busy_status) */
   unsigned long processed; /* meshes processed (skin created, stepped or republished) */
   unsigned long nstep_ms;  /* of which stepped (timed) */
   double step_ms_sum, step_ms_max;
@@ -896,6 +897,16 @@ static int serve_settings(node *nd)
   return ok;
 }
 
+/* The status /diagnostics says during a long step, from the shim's own thread: it
+ * reads only busy_period_ms, set before the step. */
+static void busy_status(double busy_s, int last_level, rosc_diag_busy_status *out, void *user)
+{
+  const node *nd = user;
+  out->level = ss_input_busy(busy_s, nd->busy_period_ms, last_level, out->message,
+                             (int)sizeof out->message, out->value, (int)sizeof out->value);
+  snprintf(out->key, sizeof out->key, "step in progress (s)");
+}
+
 /* Publishes the status of the last window on /diagnostics when ~diagnostic_period has
  * passed; the level is the core's judgement of the window's figures (ss_input_health). */
 static void diagnose(node *nd)
@@ -1048,10 +1059,10 @@ int main(int argc, char **argv)
     rosc_spin_once(nd->in.count ? 0.0 : 0.1);
     if (nd->in.count) {
       /* /diagnostics goes on from the shim's own thread if this step takes long */
-      rosc_diag_busy(nd->diag, "step",
-                     ss_input_busy_error_s(1e-3 * (double)nd->stream.period_us));
+      nd->busy_period_ms = 1e-3 * (double)nd->stream.period_us;
+      rosc_diag_busy(nd->diag, busy_status, nd);
       process(nd, &nd->in.slot[nd->in.head]);
-      rosc_diag_busy(nd->diag, NULL, 0.0);
+      rosc_diag_busy(nd->diag, NULL, NULL);
       release_large(&nd->in.slot[nd->in.head]);
       nd->in.head = (nd->in.head + 1) % nd->in.cap;
       nd->in.count--;
