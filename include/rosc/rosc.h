@@ -173,20 +173,22 @@ typedef struct rosc_skin_mesh {
   size_t n_rigid_part;
 } rosc_skin_mesh;
 
-/* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg). */
+/* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg): its
+ * fields after the header, in the message's order, as X(type, name) (the shim
+ * copies them in one loop). */
+#define ROSC_SKIN_STATS_FIELDS(X) \
+  X(float, total_ms) X(float, walk_ms) X(float, assemble_ms) X(float, solve_ms) \
+  X(uint32_t, iterations) X(float, residual) X(uint32_t, substeps) \
+  X(uint32_t, anchors_at_boundary) X(uint32_t, anchors_at_crease) X(float, max_slide) \
+  X(uint32_t, inputs_rejected) X(uint32_t, inputs_dropped) X(uint32_t, resets) \
+  X(uint32_t, inputs_skipped) X(uint32_t, failures) X(float, latency_ms) \
+  X(uint32_t, triangles_simulated) X(uint32_t, triangles_carried) \
+  X(uint32_t, iterations_per_substep) X(float, step_budget_ms) X(uint32_t, faces_turned) \
+  X(uint32_t, vertices_far)
+#define ROSC_FIELD_(type, name) type name;
 typedef struct rosc_skin_stats {
   rosc_header header;
-  float total_ms, walk_ms, assemble_ms, solve_ms;
-  uint32_t iterations;
-  float residual;
-  uint32_t substeps, anchors_at_boundary, anchors_at_crease;
-  float max_slide;
-  uint32_t inputs_rejected, inputs_dropped, resets;
-  uint32_t inputs_skipped, failures;
-  float latency_ms;
-  uint32_t triangles_simulated, triangles_carried, iterations_per_substep;
-  float step_budget_ms;
-  uint32_t faces_turned, vertices_far;
+  ROSC_SKIN_STATS_FIELDS(ROSC_FIELD_)
 } rosc_skin_stats;
 
 /* sensor_msgs/JointState. Arrays may be empty (NULL, 0). */

@@ -113,28 +113,9 @@ template <> struct Msg<rosc_skin_mesh> {
 template <class A, class B>
 void copy_stats(const A &a, B &b)
 {
-  b.total_ms = a.total_ms;
-  b.walk_ms = a.walk_ms;
-  b.assemble_ms = a.assemble_ms;
-  b.solve_ms = a.solve_ms;
-  b.iterations = a.iterations;
-  b.residual = a.residual;
-  b.substeps = a.substeps;
-  b.anchors_at_boundary = a.anchors_at_boundary;
-  b.anchors_at_crease = a.anchors_at_crease;
-  b.max_slide = a.max_slide;
-  b.inputs_rejected = a.inputs_rejected;
-  b.inputs_dropped = a.inputs_dropped;
-  b.resets = a.resets;
-  b.inputs_skipped = a.inputs_skipped;
-  b.failures = a.failures;
-  b.latency_ms = a.latency_ms;
-  b.triangles_simulated = a.triangles_simulated;
-  b.triangles_carried = a.triangles_carried;
-  b.iterations_per_substep = a.iterations_per_substep;
-  b.step_budget_ms = a.step_budget_ms;
-  b.faces_turned = a.faces_turned;
-  b.vertices_far = a.vertices_far;
+#define ROSC_COPY_(type, name) b.name = a.name;
+  ROSC_SKIN_STATS_FIELDS(ROSC_COPY_)
+#undef ROSC_COPY_
 }
 
 template <> struct Msg<rosc_skin_stats> {
