@@ -138,14 +138,11 @@ int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const ch
 int rosc_param_get_double(const char *name, double *out, double def, int *was_set);
 int rosc_param_get_int(const char *name, int *out, int def, int *was_set);
 int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
-/* One sentence for a getter's failure, for the node to log before it refuses to
- * start: status is what a getter returned for parameter name, expected what the
- * node wanted ("an int", "a double (or an int)", "a bool", "a string"). ROSC_E_TYPE:
- * "~substeps must be an int, but is the string 'abc'" (the value the server holds,
- * e.g. from _substeps:=abc); other errors name the parameter and the error. Returns
- * status; with ROSC_OK err gets "". */
-int rosc_param_explain(int status, const char *name, const char *expected, char *err,
-                       size_t err_size);
+/* What the server holds under name, in words: "the string 'abc'" (cut after 60
+ * characters), "the double 2.5", "the int 3", "the bool true", "a list", "a
+ * dictionary"; for a node to say why a getter returned ROSC_E_TYPE.
+ * ROSC_E_NOTFOUND if it is not set. */
+int rosc_param_describe(const char *name, char *buf, size_t buf_size);
 /* The URDF as robot_state_publisher finds it: the parameter "robot_description"
  * searched upwards from the node's namespace (so "/robot_description" for a node in
  * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND
@@ -176,20 +173,22 @@ typedef struct rosc_skin_mesh {
   size_t n_rigid_part;
 } rosc_skin_mesh;
 
-/* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg). */
+/* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg): its
+ * fields after the header, in the message's order, as X(type, name) (the shim
+ * copies them in one loop). */
+#define ROSC_SKIN_STATS_FIELDS(X) \
+  X(float, total_ms) X(float, walk_ms) X(float, assemble_ms) X(float, solve_ms) \
+  X(uint32_t, iterations) X(float, residual) X(uint32_t, substeps) \
+  X(uint32_t, anchors_at_boundary) X(uint32_t, anchors_at_crease) X(float, max_slide) \
+  X(uint32_t, inputs_rejected) X(uint32_t, inputs_dropped) X(uint32_t, resets) \
+  X(uint32_t, inputs_skipped) X(uint32_t, failures) X(float, latency_ms) \
+  X(uint32_t, triangles_simulated) X(uint32_t, triangles_carried) \
+  X(uint32_t, iterations_per_substep) X(float, step_budget_ms) X(uint32_t, faces_turned) \
+  X(uint32_t, vertices_far)
+#define ROSC_FIELD_(type, name) type name;
 typedef struct rosc_skin_stats {
   rosc_header header;
-  float total_ms, walk_ms, assemble_ms, solve_ms;
-  uint32_t iterations;
-  float residual;
-  uint32_t substeps, anchors_at_boundary, anchors_at_crease;
-  float max_slide;
-  uint32_t inputs_rejected, inputs_dropped, resets;
-  uint32_t inputs_skipped, failures;
-  float latency_ms;
-  uint32_t triangles_simulated, triangles_carried, iterations_per_substep;
-  float step_budget_ms;
-  uint32_t faces_turned, vertices_far;
+  ROSC_SKIN_STATS_FIELDS(ROSC_FIELD_)
 } rosc_skin_stats;
 
 /* sensor_msgs/JointState. Arrays may be empty (NULL, 0). */
@@ -237,9 +236,6 @@ typedef struct rosc_marker {
   const char *mesh_resource;    /* NULL means "" */
   int mesh_use_embedded_materials;
 } rosc_marker;
-/* Fills a marker with what rviz needs for a TRIANGLE_LIST: action ADD, identity
- * orientation, unit scale, opaque white, no arrays. */
-int rosc_marker_init_triangle_list(rosc_marker *m);
 
 /* std_msgs/String. */
 typedef struct rosc_string {
@@ -263,43 +259,33 @@ typedef struct rosc_pub rosc_pub;
  * subscribers get the last message. */
 int rosc_pub_create(rosc_pub **out, int type, const char *topic,
                     unsigned queue_size, int latch);
-/* Publish: ROSC_E_INVALID if the publisher has another message type, a pointer is
- * NULL with a non-zero count, or a string is not terminated within its buffer. */
-int rosc_publish_skin_mesh(rosc_pub *pub, const rosc_skin_mesh *msg);
-int rosc_publish_skin_stats(rosc_pub *pub, const rosc_skin_stats *msg);
-int rosc_publish_joint_state(rosc_pub *pub, const rosc_joint_state *msg);
-int rosc_publish_marker(rosc_pub *pub, const rosc_marker *msg);
+/* Publishes msg, the C view of message type `type` (rosc_skin_mesh for
+ * ROSC_MSG_SKIN_MESH, rosc_skin_stats, rosc_joint_state, rosc_marker, rosc_string):
+ * ROSC_E_INVALID if the publisher has another message type, a pointer is NULL with a
+ * non-zero count, or a string is not terminated within its buffer. */
+int rosc_publish(rosc_pub *pub, int type, const void *msg);
 /* Number of subscribers connected now. */
 int rosc_pub_num_subscribers(const rosc_pub *pub, unsigned *out);
 int rosc_pub_destroy(rosc_pub *pub);   /* unadvertises; NULL is fine */
 
 /* ------------------------------------------------------------------ subscribers */
 typedef struct rosc_sub rosc_sub;
-typedef void (*rosc_skin_mesh_cb)(const rosc_skin_mesh *msg, void *user);
-typedef void (*rosc_skin_stats_cb)(const rosc_skin_stats *msg, void *user);
-typedef void (*rosc_joint_state_cb)(const rosc_joint_state *msg, void *user);
-typedef void (*rosc_marker_cb)(const rosc_marker *msg, void *user);
-typedef void (*rosc_string_cb)(const rosc_string *msg, void *user);
-/* Subscribes `topic` (give it relative); cb(msg, user) runs inside rosc_spin_*.
+/* A received message: msg is the C view of the subscriber's message type (a
+ * const rosc_skin_mesh * for ROSC_MSG_SKIN_MESH, ...), valid during the call only. */
+typedef void (*rosc_msg_cb)(const void *msg, void *user);
+/* A received message's bytes (ROS 1's wire format) before anything is allocated for
+ * it: 1 takes the message, 0 drops it unread (the check says why itself). A node
+ * that takes input from outside sizes it here: roscpp's deserialiser trusts the
+ * length prefixes (see src/stream/ss_wire.h). */
+typedef int (*rosc_bytes_cb)(const uint8_t *buf, size_t len, void *user);
+/* Subscribes `topic` (give it relative) for one message type (a rosc_msg_type);
+ * check(bytes, user) (may be NULL) and then cb(msg, user) run inside rosc_spin_*.
  * queue_size: incoming messages kept before the oldest is dropped (>= 1); a node
- * that must not fall behind uses 1. TCP_NODELAY is requested (low latency).
- * A message whose frame_id or marker ns does not fit the C struct is dropped with a
- * throttled error. */
-int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
-                       rosc_skin_mesh_cb cb, void *user);
-int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
-                         rosc_joint_state_cb cb, void *user);
-/* A SkinMesh subscriber whose messages are sized before anything is allocated for
- * them: every array's length prefix is checked against the bytes the message has
- * left and against max_vertices (positions / 3, rigid_part) and max_triangles
- * (triangles / 3; 0: no limit but the message's bytes), so a small message claiming
- * a huge array costs nothing. A message refused so goes to refused(why, user) (why
- * names the field and the sizes), or, with refused NULL, is dropped with a throttled
- * error. rosc_sub_skin_mesh checks the bytes only. */
-typedef void (*rosc_refused_cb)(const char *why, void *user);
-int rosc_sub_skin_mesh_limited(rosc_sub **out, const char *topic, unsigned queue_size,
-                               size_t max_vertices, size_t max_triangles,
-                               rosc_skin_mesh_cb cb, rosc_refused_cb refused, void *user);
+ * that must not fall behind uses 1; a message dropped so is never read.
+ * TCP_NODELAY is requested (low latency). A message whose frame_id or marker ns
+ * does not fit the C struct is dropped with a throttled error. */
+int rosc_subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size,
+                   rosc_msg_cb cb, rosc_bytes_cb check, void *user);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */
@@ -327,13 +313,23 @@ int rosc_diag_period(rosc_diag *d, double *out);
 /* Publishes the status now: level (ROSC_DIAG_*), a one-line message and n key/value
  * pairs (kv may be NULL with n 0; NULL keys or values are ROSC_E_INVALID). */
 int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv *kv, size_t n);
-/* Marks the start (what: e.g. "step") or the end (what NULL or "") of one long piece
- * of work in the spinning thread. While it lasts, a thread of the handle's own
- * publishes, every diagnostic period without a rosc_diag_update, the last status with
- * the message "WHAT in progress for N s" (and that figure as a key), at level WARN, or
- * ERROR once it has lasted error_after_s (<= 0: never); a worse last level is kept.
- * So /diagnostics does not go silent while one step takes long. */
-int rosc_diag_busy(rosc_diag *d, const char *what, double error_after_s);
+/* The status published in place of the last one while the spinning thread is busy:
+ * level (ROSC_DIAG_*), message, and one more key/value pair (key "" for none). */
+typedef struct rosc_diag_busy_status {
+  int level;
+  char message[256], key[64], value[64];
+} rosc_diag_busy_status;
+/* Called from the handle's own thread: the status to publish after busy_s seconds of
+ * work, the last status published at last_level. It must read nothing the spinning
+ * thread writes meanwhile (what it needs, the node sets before rosc_diag_busy). */
+typedef void (*rosc_diag_busy_cb)(double busy_s, int last_level, rosc_diag_busy_status *out,
+                                  void *user);
+/* Marks the start (cb non-NULL) or the end (cb NULL) of one long piece of work in the
+ * spinning thread. While it lasts, a thread of the handle's own publishes, every
+ * diagnostic period without a rosc_diag_update, the last status's key/value pairs
+ * with what cb(busy_s, last_level, out, user) gives, so that /diagnostics does not go
+ * silent while one step takes long. The node decides what it says. */
+int rosc_diag_busy(rosc_diag *d, rosc_diag_busy_cb cb, void *user);
 int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
 
 /* ------------------------------------------------------------------ dynamic_reconfigure */

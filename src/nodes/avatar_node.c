@@ -75,8 +75,9 @@ static void reject(node *nd, const char *why)
                      (unsigned)nd->rejected);
 }
 
-static void on_joints(const rosc_joint_state *m, void *user)
+static void on_joints(const void *msg, void *user)
 {
+  const rosc_joint_state *m = msg;
   node *nd = user;
   nd->in++;
   char why[ERR_SZ];
@@ -154,7 +155,7 @@ static void on_joints(const rosc_joint_state *m, void *user)
   out.n_triangles = 3 * (size_t)b->av->nface;
   out.rigid_part = b->rigid_out;
   out.n_rigid_part = (size_t)b->av->nvert;
-  if (rosc_publish_skin_mesh(nd->pub_mesh, &out) == ROSC_OK) nd->out++;
+  if (rosc_publish(nd->pub_mesh, ROSC_MSG_SKIN_MESH, &out) == ROSC_OK) nd->out++;
 
   rosc_skin_stats s;
   memset(&s, 0, sizeof s);
@@ -162,7 +163,7 @@ static void on_joints(const rosc_joint_state *m, void *user)
   s.total_ms = (float)(1e3 * (t1 - t0));
   s.inputs_rejected = nd->rejected;
   s.inputs_dropped = nd->unknown_names;
-  rosc_publish_skin_stats(nd->pub_stats, &s);
+  rosc_publish(nd->pub_stats, ROSC_MSG_SKIN_STATS, &s);
 }
 
 static void on_avatar_warning(void *user, const char *msg)
@@ -351,7 +352,8 @@ int main(int argc, char **argv)
   int status = 0;
   if (rosc_pub_create(&nd.pub_mesh, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd.pub_stats, ROSC_MSG_SKIN_STATS, "avatar_stats", 10, 0) != ROSC_OK ||
-      rosc_sub_joint_state(&sub, "joint_states", (unsigned)nd.queue, on_joints, &nd) != ROSC_OK ||
+      rosc_subscribe(&sub, ROSC_MSG_JOINT_STATE, "joint_states", (unsigned)nd.queue, on_joints, NULL,
+                     &nd) != ROSC_OK ||
       rosc_srv_empty(&srv_reload, "~reload", on_reload, &nd) != ROSC_OK) {
     /* a SIGINT during set-up makes roscpp refuse new publishers: a clean stop */
     if (rosc_ok()) {

@@ -119,7 +119,7 @@ int main(int argc, char **argv)
     js.n_name = (size_t)n;
     js.position = val;
     js.n_position = (size_t)n;
-    if (rosc_publish_joint_state(pub, &js) == ROSC_OK) sent++;
+    if (rosc_publish(pub, ROSC_MSG_JOINT_STATE, &js) == ROSC_OK) sent++;
     i++;
     rosc_spin_once(0.0);
     rosc_rate_sleep(loop, NULL);

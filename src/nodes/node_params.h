@@ -9,18 +9,30 @@
 #include "skin_sim/ss_settings.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <stddef.h>
 
 /* 1 if a getter read its parameter (or its default); else logs why (a wrong type
- * names the parameter, the type wanted and the value given) and returns 0. */
+ * names the parameter, the type wanted and the value given: "~substeps must be an
+ * int, but is the string 'abc'") and returns 0. */
 static inline int param_ok(int status, const char *name, const char *expected)
 {
   if (status == ROSC_OK) return 1;
-  char why[512];
-  rosc_param_explain(status, name, expected, why, sizeof why);
-  ROSC_ERROR("%s", why);
+  if (status != ROSC_E_TYPE) {
+    ROSC_ERROR("parameter %s: %s", name, rosc_strerror(status));
+    return 0;
+  }
+  char held[128] = "a value of another type", text[128];
+  rosc_param_describe(name, held, sizeof held);
+  /* roslaunch reads a number without a '.' (1e-4) as a string */
+  const char *hint = "";
+  char *end = NULL;
+  if (strstr(expected, "double") && rosc_param_get_string(name, text, sizeof text, "", NULL) == ROSC_OK &&
+      text[0] != '\0' && (strtod(text, &end), *end == '\0'))
+    hint = " (in a launch file, a number without a '.' such as 1e-4 stays a string: write type=\"double\")";
+  ROSC_ERROR("%s must be %s, but is %s%s", name, expected, held, hint);
   return 0;
 }
 

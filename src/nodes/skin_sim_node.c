@@ -35,7 +35,7 @@
  * Health goes to /diagnostics every ~diagnostic_period (the level judged by the
  * core from the window's figures: ss_input_health), and while one step takes
  * longer, from the shim's own thread: "step in progress for N s" (rosc_diag_busy,
- * ss_input_busy_error_s); the ~reset service
+ * ss_input_busy); the ~reset service
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
  * Parameters: see doc/ros.md and launch/skin.launch. */
@@ -44,6 +44,7 @@
 #include "rosc/rosc.h"
 #include "ss_budget.h"
 #include "ss_input.h"
+#include "ss_wire.h"
 #include "skin_sim/ss_mesh.h"
 #include "skin_sim/ss_sim.h"
 #include "skin_sim/ssa_avatar.h"
@@ -135,6 +136,7 @@ typedef struct node {
   /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
   rosc_diag *diag;
   double diag_wall;       /* wall time of the last status */
+  double busy_period_ms;  /* the input period while a step runs (read by busy_status) */
   unsigned long processed; /* meshes processed (skin created, stepped or republished) */
   unsigned long nstep_ms;  /* of which stepped (timed) */
   double step_ms_sum, step_ms_max;
@@ -155,8 +157,9 @@ static int grow(void **buf, size_t *cap, size_t n, size_t elem)
   return 1;
 }
 
-static void on_mesh(const rosc_skin_mesh *m, void *user)
+static void on_mesh(const void *msg, void *user)
 {
+  const rosc_skin_mesh *m = msg;
   node *nd = user;
   inbox *q = &nd->in;
   nd->frames_in++;
@@ -222,17 +225,22 @@ static void release_large(mailbox *b)
 #endif
 }
 
-/* A kinematic_mesh the shim refused for its sizes before reading it (a length
- * beyond the message's bytes, or beyond ~max_vertices / ~max_triangles): counted
- * as received and rejected, with a throttled error naming the field and sizes. */
-static void on_refused(const char *why, void *user)
+/* A kinematic_mesh's bytes, sized before roscpp allocates anything for them
+ * (ss_wire.h): one whose length is beyond the message's bytes, or beyond
+ * ~max_vertices / ~max_triangles, is refused unread, counted as received and
+ * rejected, with a throttled error naming the field and sizes. */
+static int check_mesh(const uint8_t *buf, size_t len, void *user)
 {
   node *nd = user;
+  ss_wire_limits lim = {(uint64_t)nd->p.max_vertices, (uint64_t)nd->p.max_triangles};
+  char why[320];
+  if (ss_wire_skin_mesh_check(buf, len, &lim, NULL, why, sizeof why)) return 1;
   nd->frames_in++;
   nd->rejected++;
   rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, 1.0, "skin_sim.size",
               "rejected kinematic_mesh unread: %s (%u rejected so far)", why,
               (unsigned)nd->rejected);
+  return 0;
 }
 
 /* Counts a rejected message and logs why, at most once a second per kind of
@@ -509,7 +517,7 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   out.n_positions = n3;
   out.triangles = nd->tri_out;
   out.n_triangles = 3 * (size_t)nd->nface;
-  if (rosc_publish_skin_mesh(nd->pub_mesh, &out) == ROSC_OK) nd->frames_out++;
+  if (rosc_publish(nd->pub_mesh, ROSC_MSG_SKIN_MESH, &out) == ROSC_OK) nd->frames_out++;
 
   double max_slide =
       ss_input_slide(nd->nanchor, ss_sim_anchor_faces(nd->sim), ss_sim_anchor_uv(nd->sim),
@@ -541,7 +549,7 @@ static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc
   s.step_budget_ms = (float)nd->budget_ms;
   s.faces_turned = (uint32_t)nd->faces_turned;
   s.vertices_far = (uint32_t)nd->vertices_far;
-  rosc_publish_skin_stats(nd->pub_stats, &s);
+  rosc_publish(nd->pub_stats, ROSC_MSG_SKIN_STATS, &s);
 
   if (nd->p.marker_rate == 0.0) return;
   double now = 0;
@@ -599,8 +607,14 @@ static void publish_marker(node *nd, const rosc_header *hdr)
       memcpy(nd->mk_col + 4 * c, vc + 4 * (size_t)nd->vert_weld[v], 4 * sizeof(float));
     }
   }
+  /* what rviz needs of a TRIANGLE_LIST: action ADD (0), identity orientation (all
+   * zero draws with a warning), unit scale, opaque white; colours come per point */
   rosc_marker mk;
-  rosc_marker_init_triangle_list(&mk);
+  memset(&mk, 0, sizeof mk);
+  mk.type = ROSC_MARKER_TRIANGLE_LIST;
+  mk.orientation[3] = 1.0;
+  mk.scale[0] = mk.scale[1] = mk.scale[2] = 1.0;
+  mk.color[0] = mk.color[1] = mk.color[2] = mk.color[3] = 1.0f;
   mk.header = *hdr;
   snprintf(mk.ns, sizeof mk.ns, "skin");
   mk.id = 0;
@@ -608,7 +622,7 @@ static void publish_marker(node *nd, const rosc_header *hdr)
   mk.n_points = 3 * (size_t)nd->nface;
   mk.colors = nd->mk_col;
   mk.n_colors = 3 * (size_t)nd->nface;
-  rosc_publish_marker(nd->pub_marker, &mk);
+  rosc_publish(nd->pub_marker, ROSC_MSG_MARKER, &mk);
 }
 
 /* Puts the run settings in force where they differ from the skin's (its
@@ -883,6 +897,16 @@ static int serve_settings(node *nd)
   return ok;
 }
 
+/* The status /diagnostics says during a long step, from the shim's own thread: it
+ * reads only busy_period_ms, set before the step. */
+static void busy_status(double busy_s, int last_level, rosc_diag_busy_status *out, void *user)
+{
+  const node *nd = user;
+  out->level = ss_input_busy(busy_s, nd->busy_period_ms, last_level, out->message,
+                             (int)sizeof out->message, out->value, (int)sizeof out->value);
+  snprintf(out->key, sizeof out->key, "step in progress (s)");
+}
+
 /* Publishes the status of the last window on /diagnostics when ~diagnostic_period has
  * passed; the level is the core's judgement of the window's figures (ss_input_health). */
 static void diagnose(node *nd)
@@ -1006,9 +1030,8 @@ int main(int argc, char **argv)
   if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
       rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh_limited(&sub, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
-                                 (size_t)nd->p.max_vertices, (size_t)nd->p.max_triangles, on_mesh,
-                                 on_refused, nd) != ROSC_OK) {
+      rosc_subscribe(&sub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
+                     on_mesh, check_mesh, nd) != ROSC_OK) {
     if (rosc_ok()) ROSC_ERROR("cannot advertise or subscribe");
     else status = 0;
     goto done;
@@ -1036,10 +1059,10 @@ int main(int argc, char **argv)
     rosc_spin_once(nd->in.count ? 0.0 : 0.1);
     if (nd->in.count) {
       /* /diagnostics goes on from the shim's own thread if this step takes long */
-      rosc_diag_busy(nd->diag, "step",
-                     ss_input_busy_error_s(1e-3 * (double)nd->stream.period_us));
+      nd->busy_period_ms = 1e-3 * (double)nd->stream.period_us;
+      rosc_diag_busy(nd->diag, busy_status, nd);
       process(nd, &nd->in.slot[nd->in.head]);
-      rosc_diag_busy(nd->diag, NULL, 0.0);
+      rosc_diag_busy(nd->diag, NULL, NULL);
       release_large(&nd->in.slot[nd->in.head]);
       nd->in.head = (nd->in.head + 1) % nd->in.cap;
       nd->in.count--;

@@ -1,6 +1,6 @@
 // Internal to the rosc shim (src/rosc/*.cpp) and to its test helpers (tests/ros/rosc_test.cpp),
 // not part of its C API: the exception guard every extern "C" function runs its body in, the
-// node's state, the handles behind rosc_pub and rosc_sub, and the generic message paths.
+// node's state, and the handles behind rosc_pub and rosc_sub.
 //
 //   rosc.cpp        node life, spinning, time, rates, logging
 //   rosc_param.cpp  parameters
@@ -10,7 +10,6 @@
 #define ROSC_INTERNAL_H
 
 #include "rosc/rosc.h"
-#include "rosc_wire.h"
 
 #include <ros/exceptions.h>
 #include <ros/node_handle.h>
@@ -81,17 +80,6 @@ int vlog(int level, const char *file, int line, const char *func, double period_
 // A string parameter of any size, malloc'd (caller frees); ROSC_E_NOTFOUND if not set.
 int param_get_string_alloc(const char *name, char **out, size_t *len);
 
-// ------------------------------------------------------------------ messages (rosc_msg.cpp)
-// Any of the rosc_*_cb callback types, kept as a generic function pointer and called
-// back as its own type (the one of the subscriber's message type).
-using any_cb = void (*)();
-
-// Publishes msg, the C view of message type `type` (a rosc_msg_type).
-int publish(rosc_pub *pub, int type, const void *msg);
-// Subscribes topic for message type `type`; cb is that type's rosc_*_cb.
-int subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size, any_cb cb,
-              void *user);
-
 }  // namespace rosc_internal
 
 struct rosc_pub {
@@ -103,12 +91,10 @@ struct rosc_pub {
 struct rosc_sub {
   int type;
   ros::Subscriber sub;
-  rosc_internal::any_cb cb = nullptr;
+  rosc_msg_cb cb = nullptr;
+  rosc_bytes_cb check = nullptr;  // NULL: every message is deserialised
   void *user = nullptr;
   uint64_t dropped = 0;
-  // SkinMesh subscribers: the sizes accepted (rosc_wire.h) and where refusals go
-  rosc_wire_limits limits = {0, 0};
-  rosc_refused_cb refused = nullptr;
   std::string topic;
   // scratch reused across messages (views into them live only during a callback)
   std::vector<const char *> names;
@@ -116,8 +102,6 @@ struct rosc_sub {
 
   // Counts a message the shim could not convert, with a throttled error naming why.
   void drop(const char *why);
-  // A message refused for its sizes: to refused(), else drop().
-  void refuse(const char *why);
 };
 
 #endif

@@ -4,14 +4,15 @@
 //
 // Each message type has a traits struct Msg<C> (C the view): its ROS message, its callback
 // type, to_ros (view -> message, checking the view) and from_ros (message -> view, or the
-// reason it is dropped). publish() and subscribe() dispatch on the rosc_msg_type once and
-// run the same code for every type. The shim keeps no copies of messages: a subscriber
+// reason it is dropped). rosc_publish() and rosc_subscribe() dispatch on the rosc_msg_type
+// once and run the same code for every type. The shim keeps no copies of messages: a subscriber
 // callback builds a C view over the received message (plus small per-subscriber scratch
 // arrays reused from message to message) and a publisher copies a C view into one message
 // object it reuses. roscpp serialises a message passed by const reference before publish()
 // returns (also for subscribers in the same process), so reusing it is safe.
-// A SkinMesh subscriber takes its messages as bytes and sizes them (rosc_wire.h) before
-// roscpp's deserialiser allocates anything (CheckedMeshHelper).
+// Every subscriber takes its messages as bytes; a subscriber's byte check (a node's:
+// skin_sim_node sizes a SkinMesh with src/stream/ss_wire.h) sees them before roscpp's
+// deserialiser allocates anything.
 #include "rosc/rosc.h"
 #include "rosc_internal.h"
 
@@ -31,7 +32,6 @@
 #include <new>
 #include <string>
 
-using rosc_internal::any_cb;
 using rosc_internal::copy_out;
 using rosc_internal::guard;
 using rosc_internal::need_node;
@@ -71,13 +71,20 @@ void assign_array(V &dst, const T *p, size_t n)
   else dst.assign(p, p + n);
 }
 
+// A view's (pointer, count) pair over a received message's array.
+template <class V, class T>
+void view_array(const V &src, const T *&p, size_t &n)
+{
+  p = src.data();
+  n = src.size();
+}
+
 const char *const kLongFrameId = "frame_id too long";
 
 template <class C> struct Msg;
 
 template <> struct Msg<rosc_skin_mesh> {
   using Ros = skin_sim::SkinMesh;
-  using Cb = rosc_skin_mesh_cb;
   static int to_ros(const rosc_skin_mesh &c, Ros &m)
   {
     if (!array_ok(c.positions, c.n_positions) || !array_ok(c.triangles, c.n_triangles) ||
@@ -95,12 +102,9 @@ template <> struct Msg<rosc_skin_mesh> {
   {
     if (!header_from_ros(m.header, c.header)) return kLongFrameId;
     c.topology_id = m.topology_id;
-    c.positions = m.positions.data();
-    c.n_positions = m.positions.size();
-    c.triangles = m.triangles.data();
-    c.n_triangles = m.triangles.size();
-    c.rigid_part = m.rigid_part.data();
-    c.n_rigid_part = m.rigid_part.size();
+    view_array(m.positions, c.positions, c.n_positions);
+    view_array(m.triangles, c.triangles, c.n_triangles);
+    view_array(m.rigid_part, c.rigid_part, c.n_rigid_part);
     return nullptr;
   }
 };
@@ -109,33 +113,13 @@ template <> struct Msg<rosc_skin_mesh> {
 template <class A, class B>
 void copy_stats(const A &a, B &b)
 {
-  b.total_ms = a.total_ms;
-  b.walk_ms = a.walk_ms;
-  b.assemble_ms = a.assemble_ms;
-  b.solve_ms = a.solve_ms;
-  b.iterations = a.iterations;
-  b.residual = a.residual;
-  b.substeps = a.substeps;
-  b.anchors_at_boundary = a.anchors_at_boundary;
-  b.anchors_at_crease = a.anchors_at_crease;
-  b.max_slide = a.max_slide;
-  b.inputs_rejected = a.inputs_rejected;
-  b.inputs_dropped = a.inputs_dropped;
-  b.resets = a.resets;
-  b.inputs_skipped = a.inputs_skipped;
-  b.failures = a.failures;
-  b.latency_ms = a.latency_ms;
-  b.triangles_simulated = a.triangles_simulated;
-  b.triangles_carried = a.triangles_carried;
-  b.iterations_per_substep = a.iterations_per_substep;
-  b.step_budget_ms = a.step_budget_ms;
-  b.faces_turned = a.faces_turned;
-  b.vertices_far = a.vertices_far;
+#define ROSC_COPY_(type, name) b.name = a.name;
+  ROSC_SKIN_STATS_FIELDS(ROSC_COPY_)
+#undef ROSC_COPY_
 }
 
 template <> struct Msg<rosc_skin_stats> {
   using Ros = skin_sim::SkinStats;
-  using Cb = rosc_skin_stats_cb;
   static int to_ros(const rosc_skin_stats &c, Ros &m)
   {
     int st = header_to_ros(c.header, m.header);
@@ -153,7 +137,6 @@ template <> struct Msg<rosc_skin_stats> {
 
 template <> struct Msg<rosc_joint_state> {
   using Ros = sensor_msgs::JointState;
-  using Cb = rosc_joint_state_cb;
   static int to_ros(const rosc_joint_state &c, Ros &m)
   {
     if (!array_ok(c.name, c.n_name) || !array_ok(c.position, c.n_position) ||
@@ -175,21 +158,16 @@ template <> struct Msg<rosc_joint_state> {
     if (!header_from_ros(m.header, c.header)) return kLongFrameId;
     s.names.resize(m.name.size());
     for (size_t i = 0; i < m.name.size(); ++i) s.names[i] = m.name[i].c_str();
-    c.name = s.names.data();
-    c.n_name = s.names.size();
-    c.position = m.position.data();
-    c.n_position = m.position.size();
-    c.velocity = m.velocity.data();
-    c.n_velocity = m.velocity.size();
-    c.effort = m.effort.data();
-    c.n_effort = m.effort.size();
+    view_array(s.names, c.name, c.n_name);
+    view_array(m.position, c.position, c.n_position);
+    view_array(m.velocity, c.velocity, c.n_velocity);
+    view_array(m.effort, c.effort, c.n_effort);
     return nullptr;
   }
 };
 
 template <> struct Msg<rosc_marker> {
   using Ros = visualization_msgs::Marker;
-  using Cb = rosc_marker_cb;
   static int to_ros(const rosc_marker &c, Ros &m)
   {
     if (!array_ok(c.points, c.n_points) || !array_ok(c.colors, c.n_colors))
@@ -288,7 +266,6 @@ template <> struct Msg<rosc_marker> {
 
 template <> struct Msg<rosc_string> {
   using Ros = std_msgs::String;
-  using Cb = rosc_string_cb;
   static int to_ros(const rosc_string &c, Ros &m)
   {
     if (c.data == nullptr) return ROSC_E_INVALID;
@@ -321,51 +298,45 @@ int dispatch(int type, F &&f)
 template <class T> struct ViewOf;
 template <class C> struct ViewOf<Msg<C>> { using type = C; };
 
-// One received message: converted to its C view and handed to the subscriber's callback.
-template <class T>
-void deliver(rosc_sub &s, const typename T::Ros &m)
-{
-  typename ViewOf<T>::type c;
-  const char *why = T::from_ros(m, c, s);
-  if (why != nullptr) return s.drop(why);
-  reinterpret_cast<typename T::Cb>(s.cb)(&c, s.user);
-}
-
-// A SkinMesh taken as bytes and sized (rosc_wire.h) before roscpp's deserialiser
-// allocates for it: the message, or why it was refused.
-struct CheckedMesh {
-  skin_sim::SkinMesh msg;
-  std::string refused;
+// One received message, deserialised unless the subscriber's byte check refused it.
+template <class M>
+struct Received {
+  M msg;
+  bool refused = false;
 };
 
-// roscpp's subscription callback helper for a CheckedMesh: it gets the message's bytes
-// (roscpp deserialises lazily, in the spinning thread, just before the callback; a
-// message dropped from the queue is never deserialised). Its type is not SkinMesh, so a
-// publisher in the same process serialises for it too: every message takes this path.
-class CheckedMeshHelper : public ros::SubscriptionCallbackHelper {
+// roscpp's subscription callback helper for every subscriber, of traits T: it gets the
+// message's bytes (roscpp deserialises lazily, in the spinning thread, just before the
+// callback; a message dropped from the queue is never deserialised), runs the
+// subscriber's byte check on them, and deserialises only what it passes; call() converts
+// the message to its C view. Its type is not T::Ros, so a publisher in the same process
+// serialises for it too: every message takes this one path.
+template <class T>
+class Helper : public ros::SubscriptionCallbackHelper {
  public:
-  explicit CheckedMeshHelper(rosc_sub *s) : s_(s) {}
+  using M = typename T::Ros;
+  explicit Helper(rosc_sub *s) : s_(s) {}
   ros::VoidConstPtr deserialize(const ros::SubscriptionCallbackHelperDeserializeParams &p) override
   {
-    boost::shared_ptr<CheckedMesh> c = boost::make_shared<CheckedMesh>();
-    char why[320];
-    if (!rosc_wire_skin_mesh_check(p.buffer, p.length, &s_->limits, nullptr, why, sizeof why)) {
-      c->refused = why;
-      return c;
+    boost::shared_ptr<Received<M>> r = boost::make_shared<Received<M>>();
+    if (s_->check != nullptr && !s_->check(p.buffer, p.length, s_->user)) {
+      r->refused = true;
+      return r;
     }
-    // every length now fits the message's bytes: roscpp allocates at most their size
     ros::serialization::IStream stream(p.buffer, p.length);
-    ros::serialization::deserialize(stream, c->msg);
-    return c;
+    ros::serialization::deserialize(stream, r->msg);
+    return r;
   }
   void call(ros::SubscriptionCallbackHelperCallParams &p) override
   {
-    const CheckedMesh *c = static_cast<const CheckedMesh *>(p.event.getConstMessage().get());
-    if (c == nullptr) return;
-    if (!c->refused.empty()) return s_->refuse(c->refused.c_str());
-    deliver<Msg<rosc_skin_mesh>>(*s_, c->msg);
+    const Received<M> *r = static_cast<const Received<M> *>(p.event.getConstMessage().get());
+    if (r == nullptr || r->refused) return;
+    typename ViewOf<T>::type c;
+    const char *why = T::from_ros(r->msg, c, *s_);
+    if (why != nullptr) return s_->drop(why);
+    s_->cb(&c, s_->user);
   }
-  const std::type_info &getTypeInfo() override { return typeid(CheckedMesh); }
+  const std::type_info &getTypeInfo() override { return typeid(Received<M>); }
   bool isConst() override { return true; }
   bool hasHeader() override { return false; }
 
@@ -373,40 +344,7 @@ class CheckedMeshHelper : public ros::SubscriptionCallbackHelper {
   rosc_sub *s_;
 };
 
-int subscribe_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size, size_t max_vertices,
-                        size_t max_triangles, rosc_skin_mesh_cb cb, rosc_refused_cb refused,
-                        void *user)
-{
-  if (cb == nullptr || out == nullptr || !valid_name(topic) || queue_size == 0)
-    return ROSC_E_INVALID;
-  int st = need_node();
-  if (st != ROSC_OK) return st;
-  std::unique_ptr<rosc_sub> s(new rosc_sub());
-  s->type = ROSC_MSG_SKIN_MESH;
-  s->cb = reinterpret_cast<any_cb>(cb);
-  s->user = user;
-  s->limits.max_vertices = max_vertices;
-  s->limits.max_triangles = max_triangles;
-  s->refused = refused;
-  using M = skin_sim::SkinMesh;
-  ros::SubscribeOptions ops(topic, queue_size, ros::message_traits::md5sum<M>(),
-                            ros::message_traits::datatype<M>());
-  ops.helper = boost::make_shared<CheckedMeshHelper>(s.get());
-  ops.transport_hints = ros::TransportHints().tcpNoDelay();
-  s->sub = rosc_internal::node().subscribe(ops);
-  if (!s->sub) return ROSC_E_ROS;
-  s->topic = s->sub.getTopic();
-  *out = s.release();
-  return ROSC_OK;
-}
-
 }  // namespace
-
-void rosc_sub::refuse(const char *why)
-{
-  if (refused == nullptr) return drop(why);
-  refused(why, user);
-}
 
 void rosc_sub::drop(const char *why)
 {
@@ -416,61 +354,7 @@ void rosc_sub::drop(const char *why)
               (unsigned long long)dropped);
 }
 
-// ------------------------------------------------------------------ the generic paths
-int rosc_internal::publish(rosc_pub *pub, int type, const void *msg)
-{
-  if (pub == nullptr || msg == nullptr || pub->type != type) return ROSC_E_INVALID;
-  int st = need_node();
-  if (st != ROSC_OK) return st;
-  return dispatch(type, [&](auto traits) -> int {
-    using T = decltype(traits);
-    auto &m = *static_cast<typename T::Ros *>(pub->msg.get());
-    int s = T::to_ros(*static_cast<const typename ViewOf<T>::type *>(msg), m);
-    if (s != ROSC_OK) return s;
-    pub->pub.publish(m);
-    return ROSC_OK;
-  });
-}
-
-int rosc_internal::subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size,
-                             any_cb cb, void *user)
-{
-  if (cb == nullptr) return ROSC_E_INVALID;
-  if (out == nullptr || !valid_name(topic) || queue_size == 0) return ROSC_E_INVALID;
-  int st = need_node();
-  if (st != ROSC_OK) return st;
-  return dispatch(type, [&](auto traits) -> int {
-    using T = decltype(traits);
-    using M = typename T::Ros;
-    std::unique_ptr<rosc_sub> s(new rosc_sub());
-    s->type = type;
-    s->cb = cb;
-    s->user = user;
-    rosc_sub *raw = s.get();
-    boost::function<void(const boost::shared_ptr<M const> &)> f =
-        [raw](const boost::shared_ptr<M const> &m) { deliver<T>(*raw, *m); };
-    s->sub = rosc_internal::node().subscribe<M>(topic, queue_size, f, ros::VoidConstPtr(),
-                                                ros::TransportHints().tcpNoDelay());
-    if (!s->sub) return ROSC_E_ROS;
-    s->topic = s->sub.getTopic();
-    *out = s.release();
-    return ROSC_OK;
-  });
-}
-
 // ================================================================== the C API
-int rosc_marker_init_triangle_list(rosc_marker *m)
-{
-  if (m == nullptr) return ROSC_E_INVALID;
-  std::memset(m, 0, sizeof *m);
-  m->type = ROSC_MARKER_TRIANGLE_LIST;
-  m->action = ROSC_MARKER_ADD;
-  m->orientation[3] = 1.0;
-  m->scale[0] = m->scale[1] = m->scale[2] = 1.0;
-  m->color[0] = m->color[1] = m->color[2] = m->color[3] = 1.0f;
-  return ROSC_OK;
-}
-
 // ------------------------------------------------------------------ publishers
 int rosc_pub_create(rosc_pub **out, int type, const char *topic, unsigned queue_size, int latch)
 {
@@ -493,24 +377,21 @@ int rosc_pub_create(rosc_pub **out, int type, const char *topic, unsigned queue_
   });
 }
 
-int rosc_publish_skin_mesh(rosc_pub *pub, const rosc_skin_mesh *msg)
+int rosc_publish(rosc_pub *pub, int type, const void *msg)
 {
-  return guard(__func__, [&] { return rosc_internal::publish(pub, ROSC_MSG_SKIN_MESH, msg); });
-}
-
-int rosc_publish_skin_stats(rosc_pub *pub, const rosc_skin_stats *msg)
-{
-  return guard(__func__, [&] { return rosc_internal::publish(pub, ROSC_MSG_SKIN_STATS, msg); });
-}
-
-int rosc_publish_joint_state(rosc_pub *pub, const rosc_joint_state *msg)
-{
-  return guard(__func__, [&] { return rosc_internal::publish(pub, ROSC_MSG_JOINT_STATE, msg); });
-}
-
-int rosc_publish_marker(rosc_pub *pub, const rosc_marker *msg)
-{
-  return guard(__func__, [&] { return rosc_internal::publish(pub, ROSC_MSG_MARKER, msg); });
+  return guard(__func__, [&]() -> int {
+    if (pub == nullptr || msg == nullptr || pub->type != type) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    return dispatch(type, [&](auto traits) -> int {
+      using T = decltype(traits);
+      auto &m = *static_cast<typename T::Ros *>(pub->msg.get());
+      int s = T::to_ros(*static_cast<const typename ViewOf<T>::type *>(msg), m);
+      if (s != ROSC_OK) return s;
+      pub->pub.publish(m);
+      return ROSC_OK;
+    });
+  });
 }
 
 int rosc_pub_num_subscribers(const rosc_pub *pub, unsigned *out)
@@ -533,30 +414,32 @@ int rosc_pub_destroy(rosc_pub *pub)
 }
 
 // ------------------------------------------------------------------ subscribers
-int rosc_sub_skin_mesh(rosc_sub **out, const char *topic, unsigned queue_size,
-                       rosc_skin_mesh_cb cb, void *user)
+int rosc_subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size,
+                   rosc_msg_cb cb, rosc_bytes_cb check, void *user)
 {
-  return guard(__func__, [&] {
-    return subscribe_skin_mesh(out, topic, queue_size, 0, 0, cb, nullptr, user);
-  });
-}
-
-int rosc_sub_skin_mesh_limited(rosc_sub **out, const char *topic, unsigned queue_size,
-                               size_t max_vertices, size_t max_triangles,
-                               rosc_skin_mesh_cb cb, rosc_refused_cb refused, void *user)
-{
-  return guard(__func__, [&] {
-    return subscribe_skin_mesh(out, topic, queue_size, max_vertices, max_triangles, cb, refused,
-                               user);
-  });
-}
-
-int rosc_sub_joint_state(rosc_sub **out, const char *topic, unsigned queue_size,
-                         rosc_joint_state_cb cb, void *user)
-{
-  return guard(__func__, [&] {
-    return rosc_internal::subscribe(out, ROSC_MSG_JOINT_STATE, topic, queue_size,
-                                    reinterpret_cast<any_cb>(cb), user);
+  return guard(__func__, [&]() -> int {
+    if (out == nullptr || cb == nullptr || !valid_name(topic) || queue_size == 0)
+      return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    return dispatch(type, [&](auto traits) -> int {
+      using T = decltype(traits);
+      using M = typename T::Ros;
+      std::unique_ptr<rosc_sub> s(new rosc_sub());
+      s->type = type;
+      s->cb = cb;
+      s->check = check;
+      s->user = user;
+      ros::SubscribeOptions ops(topic, queue_size, ros::message_traits::md5sum<M>(),
+                                ros::message_traits::datatype<M>());
+      ops.helper = boost::make_shared<Helper<T>>(s.get());
+      ops.transport_hints = ros::TransportHints().tcpNoDelay();
+      s->sub = rosc_internal::node().subscribe(ops);
+      if (!s->sub) return ROSC_E_ROS;
+      s->topic = s->sub.getTopic();
+      *out = s.release();
+      return ROSC_OK;
+    });
   });
 }
 

@@ -1,5 +1,5 @@
 // rosc parameters (include/rosc/rosc.h: "parameters"): typed getters that tell "not set"
-// from "set with another type", the sentence explaining a getter's failure, and the URDF
+// from "set with another type", what a parameter holds in words, and the URDF
 // under robot_description. Each getter asks the master once (an XmlRpcValue) and checks
 // the type itself.
 #include "rosc/rosc.h"
@@ -127,45 +127,29 @@ int rosc_internal::param_get_string_alloc(const char *name, char **out, size_t *
 }
 
 
-int rosc_param_explain(int status, const char *name, const char *expected, char *err,
-                       size_t err_size)
+int rosc_param_describe(const char *name, char *buf, size_t buf_size)
 {
-  if (err == nullptr || err_size == 0) return status;
-  err[0] = '\0';
-  if (status == ROSC_OK) return status;
-  const char *nm = name != nullptr ? name : "(null)";
-  if (status != ROSC_E_TYPE) {
-    std::snprintf(err, err_size, "parameter %s: %s", nm, rosc_strerror(status));
-    return status;
-  }
-  std::string held = "a value of another type";
-  guard(__func__, [&]() -> int {
+  return guard(__func__, [&]() -> int {
+    if (buf == nullptr || buf_size == 0) return ROSC_E_INVALID;
     XmlRpc::XmlRpcValue v;
     bool found = false;
-    if (param_fetch(nm, v, &found) != ROSC_OK || !found) return ROSC_OK;
-    char buf[160];
+    int st = param_fetch(name, v, &found);
+    if (st != ROSC_OK) return st;
+    if (!found) return ROSC_E_NOTFOUND;
+    std::string held = "a value of another type";
     switch (v.getType()) {
       case XmlRpc::XmlRpcValue::TypeString: {
         std::string t = static_cast<std::string &>(v);
-        if (t.size() > 60) t = t.substr(0, 60) + "...";
-        held = "the string '" + t + "'";
-        char *end = nullptr;
-        const std::string &full = static_cast<std::string &>(v);
-        std::strtod(full.c_str(), &end);
-        if (!full.empty() && end != nullptr && *end == '\0' && expected != nullptr &&
-            std::strstr(expected, "double") != nullptr)
-          held += " (in a launch file, a number without a '.' such as 1e-4 stays a string: "
-                  "write type=\"double\")";
+        held = "the string '" + (t.size() > 60 ? t.substr(0, 60) + "..." : t) + "'";
         break;
       }
-      case XmlRpc::XmlRpcValue::TypeDouble:
-        std::snprintf(buf, sizeof buf, "the double %g", static_cast<double>(v));
-        held = buf;
+      case XmlRpc::XmlRpcValue::TypeDouble: {
+        char num[64];
+        std::snprintf(num, sizeof num, "the double %g", static_cast<double>(v));
+        held = num;
         break;
-      case XmlRpc::XmlRpcValue::TypeInt:
-        std::snprintf(buf, sizeof buf, "the int %d", static_cast<int>(v));
-        held = buf;
-        break;
+      }
+      case XmlRpc::XmlRpcValue::TypeInt: held = "the int " + std::to_string(static_cast<int>(v)); break;
       case XmlRpc::XmlRpcValue::TypeBoolean:
         held = static_cast<bool>(v) ? "the bool true" : "the bool false";
         break;
@@ -173,11 +157,8 @@ int rosc_param_explain(int status, const char *name, const char *expected, char 
       case XmlRpc::XmlRpcValue::TypeStruct: held = "a dictionary"; break;
       default: break;
     }
-    return ROSC_OK;
+    return copy_out(held, buf, buf_size);
   });
-  std::snprintf(err, err_size, "%s must be %s, but is %s", nm,
-                expected != nullptr ? expected : "of another type", held.c_str());
-  return status;
 }
 
 int rosc_robot_description(char **out, size_t *len)

@@ -70,8 +70,7 @@ int rosc_srv_destroy(rosc_srv *srv)
 // The status is published by the spinning thread (rosc_diag_update) and, while that
 // thread is busy with one long piece of work (rosc_diag_busy), by a thread of the
 // handle's own: every diagnostic period without an update it publishes the last
-// status again, its level raised to WARN (ERROR after error_after_s) and its message
-// "WHAT in progress for N s", so /diagnostics never goes silent during a long step.
+// status's key/value pairs with the level and message the node's callback gives.
 // The mutex guards the status, the busy state and the Updater (not thread-safe).
 struct rosc_diag {
   std::unique_ptr<diagnostic_updater::Updater> up;
@@ -85,8 +84,9 @@ struct rosc_diag {
   bool stop = false;
   double period_s = 1.0;          // the last period read by the spinning thread
   double last_pub_s = 0.0;        // wall time of the last status published
-  std::string busy_what;          // "": not busy
-  double busy_since_s = 0.0, busy_error_s = 0.0;
+  rosc_diag_busy_cb busy_cb = nullptr;  // NULL: not busy
+  void *busy_user = nullptr;
+  double busy_since_s = 0.0;
   // what run() publishes (the last status, or the busy one)
   int pub_level = ROSC_DIAG_STALE;
   std::string pub_message = "no status yet";
@@ -110,18 +110,18 @@ struct rosc_diag {
       double period = period_s > 0.0 ? period_s : 1.0;
       wake.wait_for(lock, std::chrono::duration<double>(period / 4.0));
       if (stop) break;
-      if (busy_what.empty()) continue;
+      if (busy_cb == nullptr) continue;
       double now = now_s();
       if (now - busy_since_s < period || now - last_pub_s < period) continue;
-      double busy = now - busy_since_s;
-      char msg[256], val[32];
-      std::snprintf(msg, sizeof msg, "%s in progress for %.1f s", busy_what.c_str(), busy);
-      std::snprintf(val, sizeof val, "%.1f", busy);
-      pub_level = busy_error_s > 0.0 && busy >= busy_error_s ? ROSC_DIAG_ERROR : ROSC_DIAG_WARN;
-      if (level > pub_level && level != ROSC_DIAG_STALE) pub_level = level;
-      pub_message = msg;
-      pub_extra_key = busy_what + " in progress (s)";
-      pub_extra_value = val;
+      rosc_diag_busy_status b;
+      std::memset(&b, 0, sizeof b);
+      b.level = ROSC_DIAG_WARN;
+      busy_cb(now - busy_since_s, level, &b, busy_user);
+      b.message[sizeof b.message - 1] = b.key[sizeof b.key - 1] = b.value[sizeof b.value - 1] = '\0';
+      pub_level = b.level;
+      pub_message = b.message;
+      pub_extra_key = b.key;
+      pub_extra_value = b.value;
       try {
         if (ros::ok()) up->force_update();
       } catch (...) {
@@ -179,18 +179,14 @@ int rosc_diag_update(rosc_diag *d, int level, const char *message, const rosc_kv
   });
 }
 
-int rosc_diag_busy(rosc_diag *d, const char *what, double error_after_s)
+int rosc_diag_busy(rosc_diag *d, rosc_diag_busy_cb cb, void *user)
 {
   return guard(__func__, [&]() -> int {
     if (d == nullptr) return ROSC_E_INVALID;
     std::lock_guard<std::mutex> lock(d->mu);
-    if (what == nullptr || what[0] == '\0') {
-      d->busy_what.clear();
-      return ROSC_OK;
-    }
-    d->busy_what = what;
+    d->busy_cb = cb;
+    d->busy_user = user;
     d->busy_since_s = rosc_diag::now_s();
-    d->busy_error_s = error_after_s;
     return ROSC_OK;
   });
 }

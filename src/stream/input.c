@@ -406,3 +406,14 @@ double ss_input_busy_error_s(double period_ms)
   if (!(period_ms > 0.0) || !isfinite(period_ms)) return 0.0;
   return 2e-3 * period_ms;
 }
+
+int ss_input_busy(double busy_s, double period_ms, int last_level, char *msg, int msg_sz,
+                  char *value, int value_sz)
+{
+  double error_s = ss_input_busy_error_s(period_ms);
+  int level = error_s > 0.0 && busy_s >= error_s ? SS_HEALTH_ERROR : SS_HEALTH_WARN;
+  if (last_level == SS_HEALTH_ERROR) level = SS_HEALTH_ERROR;
+  if (msg && msg_sz > 0) snprintf(msg, (size_t)msg_sz, "step in progress for %.1f s", busy_s);
+  if (value && value_sz > 0) snprintf(value, (size_t)value_sz, "%.1f", busy_s);
+  return level;
+}

@@ -208,6 +208,12 @@ int ss_input_health(const ss_input_window *w, char *msg, int msg_sz);
  * mean step is judged by: the node cannot keep up); 0 (never ERROR) when the period is
  * unknown (<= 0 or not finite). */
 double ss_input_busy_error_s(double period_ms);
+/* The status /diagnostics publishes while a step has run for busy_s seconds (the input
+ * period period_ms, 0 if unknown; last_level the level of the last status, SS_HEALTH_*
+ * or anything else for none): WARN, ERROR after ss_input_busy_error_s, a worse last
+ * level kept; "step in progress for N s" in msg and N ("%.1f") in value. */
+int ss_input_busy(double busy_s, double period_ms, int last_level, char *msg, int msg_sz,
+                  char *value, int value_sz);
 
 #ifdef __cplusplus
 }

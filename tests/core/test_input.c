@@ -458,4 +458,12 @@ static void test_health(void)
   CHECK(ss_input_busy_error_s(-5.0) == 0.0);
   CHECK(ss_input_busy_error_s(NAN) == 0.0);
   CHECK(ss_input_busy_error_s(INFINITY) == 0.0);
+  /* the status said meanwhile: WARN, ERROR past that bound, a last ERROR kept */
+  char val[16];
+  CHECK(ss_input_busy(0.05, 33.3, SS_HEALTH_OK, msg, sizeof msg, val, sizeof val) == SS_HEALTH_WARN);
+  CHECK(strcmp(msg, "step in progress for 0.1 s") == 0 && strcmp(val, "0.1") == 0);
+  CHECK(ss_input_busy(0.07, 33.3, SS_HEALTH_OK, msg, sizeof msg, NULL, 0) == SS_HEALTH_ERROR);
+  CHECK(ss_input_busy(9.0, 0.0, SS_HEALTH_WARN, msg, sizeof msg, NULL, 0) == SS_HEALTH_WARN);
+  CHECK(ss_input_busy(0.01, 0.0, SS_HEALTH_ERROR, NULL, 0, NULL, 0) == SS_HEALTH_ERROR);
+  CHECK(ss_input_busy(0.01, 0.0, 3, NULL, 0, NULL, 0) == SS_HEALTH_WARN); /* 3: stale, none */
 }

@@ -1,5 +1,5 @@
 /* libFuzzer harness: the first thing skin_sim_node does with a received
- * kinematic_mesh's bytes (src/rosc/rosc_wire.h): rosc_wire_skin_mesh_check walks
+ * kinematic_mesh's bytes (src/stream/ss_wire.h): ss_wire_skin_mesh_check walks
  * its length prefixes before roscpp's deserialiser allocates anything. Asserts
  * the documented results: a message passed has every array within its bytes
  * (their total plus the fixed fields is at most its size: roscpp then allocates
@@ -9,19 +9,19 @@
 #include <string.h>
 
 #include "fuzz_util.h"
-#include "rosc_wire.h"
+#include "ss_wire.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   fz f = {data, size};
-  rosc_wire_limits lim;
+  ss_wire_limits lim;
   lim.max_vertices = fz_u8(&f) & 1 ? 0 : fz_u32(&f) & 0xffff;
   lim.max_triangles = fz_u8(&f) & 1 ? 0 : fz_u32(&f) & 0xffff;
-  rosc_wire_sizes s;
+  ss_wire_sizes s;
   char why[320];
   memset(why, 'x', sizeof why);
-  if (rosc_wire_skin_mesh_check(f.p, f.n, &lim, &s, why, sizeof why)) {
+  if (ss_wire_skin_mesh_check(f.p, f.n, &lim, &s, why, sizeof why)) {
     /* seq, sec, nsec, 4 length prefixes and topology_id: 32 bytes */
     assert(32 + s.frame_id + 4 * (s.positions + s.triangles + s.rigid_part) <= f.n);
     assert(!lim.max_vertices || (s.positions + 2) / 3 <= lim.max_vertices);

@@ -76,8 +76,9 @@ typedef struct got {
 } got;
 static got g;
 
-static void on_skin(const rosc_skin_mesh *m, void *u)
+static void on_skin(const void *msg, void *u)
 {
+  const rosc_skin_mesh *m = msg;
   (void)u;
   if (g.n >= MAX_OUT) return;
   rosc_time now;
@@ -104,8 +105,9 @@ static void on_skin(const rosc_skin_mesh *m, void *u)
   }
 }
 
-static void on_stats(const rosc_skin_stats *m, void *u)
+static void on_stats(const void *msg, void *u)
 {
+  const rosc_skin_stats *m = msg;
   (void)u;
   if (g.nstats < MAX_OUT) g.stats_latency[g.nstats] = m->latency_ms;
   g.nstats++;
@@ -146,8 +148,8 @@ int main(int argc, char **argv)
   rosc_pub *pub = NULL;
   rosc_sub *sm = NULL, *ss = NULL;
   if (rosc_pub_create(&pub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 8, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sm, "skin_mesh", 8, on_skin, NULL) != ROSC_OK ||
-      rosc_sub_skin_stats(&ss, "skin_stats", 50, on_stats, NULL) != ROSC_OK) {
+      rosc_subscribe(&sm, ROSC_MSG_SKIN_MESH, "skin_mesh", 8, on_skin, NULL, NULL) != ROSC_OK ||
+      rosc_subscribe(&ss, ROSC_MSG_SKIN_STATS, "skin_stats", 50, on_stats, NULL, NULL) != ROSC_OK) {
     fprintf(stderr, "overload_probe: cannot advertise or subscribe\n");
     return 1;
   }
@@ -183,7 +185,7 @@ int main(int argc, char **argv)
     m.n_positions = 3 * NV;
     m.triangles = g_tri;
     m.n_triangles = 3 * NT;
-    rosc_publish_skin_mesh(pub, &m);
+    rosc_publish(pub, ROSC_MSG_SKIN_MESH, &m);
     /* paced by the wall clock; spinning meanwhile */
     do {
       rosc_spin_once(0.0);

@@ -39,28 +39,33 @@ typedef struct relay {
   unsigned long relayed;
 } relay;
 
-static void relay_mesh(const rosc_skin_mesh *m, void *u)
+static void relay_mesh(const void *msg, void *u)
 {
+  const rosc_skin_mesh *m = msg;
   relay *r = u;
-  if (rosc_publish_skin_mesh(r->mesh, m) == ROSC_OK) r->relayed++;
+  if (rosc_publish(r->mesh, ROSC_MSG_SKIN_MESH, m) == ROSC_OK) r->relayed++;
 }
-static void relay_stats(const rosc_skin_stats *m, void *u)
+static void relay_stats(const void *msg, void *u)
 {
+  const rosc_skin_stats *m = msg;
   relay *r = u;
-  if (rosc_publish_skin_stats(r->stats, m) == ROSC_OK) r->relayed++;
+  if (rosc_publish(r->stats, ROSC_MSG_SKIN_STATS, m) == ROSC_OK) r->relayed++;
 }
-static void relay_joints(const rosc_joint_state *m, void *u)
+static void relay_joints(const void *msg, void *u)
 {
+  const rosc_joint_state *m = msg;
   relay *r = u;
-  if (rosc_publish_joint_state(r->joints, m) == ROSC_OK) r->relayed++;
+  if (rosc_publish(r->joints, ROSC_MSG_JOINT_STATE, m) == ROSC_OK) r->relayed++;
 }
-static void relay_marker(const rosc_marker *m, void *u)
+static void relay_marker(const void *msg, void *u)
 {
+  const rosc_marker *m = msg;
   relay *r = u;
-  if (rosc_publish_marker(r->marker, m) == ROSC_OK) r->relayed++;
+  if (rosc_publish(r->marker, ROSC_MSG_MARKER, m) == ROSC_OK) r->relayed++;
 }
-static void relay_string(const rosc_string *m, void *u)
+static void relay_string(const void *msg, void *u)
 {
+  const rosc_string *m = msg;
   relay *r = u;
   if (strcmp(m->data, "quit") == 0) {
     r->quit = 1;
@@ -86,11 +91,11 @@ static int run_relay(int argc, char **argv)
   ok &= rosc_pub_create(&r.joints, ROSC_MSG_JOINT_STATE, "joints_out", 20, 0) == ROSC_OK;
   ok &= rosc_pub_create(&r.marker, ROSC_MSG_MARKER, "marker_out", 20, 0) == ROSC_OK;
   ok &= rosc_pub_create(&r.string, ROSC_MSG_STRING, "string_out", 20, 0) == ROSC_OK;
-  ok &= rosc_sub_skin_mesh(&subs[0], "mesh_in", 128, relay_mesh, &r) == ROSC_OK;
-  ok &= rosc_sub_skin_stats(&subs[1], "stats_in", 20, relay_stats, &r) == ROSC_OK;
-  ok &= rosc_sub_joint_state(&subs[2], "joints_in", 20, relay_joints, &r) == ROSC_OK;
-  ok &= rosc_sub_marker(&subs[3], "marker_in", 20, relay_marker, &r) == ROSC_OK;
-  ok &= rosc_sub_string(&subs[4], "string_in", 20, relay_string, &r) == ROSC_OK;
+  ok &= rosc_subscribe(&subs[0], ROSC_MSG_SKIN_MESH, "mesh_in", 128, relay_mesh, NULL, &r) == ROSC_OK;
+  ok &= rosc_subscribe(&subs[1], ROSC_MSG_SKIN_STATS, "stats_in", 20, relay_stats, NULL, &r) == ROSC_OK;
+  ok &= rosc_subscribe(&subs[2], ROSC_MSG_JOINT_STATE, "joints_in", 20, relay_joints, NULL, &r) == ROSC_OK;
+  ok &= rosc_subscribe(&subs[3], ROSC_MSG_MARKER, "marker_in", 20, relay_marker, NULL, &r) == ROSC_OK;
+  ok &= rosc_subscribe(&subs[4], ROSC_MSG_STRING, "string_in", 20, relay_string, NULL, &r) == ROSC_OK;
   /* A SIGINT during set-up (roslaunch stopping a node that is still starting, e.g.
    * on a loaded machine) makes roscpp refuse new publishers: a clean stop, exit 0. */
   int interrupted = !ok && !rosc_ok();
@@ -224,32 +229,33 @@ typedef struct inbox {
   int overflow;
 } inbox;
 
-static void in_mesh(const rosc_skin_mesh *m, void *u)
+static void in_mesh(const void *msg, void *u)
 {
   inbox *b = u;
-  if (b->n_mesh < N_MSG) mesh_copy_set(&b->mesh[b->n_mesh++], m);
+  if (b->n_mesh < N_MSG) mesh_copy_set(&b->mesh[b->n_mesh++], msg);
   else b->overflow++;
 }
-static void in_stats(const rosc_skin_stats *m, void *u)
+static void in_stats(const void *msg, void *u)
 {
   inbox *b = u;
-  if (b->n_stats < N_MSG) b->stats[b->n_stats++] = *m;
+  if (b->n_stats < N_MSG) b->stats[b->n_stats++] = *(const rosc_skin_stats *)msg;
   else b->overflow++;
 }
-static void in_joints(const rosc_joint_state *m, void *u)
+static void in_joints(const void *msg, void *u)
 {
   inbox *b = u;
-  if (b->n_joints < N_MSG) joints_copy_set(&b->joints[b->n_joints++], m);
+  if (b->n_joints < N_MSG) joints_copy_set(&b->joints[b->n_joints++], msg);
   else b->overflow++;
 }
-static void in_marker(const rosc_marker *m, void *u)
+static void in_marker(const void *msg, void *u)
 {
   inbox *b = u;
-  if (b->n_marker < N_MSG) marker_copy_set(&b->marker[b->n_marker++], m);
+  if (b->n_marker < N_MSG) marker_copy_set(&b->marker[b->n_marker++], msg);
   else b->overflow++;
 }
-static void in_string(const rosc_string *m, void *u)
+static void in_string(const void *msg, void *u)
 {
+  const rosc_string *m = msg;
   inbox *b = u;
   if (strlen(m->data) != m->len) b->overflow += 1000;  /* must be consistent */
   if (b->n_string < N_MSG) b->string[b->n_string++] = dup_str(m->data);
@@ -382,7 +388,9 @@ static void make_messages(outbox *o)
     /* Marker: TRIANGLE_LIST with per-vertex colours (i == 5: DELETEALL, empty) */
     marker_copy *mk = &o->marker[i];
     memset(mk, 0, sizeof *mk);
-    rosc_marker_init_triangle_list(&mk->m);
+    mk->m.type = ROSC_MARKER_TRIANGLE_LIST;
+    mk->m.scale[0] = mk->m.scale[2] = 1.0;
+    mk->m.color[0] = mk->m.color[1] = mk->m.color[2] = 1.0f;
     make_header(&mk->m.header, i, "marker");
     snprintf(mk->m.ns, sizeof mk->m.ns, "skin_%d", i);
     mk->m.id = -3 + i;
@@ -440,8 +448,8 @@ static int publish_all(outbox *o, int i, rosc_pub *pm, rosc_pub *ps, rosc_pub *p
   m.n_triangles = o->mesh[i].ntri;
   m.rigid_part = o->mesh[i].nrigid ? o->mesh[i].rigid : NULL;
   m.n_rigid_part = o->mesh[i].nrigid;
-  st |= rosc_publish_skin_mesh(pm, &m);
-  st |= rosc_publish_skin_stats(ps, &o->stats[i]);
+  st |= rosc_publish(pm, ROSC_MSG_SKIN_MESH, &m);
+  st |= rosc_publish(ps, ROSC_MSG_SKIN_STATS, &o->stats[i]);
   rosc_joint_state j;
   j.header = o->joints[i].h;
   j.name = (const char *const *)o->joints[i].name;
@@ -452,13 +460,13 @@ static int publish_all(outbox *o, int i, rosc_pub *pm, rosc_pub *ps, rosc_pub *p
   j.n_velocity = o->joints[i].nvel;
   j.effort = o->joints[i].eff;
   j.n_effort = o->joints[i].neff;
-  st |= rosc_publish_joint_state(pj, &j);
+  st |= rosc_publish(pj, ROSC_MSG_JOINT_STATE, &j);
   rosc_marker k = o->marker[i].m;
   k.points = o->marker[i].points;
   k.colors = o->marker[i].colors;
   k.text = o->marker[i].text;
   k.mesh_resource = o->marker[i].res;
-  st |= rosc_publish_marker(pk, &k);
+  st |= rosc_publish(pk, ROSC_MSG_MARKER, &k);
   st |= rosc_publish_string(pstr, o->string[i]);
   return st;
 }
@@ -651,23 +659,23 @@ static void check_rejects(rosc_pub *pm, rosc_pub *pj)
 {
   rosc_skin_mesh m;
   memset(&m, 0, sizeof m);
-  CHECK(rosc_publish_skin_mesh(pj, &m) == ROSC_E_INVALID);   /* wrong type */
-  CHECK(rosc_publish_skin_mesh(NULL, &m) == ROSC_E_INVALID);
-  CHECK(rosc_publish_skin_mesh(pm, NULL) == ROSC_E_INVALID);
+  CHECK(rosc_publish(pj, ROSC_MSG_SKIN_MESH, &m) == ROSC_E_INVALID);   /* wrong type */
+  CHECK(rosc_publish(NULL, ROSC_MSG_SKIN_MESH, &m) == ROSC_E_INVALID);
+  CHECK(rosc_publish(pm, ROSC_MSG_SKIN_MESH, NULL) == ROSC_E_INVALID);
   m.n_positions = 3;   /* NULL with a count */
-  CHECK(rosc_publish_skin_mesh(pm, &m) == ROSC_E_INVALID);
+  CHECK(rosc_publish(pm, ROSC_MSG_SKIN_MESH, &m) == ROSC_E_INVALID);
   m.n_positions = 0;
   memset(m.header.frame_id, 'x', sizeof m.header.frame_id);   /* unterminated */
-  CHECK(rosc_publish_skin_mesh(pm, &m) == ROSC_E_INVALID);
+  CHECK(rosc_publish(pm, ROSC_MSG_SKIN_MESH, &m) == ROSC_E_INVALID);
   m.header.frame_id[0] = '\0';
   m.header.stamp.nsec = 1000000000u;
-  CHECK(rosc_publish_skin_mesh(pm, &m) == ROSC_E_INVALID);
+  CHECK(rosc_publish(pm, ROSC_MSG_SKIN_MESH, &m) == ROSC_E_INVALID);
   rosc_joint_state j;
   memset(&j, 0, sizeof j);
   const char *names[2] = {"a", NULL};
   j.name = names;
   j.n_name = 2;
-  CHECK(rosc_publish_joint_state(pj, &j) == ROSC_E_INVALID);
+  CHECK(rosc_publish(pj, ROSC_MSG_JOINT_STATE, &j) == ROSC_E_INVALID);
   rosc_pub *p = NULL;
   CHECK(rosc_pub_create(&p, 99, "x", 1, 0) == ROSC_E_INVALID && p == NULL);
   CHECK(rosc_pub_create(&p, ROSC_MSG_STRING, "x", 0, 0) == ROSC_E_INVALID);
@@ -676,7 +684,11 @@ static void check_rejects(rosc_pub *pm, rosc_pub *pj)
   CHECK(strcmp(rosc_strerror(ROSC_E_TYPE), "parameter has another type") == 0);
 }
 
-static void latch_cb(const rosc_string *m, void *u) { *(int *)u = strcmp(m->data, "latched!") == 0 ? 1 : -1; }
+static void latch_cb(const void *msg, void *u)
+{
+  const rosc_string *m = msg;
+  *(int *)u = strcmp(m->data, "latched!") == 0 ? 1 : -1;
+}
 
 static void check_latch(void)
 {
@@ -685,7 +697,7 @@ static void check_latch(void)
   int got = 0;
   CHECK(rosc_pub_create(&p, ROSC_MSG_STRING, "latched", 1, 1) == ROSC_OK);
   CHECK(rosc_publish_string(p, "latched!") == ROSC_OK);
-  CHECK(rosc_sub_string(&s, "latched", 1, latch_cb, &got) == ROSC_OK);
+  CHECK(rosc_subscribe(&s, ROSC_MSG_STRING, "latched", 1, latch_cb, NULL, &got) == ROSC_OK);
   double t0 = 0, t = 0;
   rosc_wall_now_s(&t0);
   while (got == 0 && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < 10.0) rosc_spin_once(0.05);
@@ -758,16 +770,16 @@ static int run_check(int argc, char **argv)
   CHECK(rosc_pub_create(&pubs[2], ROSC_MSG_JOINT_STATE, "joints_a", 20, 0) == ROSC_OK);
   CHECK(rosc_pub_create(&pubs[3], ROSC_MSG_MARKER, "marker_a", 20, 0) == ROSC_OK);
   CHECK(rosc_pub_create(&pubs[4], ROSC_MSG_STRING, "string_a", 20, 0) == ROSC_OK);
-  CHECK(rosc_sub_skin_mesh(&rsubs[0], "mesh_b", 20, in_mesh, &relayed) == ROSC_OK);
-  CHECK(rosc_sub_skin_stats(&rsubs[1], "stats_b", 20, in_stats, &relayed) == ROSC_OK);
-  CHECK(rosc_sub_joint_state(&rsubs[2], "joints_b", 20, in_joints, &relayed) == ROSC_OK);
-  CHECK(rosc_sub_marker(&rsubs[3], "marker_b", 20, in_marker, &relayed) == ROSC_OK);
-  CHECK(rosc_sub_string(&rsubs[4], "string_b", 20, in_string, &relayed) == ROSC_OK);
-  CHECK(rosc_sub_skin_mesh(&lsubs[0], "mesh_a", 20, in_mesh, &local) == ROSC_OK);
-  CHECK(rosc_sub_skin_stats(&lsubs[1], "stats_a", 20, in_stats, &local) == ROSC_OK);
-  CHECK(rosc_sub_joint_state(&lsubs[2], "joints_a", 20, in_joints, &local) == ROSC_OK);
-  CHECK(rosc_sub_marker(&lsubs[3], "marker_a", 20, in_marker, &local) == ROSC_OK);
-  CHECK(rosc_sub_string(&lsubs[4], "string_a", 20, in_string, &local) == ROSC_OK);
+  CHECK(rosc_subscribe(&rsubs[0], ROSC_MSG_SKIN_MESH, "mesh_b", 20, in_mesh, NULL, &relayed) == ROSC_OK);
+  CHECK(rosc_subscribe(&rsubs[1], ROSC_MSG_SKIN_STATS, "stats_b", 20, in_stats, NULL, &relayed) == ROSC_OK);
+  CHECK(rosc_subscribe(&rsubs[2], ROSC_MSG_JOINT_STATE, "joints_b", 20, in_joints, NULL, &relayed) == ROSC_OK);
+  CHECK(rosc_subscribe(&rsubs[3], ROSC_MSG_MARKER, "marker_b", 20, in_marker, NULL, &relayed) == ROSC_OK);
+  CHECK(rosc_subscribe(&rsubs[4], ROSC_MSG_STRING, "string_b", 20, in_string, NULL, &relayed) == ROSC_OK);
+  CHECK(rosc_subscribe(&lsubs[0], ROSC_MSG_SKIN_MESH, "mesh_a", 20, in_mesh, NULL, &local) == ROSC_OK);
+  CHECK(rosc_subscribe(&lsubs[1], ROSC_MSG_SKIN_STATS, "stats_a", 20, in_stats, NULL, &local) == ROSC_OK);
+  CHECK(rosc_subscribe(&lsubs[2], ROSC_MSG_JOINT_STATE, "joints_a", 20, in_joints, NULL, &local) == ROSC_OK);
+  CHECK(rosc_subscribe(&lsubs[3], ROSC_MSG_MARKER, "marker_a", 20, in_marker, NULL, &local) == ROSC_OK);
+  CHECK(rosc_subscribe(&lsubs[4], ROSC_MSG_STRING, "string_a", 20, in_string, NULL, &local) == ROSC_OK);
   char topic[64];
   CHECK(rosc_pub_topic(pubs[0], topic, sizeof topic) == ROSC_OK && strcmp(topic, "/mesh_a") == 0);
   CHECK(rosc_sub_topic(rsubs[0], topic, sizeof topic) == ROSC_OK && strcmp(topic, "/mesh_b") == 0);
@@ -828,8 +840,9 @@ static int run_check(int argc, char **argv)
 /* rosc_echo listen N TIMEOUT_S: prints each SkinMesh arriving on mesh_in (from a
  * publisher that is not rosc, e.g. rospy) and, at the end, how many the shim dropped.
  * Exits 0 after N messages, 1 on timeout. */
-static void listen_mesh(const rosc_skin_mesh *m, void *u)
+static void listen_mesh(const void *msg, void *u)
 {
+  const rosc_skin_mesh *m = msg;
   int *n = u;
   printf("mesh frame_id=%s stamp=%u.%09u topology_id=%u positions=%zu triangles=%zu first=%.9g\n",
          m->header.frame_id, m->header.stamp.sec, m->header.stamp.nsec, m->topology_id,
@@ -848,7 +861,7 @@ static int run_listen(int argc, char **argv)
   int want = atoi(argv[2]), got = 0;
   double timeout = atof(argv[3]), t0 = 0, t = 0;
   rosc_sub *sub = NULL;
-  if (rosc_sub_skin_mesh(&sub, "mesh_in", 10, listen_mesh, &got) != ROSC_OK) return 1;
+  if (rosc_subscribe(&sub, ROSC_MSG_SKIN_MESH, "mesh_in", 10, listen_mesh, NULL, &got) != ROSC_OK) return 1;
   rosc_wall_now_s(&t0);
   while (got < want && rosc_ok() && rosc_wall_now_s(&t) == ROSC_OK && t - t0 < timeout)
     rosc_spin_once(0.05);
@@ -872,8 +885,9 @@ typedef struct ping_state {
   double lat[1024];
 } ping_state;
 
-static void ping_back(const rosc_skin_mesh *m, void *u)
+static void ping_back(const void *msg, void *u)
 {
+  const rosc_skin_mesh *m = msg;
   ping_state *p = u;
   double now = 0;
   rosc_wall_now_s(&now);
@@ -917,7 +931,7 @@ static int run_ping(int argc, char **argv)
    * (sanitizer builds, parallel tests); the latencies are reported, never
    * asserted. */
   if (rosc_pub_create(&pub, ROSC_MSG_SKIN_MESH, "mesh_a", (unsigned)n, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&sub, "mesh_b", (unsigned)n, ping_back, &ps) != ROSC_OK)
+      rosc_subscribe(&sub, ROSC_MSG_SKIN_MESH, "mesh_b", (unsigned)n, ping_back, NULL, &ps) != ROSC_OK)
     return 1;
   double t0 = 0, t = 0;
   unsigned np = 0, ns = 0;
@@ -940,7 +954,7 @@ static int run_ping(int argc, char **argv)
     pos[3 * nv - 1] = ps.probe + (float)i;
     m.topology_id = (uint32_t)i;
     rosc_wall_now(&m.header.stamp);
-    if (rosc_publish_skin_mesh(pub, &m) != ROSC_OK) break;
+    if (rosc_publish(pub, ROSC_MSG_SKIN_MESH, &m) != ROSC_OK) break;
     next += 1.0 / hz;
     /* spin (not sleep) until the next period, so replies are timed when they arrive */
     while (rosc_wall_now_s(&t) == ROSC_OK && t < next) rosc_spin_once(next - t);

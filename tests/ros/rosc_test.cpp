@@ -1,7 +1,6 @@
 // rosc for tests (tests/ros/rosc_test.h): the calls only the ROS test helpers make, on the
 // shim's inside (src/rosc/rosc_internal.h): each runs in the same exception guard, checks
-// the same node state, and goes through the same generic publish / subscribe path as the
-// nodes' calls in src/rosc.
+// the same node state, on the same handles as the nodes' calls in src/rosc.
 #include "rosc_test.h"
 #include "rosc_internal.h"
 
@@ -13,7 +12,6 @@
 #include <cstring>
 #include <string>
 
-using rosc_internal::any_cb;
 using rosc_internal::copy_out;
 using rosc_internal::guard;
 using rosc_internal::need_node;
@@ -122,12 +120,10 @@ int rosc_param_delete(const char *name)
 // ------------------------------------------------------------------ topics
 int rosc_publish_string(rosc_pub *pub, const char *text)
 {
-  return guard(__func__, [&]() -> int {
-    rosc_string s;
-    s.data = text;
-    s.len = text != nullptr ? std::strlen(text) : 0;
-    return rosc_internal::publish(pub, ROSC_MSG_STRING, text != nullptr ? &s : nullptr);
-  });
+  rosc_string s;
+  s.data = text;
+  s.len = text != nullptr ? std::strlen(text) : 0;
+  return rosc_publish(pub, ROSC_MSG_STRING, text != nullptr ? &s : nullptr);
 }
 
 int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size)
@@ -135,33 +131,6 @@ int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size)
   return guard(__func__, [&]() -> int {
     if (pub == nullptr) return ROSC_E_INVALID;
     return copy_out(pub->pub.getTopic(), buf, buf_size);
-  });
-}
-
-int rosc_sub_skin_stats(rosc_sub **out, const char *topic, unsigned queue_size,
-                        rosc_skin_stats_cb cb, void *user)
-{
-  return guard(__func__, [&] {
-    return rosc_internal::subscribe(out, ROSC_MSG_SKIN_STATS, topic, queue_size,
-                                    reinterpret_cast<any_cb>(cb), user);
-  });
-}
-
-int rosc_sub_marker(rosc_sub **out, const char *topic, unsigned queue_size, rosc_marker_cb cb,
-                    void *user)
-{
-  return guard(__func__, [&] {
-    return rosc_internal::subscribe(out, ROSC_MSG_MARKER, topic, queue_size,
-                                    reinterpret_cast<any_cb>(cb), user);
-  });
-}
-
-int rosc_sub_string(rosc_sub **out, const char *topic, unsigned queue_size, rosc_string_cb cb,
-                    void *user)
-{
-  return guard(__func__, [&] {
-    return rosc_internal::subscribe(out, ROSC_MSG_STRING, topic, queue_size,
-                                    reinterpret_cast<any_cb>(cb), user);
   });
 }
 

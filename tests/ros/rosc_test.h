@@ -1,8 +1,7 @@
 /* rosc for tests: what the ROS test helpers (rosc_echo, skin_probe, overload_probe) call
  * besides include/rosc/rosc.h, which declares only what the nodes use. Built from
  * tests/ros/rosc_test.cpp on the shim's inside (src/rosc/rosc_internal.h): the same
- * guard, the same node, the same generic publish / subscribe path. Conventions as in
- * rosc.h. */
+ * guard, the same node, the same handles. Conventions as in rosc.h. */
 #ifndef ROSC_TEST_H
 #define ROSC_TEST_H
 
@@ -40,15 +39,10 @@ int rosc_param_set_bool(const char *name, int value);
 int rosc_param_delete(const char *name);   /* ROSC_OK also when it was not set */
 
 /* ---- topics */
+/* rosc_publish of a std_msgs/String holding text. */
 int rosc_publish_string(rosc_pub *pub, const char *text);
 /* The fully resolved topic name (after remapping). */
 int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size);
-int rosc_sub_skin_stats(rosc_sub **out, const char *topic, unsigned queue_size,
-                        rosc_skin_stats_cb cb, void *user);
-int rosc_sub_marker(rosc_sub **out, const char *topic, unsigned queue_size,
-                    rosc_marker_cb cb, void *user);
-int rosc_sub_string(rosc_sub **out, const char *topic, unsigned queue_size,
-                    rosc_string_cb cb, void *user);
 /* Number of publishers connected now. */
 int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out);
 /* Messages dropped by the shim itself (frame_id or ns too long) so far. */

@@ -84,8 +84,9 @@ static void make_sheet(double t)
     }
 }
 
-static void on_skin(const rosc_skin_mesh *m, void *u)
+static void on_skin(const void *msg, void *u)
 {
+  const rosc_skin_mesh *m = msg;
   got *g = u;
   if (g->n >= MAX_MSG) return;
   g->stamp_ns[g->n] = rosc_time_to_ns(m->header.stamp);
@@ -102,16 +103,18 @@ static void on_skin(const rosc_skin_mesh *m, void *u)
   g->n++;
 }
 
-static void on_stats(const rosc_skin_stats *m, void *u)
+static void on_stats(const void *msg, void *u)
 {
+  const rosc_skin_stats *m = msg;
   got *g = u;
   if (g->nstats < MAX_MSG) g->stats_stamp_ns[g->nstats] = rosc_time_to_ns(m->header.stamp);
   g->nstats++;
   g->last_stats = *m;
 }
 
-static void on_marker(const rosc_marker *m, void *u)
+static void on_marker(const void *msg, void *u)
 {
+  const rosc_marker *m = msg;
   got *g = u;
   g->nmarker++;
   int ok = m->type == ROSC_MARKER_TRIANGLE_LIST && m->n_points == g->ntri &&
@@ -138,9 +141,9 @@ static int setup_skin(got *g, const char *name)
 static int connect_skin(got *g, int want_marker)
 {
   if (rosc_pub_create(&g_pub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 64, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&g_sub_mesh, "skin_mesh", 100, on_skin, g) != ROSC_OK ||
-      rosc_sub_skin_stats(&g_sub_stats, "skin_stats", 100, on_stats, g) != ROSC_OK ||
-      (want_marker && rosc_sub_marker(&g_sub_marker, "skin_marker", 10, on_marker, g) != ROSC_OK))
+      rosc_subscribe(&g_sub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 100, on_skin, NULL, g) != ROSC_OK ||
+      rosc_subscribe(&g_sub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 100, on_stats, NULL, g) != ROSC_OK ||
+      (want_marker && rosc_subscribe(&g_sub_marker, ROSC_MSG_MARKER, "skin_marker", 10, on_marker, NULL, g) != ROSC_OK))
     return 0;
   for (int i = 0; i < 200; i++) { /* up to 10 s for the skin node */
     unsigned a = 0, b = 0, c = 0;
@@ -191,7 +194,7 @@ static void send_mesh(int64_t stamp_ns, uint32_t topo, const float *pos, size_t 
   m.n_positions = npos;
   m.triangles = tri;
   m.n_triangles = ntri;
-  rosc_publish_skin_mesh(g_pub, &m);
+  rosc_publish(g_pub, ROSC_MSG_SKIN_MESH, &m);
 }
 
 /* Waits (spinning) until n skin meshes and n stats have arrived, at most timeout_s. */
@@ -457,16 +460,18 @@ typedef struct jgot {
   size_t npos;
 } jgot;
 
-static void on_kin(const rosc_skin_mesh *m, void *u)
+static void on_kin(const void *msg, void *u)
 {
+  const rosc_skin_mesh *m = msg;
   jgot *g = u;
   if (g->n < MAX_MSG) g->stamp_ns[g->n++] = rosc_time_to_ns(m->header.stamp);
   snprintf(g->frame, sizeof g->frame, "%s", m->header.frame_id);
   g->topo = m->topology_id;
   g->npos = m->n_positions;
 }
-static void on_avstats(const rosc_skin_stats *m, void *u)
+static void on_avstats(const void *msg, void *u)
 {
+  const rosc_skin_stats *m = msg;
   jgot *g = u;
   g->nstats++;
   g->last = *m;
@@ -479,8 +484,8 @@ static int run_joints(void)
   rosc_pub *pub = NULL;
   rosc_sub *s1 = NULL, *s2 = NULL;
   if (rosc_pub_create(&pub, ROSC_MSG_JOINT_STATE, "joint_states", 10, 0) != ROSC_OK ||
-      rosc_sub_skin_mesh(&s1, "kinematic_mesh", 100, on_kin, &g) != ROSC_OK ||
-      rosc_sub_skin_stats(&s2, "avatar_stats", 100, on_avstats, &g) != ROSC_OK)
+      rosc_subscribe(&s1, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 100, on_kin, NULL, &g) != ROSC_OK ||
+      rosc_subscribe(&s2, ROSC_MSG_SKIN_STATS, "avatar_stats", 100, on_avstats, NULL, &g) != ROSC_OK)
     return 1;
   int up = 0;
   for (int i = 0; i < 400 && !up; i++) {
@@ -518,7 +523,7 @@ static int run_joints(void)
       js.name = mixed_names; js.n_name = 4; js.position = v4; js.n_position = 4;
       js.velocity = v4; js.n_velocity = 4; break;
     }
-    rosc_publish_joint_state(pub, &js);
+    rosc_publish(pub, ROSC_MSG_JOINT_STATE, &js);
     if (is_good) good[ngood++] = s; else nbad++;
     rosc_spin_for(1.0 / 30);
   }
@@ -550,7 +555,7 @@ static int run_await(long long stamp_ns, double timeout_s)
 {
   static got g;
   if (!setup_skin(&g, "skin_probe_await")) return 1;
-  if (rosc_sub_skin_stats(&g_sub_stats, "skin_stats", 1000, on_stats, &g) != ROSC_OK) return 1;
+  if (rosc_subscribe(&g_sub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 1000, on_stats, NULL, &g) != ROSC_OK) return 1;
   int seen = 0;
   for (double t = 0; t < timeout_s && !seen; t += 0.05) {
     rosc_spin_for(0.05);

@@ -19,15 +19,15 @@ fig() { sed -n "s/.*figures .*\b$1=\([-0-9]*\).*/\1/p" "$D/probe.log" | head -n 
 
 ros_env_bg skin "$skin" _marker_rate:=0 _step_budget:=-1 _substeps:=300 _diagnostic_period:=0.25
 spid=$ROS_ENV_LAST_PID
-check "skin node starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
+ros_env_check "skin node starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
 timeout 2000 /usr/bin/python3 "$src/tests/ros/busy_probe.py" > "$D/probe.log" 2>&1
 rc=$?
 cat "$D/probe.log"
-check "both meshes answered (exit $rc)" "[ $rc -eq 0 ]"
+ros_env_check "both meshes answered (exit $rc)" "[ $rc -eq 0 ]"
 n=$(fig in_progress); level=$(fig level_max)
-check "a status arrived during the step saying 'step in progress for N s' (${n:-0})" "[ '${n:-0}' -ge 1 ]"
-check "at level WARN or ERROR (${level:-?})" "[ '${level:--1}' -ge 1 ]"
-check "the first status after the step no longer says so" \
+ros_env_check "a status arrived during the step saying 'step in progress for N s' (${n:-0})" "[ '${n:-0}' -ge 1 ]"
+ros_env_check "at level WARN or ERROR (${level:-?})" "[ '${level:--1}' -ge 1 ]"
+ros_env_check "the first status after the step no longer says so" \
   "grep -q 'figures .*after=\"' '$D/probe.log' && ! grep -q 'after=\"step in progress' '$D/probe.log'"
 ros_env_sigint "$spid" 20
 ros_env_check_sanitizer "$D/skin.log" "no sanitizer report from the node"

@@ -29,38 +29,38 @@ fig() { sed -n "s/.*figures .*\b$2=\([-0-9]*\).*/\1/p" "$D/$1.log" | head -n 1; 
 # --- the 56-byte lie, then a large message read and rejected
 ros_env_bg skin "$skin" _marker_rate:=0
 spid=$ROS_ENV_LAST_PID
-check "skin node starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
+ros_env_check "skin node starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
 timeout 600 /usr/bin/python3 "$src/tests/ros/raw_mesh.py" "$spid" lie > "$D/lie.log" 2>&1
 rc=$?
 cat "$D/lie.log"
-check "the node answers a good mesh after the 56-byte message and after the large one (exit $rc)" "[ $rc -eq 0 ]"
-check "the node is still up" "kill -0 $spid"
+ros_env_check "the node answers a good mesh after the 56-byte message and after the large one (exit $rc)" "[ $rc -eq 0 ]"
+ros_env_check "the node is still up" "kill -0 $spid"
 hwm0=$(fig lie hwm0); hwm1=$(fig lie hwm1); rss0=$(fig lie rss0); rss2=$(fig lie rss2)
 r1=$(fig lie rejected1); r2=$(fig lie rejected2)
 echo "56-byte message ($(fig lie lie_bytes) bytes): VmHWM ${hwm0:-?} -> ${hwm1:-?} kB; rejected ${r1:-?}"
 echo "large message ($(fig lie large_bytes) bytes): VmRSS ${rss0:-?} -> $(fig lie rss1) -> ${rss2:-?} kB (peak $(fig lie hwm2) kB); rejected ${r2:-?}"
-check "the 56-byte message's peak RSS growth < 150 MB" "[ -n '$hwm1' ] && [ \$(( ${hwm1:-0} - ${hwm0:-0} )) -lt 153600 ]"
-check "the 56-byte message counted as rejected" "[ '${r1:-0}' -ge 1 ]"
-check "its error names positions and the sizes" \
+ros_env_check "the 56-byte message's peak RSS growth < 150 MB" "[ -n '$hwm1' ] && [ \$(( ${hwm1:-0} - ${hwm0:-0} )) -lt 153600 ]"
+ros_env_check "the 56-byte message counted as rejected" "[ '${r1:-0}' -ge 1 ]"
+ros_env_check "its error names positions and the sizes" \
   "grep -q 'rejected kinematic_mesh unread: positions: length 1073741826 (4294967304 bytes) but only' '$D/skin.log'"
-check "the large message counted as rejected" "[ '${r2:-0}' -ge 2 ]"
-check "RSS back within 40 MB after the large message" "[ -n '$rss2' ] && [ \$(( ${rss2:-0} - ${rss0:-0} )) -lt 40960 ]"
+ros_env_check "the large message counted as rejected" "[ '${r2:-0}' -ge 2 ]"
+ros_env_check "RSS back within 40 MB after the large message" "[ -n '$rss2' ] && [ \$(( ${rss2:-0} - ${rss0:-0} )) -lt 40960 ]"
 ros_env_sigint "$spid" 20
 ros_env_check_sanitizer "$D/skin.log" "no sanitizer report from the node (lie)"
 
 # --- the large message against a smaller ~max_vertices: refused unread
 ros_env_bg skin2 "$skin" _marker_rate:=0 _max_vertices:=100000 __name:=skin_sim
 spid=$ROS_ENV_LAST_PID
-check "skin node (~max_vertices 100000) starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
+ros_env_check "skin node (~max_vertices 100000) starts" "ros_env_wait_node /skin_sim $ROS_ENV_START_S $spid"
 timeout 600 /usr/bin/python3 "$src/tests/ros/raw_mesh.py" "$spid" limit > "$D/limit.log" 2>&1
 rc=$?
 cat "$D/limit.log"
 hwm0=$(fig limit hwm0); hwm1=$(fig limit hwm1); r1=$(fig limit rejected1)
 echo "over ~max_vertices: VmHWM ${hwm0:-?} -> ${hwm1:-?} kB; rejected ${r1:-?}"
-check "the node answers a good mesh after a mesh over ~max_vertices (exit $rc)" "[ $rc -eq 0 ]"
-check "it was counted as rejected" "[ '${r1:-0}' -ge 1 ]"
-check "its error names ~max_vertices" "grep -q 'positions: .* exceed ~max_vertices = 100000' '$D/skin2.log'"
-check "peak RSS growth < 150 MB" "[ -n '$hwm1' ] && [ \$(( ${hwm1:-0} - ${hwm0:-0} )) -lt 153600 ]"
+ros_env_check "the node answers a good mesh after a mesh over ~max_vertices (exit $rc)" "[ $rc -eq 0 ]"
+ros_env_check "it was counted as rejected" "[ '${r1:-0}' -ge 1 ]"
+ros_env_check "its error names ~max_vertices" "grep -q 'positions: .* exceed ~max_vertices = 100000' '$D/skin2.log'"
+ros_env_check "peak RSS growth < 150 MB" "[ -n '$hwm1' ] && [ \$(( ${hwm1:-0} - ${hwm0:-0} )) -lt 153600 ]"
 ros_env_sigint "$spid" 20
 ros_env_check_sanitizer "$D/skin2.log" "no sanitizer report from the node (limit)"
 echo "test_skin_sizes: $(($(ros_env_now_ms) - t0)) ms"
