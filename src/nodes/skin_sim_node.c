@@ -39,112 +39,7 @@
  * (std_srvs/Empty) makes the next mesh create the skin again on its pose.
  *
  * Parameters: see doc/ros.md and launch/skin.launch. */
-#include "node_params.h"
-#include "skin_params.h"
-#include "rosc/rosc.h"
-#include "ss_budget.h"
-#include "ss_input.h"
-#include "ss_wire.h"
-#include "skin_sim/ss_mesh.h"
-#include "skin_sim/ss_sim.h"
-#include "skin_sim/ssa_avatar.h"
-
-#include <limits.h>
-#ifdef __GLIBC__
-#include <malloc.h> /* malloc_trim */
-#endif
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
-#define ERR_SZ 512
-
-
-/* ~skin_mesh as loaded at start: the file's vertices and triangles, welded */
-typedef struct skin_file {
-  ss_weld *weld;        /* NULL: no ~skin_mesh */
-  int *faces;           /* (weld->nface x 3) the file's triangles, as published */
-  uint32_t topology_id; /* of its layout, published with it */
-} skin_file;
-
-
-typedef struct mailbox {
-  rosc_header header;
-  int disc;             /* SS_TIME_GAP / SS_TIME_BACKWARDS: the input jumped before it; else 0 */
-  uint32_t topology_id;
-  float *pos;
-  size_t npos, cap_pos;
-  uint32_t *tri;
-  size_t ntri, cap_tri;
-  uint32_t *rigid;      /* rigid_part: what each vertex moves with (nrigid 0: unknown) */
-  size_t nrigid, cap_rigid;
-} mailbox;
-
-/* Received meshes waiting to be stepped: a ring of ~queue_size slots; when it is
- * full the oldest is skipped (counted). Slots keep their buffers, so a steady
- * stream does not allocate. */
-typedef struct inbox {
-  mailbox *slot;
-  int cap, head, count;
-} inbox;
-
-typedef struct node {
-  params p;
-  skin_file skin;         /* ~skin_mesh, or none */
-  inbox in;
-  rosc_pub *pub_mesh, *pub_stats, *pub_marker;
-  /* simulation and its topology; the body is the received mesh, the skin its copy or
-   * ~skin_mesh, published in its own vertex layout (the body's, or the file's) */
-  ss_sim *sim;
-  uint32_t topology_id;   /* the input's */
-  int nbvert, nbface;     /* the body's: the input's vertices and triangles */
-  int *bfaces;            /* (nbface x 3) as received */
-  int nvert, nface;       /* the published skin's vertices and triangles */
-  int nweld;              /* skin vertices: the body's welded */
-  int *vert_weld;         /* (nvert) skin (welded) vertex of each published vertex */
-  int *faces;             /* (nface x 3) published triangles */
-  uint32_t *tri_out;      /* (nface x 3) */
-  unsigned char *mask;    /* (nface) 1: simulated face (~mask_box, rigid pieces carried) */
-  unsigned char *carried; /* (nvert) 1: in a rigid piece, published as received */
-  int nface_sim, nface_carried; /* skin triangles simulated and carried rigidly */
-  ss_budget budget;       /* ~step_budget: the substeps and iterations in force */
-  double budget_ms;       /* the budget of the last step (0: none) */
-  int faces_turned, vertices_far; /* ss_sim_count_off_body after the last step */
-  int nanchor;
-  int *face0;             /* (nanchor) anchors as bound at create */
-  double *uv0;            /* (nanchor x 2) */
-  double *slide;          /* (nanchor) */
-  double *body, *body_prev, *body_sub; /* (nbvert x 3) */
-  float *pos_out;         /* (nvert x 3) */
-  float *mk_pts, *mk_col; /* (nface x 3 x 3), (nface x 3 x 4) */
-  float *mk_vcol;         /* (nweld x 4) colour of each skin vertex; NULL until a marker */
-  double *mk_work;        /* (nweld x 3) normals, area sums */
-  ss_input_stream stream; /* every arrival: seq gaps, the input's period, real jumps */
-  int64_t skin_ns;        /* the skin's clock (whole input periods from its creation) */
-  int prev_periods;       /* input periods of the last step (0: none since creation) */
-  int carry_disc;         /* a jump seen on a message that was rejected: reset on the next */
-  /* counters */
-  uint32_t rejected, dropped, skipped, resets, failures;
-  unsigned long frames_in, frames_out, steps; /* steps: ss_sim_step calls */
-  double last_marker_wall;
-  /* ~reset (std_srvs/Empty): the next mesh creates the skin again on its pose */
-  int reset_req;
-  /* dynamic_reconfigure changed a setting the skin cannot change in place: the same */
-  int recreate_req;
-  rosc_dynreconf *dr;
-  /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
-  rosc_diag *diag;
-  double diag_wall;       /* wall time of the last status */
-  double busy_period_ms;  /* the input period while a step runs (read by busy_status) */
-  unsigned long processed; /* meshes processed (skin created, stepped or republished) */
-  unsigned long nstep_ms;  /* of which stepped (timed) */
-  double step_ms_sum, step_ms_max;
-  unsigned long steps_multi; /* of the ss_sim_step calls, those on more than one thread */
-  struct { unsigned long in, processed, nstep_ms; double step_ms_sum;
-           uint32_t rejected, dropped, skipped, resets, failures;
-           unsigned long steps, steps_multi; long long lowered; } win; /* at the window start */
-} node;
+#include "skin_node.h"
 
 /* ------------------------------------------------------------------ input */
 static int grow(void **buf, size_t *cap, size_t n, size_t elem)
@@ -480,151 +375,6 @@ static int create_sim(node *nd, const mailbox *b)
   return 1;
 }
 
-/* ------------------------------------------------------------------ output */
-static void publish_marker(node *nd, const rosc_header *hdr);
-
-static void publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc,
-                    double total_ms, int substeps)
-{
-  /* the input's stamp; its frame unless ~frame_id names another (two skins told apart) */
-  rosc_header own = *in_hdr;
-  if (nd->p.frame_id[0]) snprintf(own.frame_id, sizeof own.frame_id, "%s", nd->p.frame_id);
-  if (nd->p.tf_prefix[0]) {
-    const char *pre = nd->p.tf_prefix + (nd->p.tf_prefix[0] == '/');
-    const char *f = own.frame_id[0] == '/' ? own.frame_id + 1 : own.frame_id;
-    char joined[ROSC_FRAME_ID_MAX];
-    size_t lp = strlen(pre), lf = strlen(f), k = 0;
-    for (size_t i = 0; i < lp && k + 1 < sizeof joined; i++) joined[k++] = pre[i];
-    if (lp && pre[lp - 1] != '/' && k + 1 < sizeof joined) joined[k++] = '/';
-    for (size_t i = 0; i < lf && k + 1 < sizeof joined; i++) joined[k++] = f[i];
-    joined[k] = '\0';
-    memcpy(own.frame_id, joined, sizeof joined);
-  }
-  const rosc_header *hdr = &own;
-  /* in the body's layout: every seam copy from its welded skin vertex */
-  const double *x = ss_sim_skin_positions(nd->sim);
-  size_t n3 = 3 * (size_t)nd->nvert;
-  /* every seam copy from its welded skin vertex; a rigid piece's as received */
-  for (int v = 0; v < nd->nvert; v++) {
-    const double *src = nd->carried[v] ? nd->body + 3 * (size_t)v : x + 3 * (size_t)nd->vert_weld[v];
-    for (int d = 0; d < 3; d++) nd->pos_out[3 * (size_t)v + d] = (float)src[d];
-  }
-  rosc_skin_mesh out;
-  memset(&out, 0, sizeof out);
-  out.header = *hdr;
-  out.topology_id = nd->skin.weld ? nd->skin.topology_id : nd->topology_id;
-  out.positions = nd->pos_out;
-  out.n_positions = n3;
-  out.triangles = nd->tri_out;
-  out.n_triangles = 3 * (size_t)nd->nface;
-  if (rosc_publish(nd->pub_mesh, ROSC_MSG_SKIN_MESH, &out) == ROSC_OK) nd->frames_out++;
-
-  double max_slide =
-      ss_input_slide(nd->nanchor, ss_sim_anchor_faces(nd->sim), ss_sim_anchor_uv(nd->sim),
-                     nd->face0, nd->uv0, nd->body, nd->nbvert, nd->bfaces, nd->nbface, nd->slide);
-  rosc_skin_stats s;
-  memset(&s, 0, sizeof s);
-  s.header = *hdr;
-  s.total_ms = (float)total_ms;
-  s.walk_ms = (float)acc->walk_ms;
-  s.assemble_ms = (float)acc->assemble_ms;
-  s.solve_ms = (float)(acc->factor_ms + acc->solve_ms);
-  s.iterations = (uint32_t)acc->iterations;
-  s.residual = (float)acc->residual;
-  s.substeps = (uint32_t)substeps;
-  s.anchors_at_boundary = (uint32_t)acc->anchors_boundary;
-  s.anchors_at_crease = (uint32_t)acc->anchors_crease;
-  s.max_slide = (float)max_slide;
-  s.inputs_rejected = nd->rejected;
-  s.inputs_dropped = nd->dropped + (uint32_t)nd->stream.lost;
-  s.resets = nd->resets;
-  s.inputs_skipped = nd->skipped;
-  s.failures = nd->failures;
-  rosc_time now_ros;
-  if (rosc_now(&now_ros) == ROSC_OK)
-    s.latency_ms = (float)(1e-6 * (double)(rosc_time_to_ns(now_ros) - rosc_time_to_ns(hdr->stamp)));
-  s.triangles_simulated = (uint32_t)nd->nface_sim;
-  s.triangles_carried = (uint32_t)nd->nface_carried;
-  s.iterations_per_substep = (uint32_t)nd->budget.iterations;
-  s.step_budget_ms = (float)nd->budget_ms;
-  s.faces_turned = (uint32_t)nd->faces_turned;
-  s.vertices_far = (uint32_t)nd->vertices_far;
-  rosc_publish(nd->pub_stats, ROSC_MSG_SKIN_STATS, &s);
-
-  if (nd->p.marker_rate == 0.0) return;
-  double now = 0;
-  rosc_wall_now_s(&now);
-  if (nd->p.marker_rate > 0.0 && now - nd->last_marker_wall < 1.0 / nd->p.marker_rate) return;
-  unsigned nsub = 0;
-  rosc_pub_num_subscribers(nd->pub_marker, &nsub);
-  if (nsub == 0) return;
-  nd->last_marker_wall = now;
-  publish_marker(nd, hdr);
-}
-
-/* skin_marker: the skin as a TRIANGLE_LIST in the body's layout, a colour per corner.
- * Colours are made per skin (welded) vertex, so every seam copy gets its vertex's:
- * ~marker_color's colour times a light term from the vertex's normal (rviz draws the
- * marker unlit; without it the skin is a flat silhouette). */
-static void publish_marker(node *nd, const rosc_header *hdr)
-{
-  int nw = nd->nweld;
-  if (!nd->mk_vcol) { /* once per skin; freed with it (free_sim) */
-    nd->mk_vcol = malloc(4 * (size_t)nw * sizeof(float));
-    nd->mk_work = malloc(3 * (size_t)nw * sizeof(double));
-    if (!nd->mk_vcol || !nd->mk_work) {
-      free(nd->mk_vcol); free(nd->mk_work);
-      nd->mk_vcol = NULL; nd->mk_work = NULL;
-      ROSC_ERROR_THROTTLE(5.0, "out of memory for skin_marker's colours (%d vertices)", nw);
-      return;
-    }
-  }
-  const double *x = ss_sim_skin_positions(nd->sim);
-  const int *skin_faces = ss_sim_skin_faces(nd->sim); /* the body's faces, welded */
-  float *vc = nd->mk_vcol;
-  if (nd->p.marker_color == MARKER_STRETCH) {
-    double *ratio = nd->mk_work + 2 * (size_t)nw; /* the last third; area sums the first two */
-    ss_input_vertex_area_ratio(nw, x, ss_sim_skin_rest(nd->sim), nd->nface, skin_faces,
-                               nd->mk_work, ratio);
-    for (int w = 0; w < nw; w++) ss_input_stretch_color(ratio[w], vc + 4 * (size_t)w);
-  } else {
-    for (int w = 0; w < nw; w++) {
-      float *c = vc + 4 * (size_t)w;
-      if (nd->p.marker_color == MARKER_ONE) {
-        c[0] = nd->p.marker_rgb[0]; c[1] = nd->p.marker_rgb[1]; c[2] = nd->p.marker_rgb[2];
-        c[3] = 1.0f;
-      } else { /* vertex anchors come first: anchor w belongs to skin vertex w */
-        ss_input_slide_color(nd->slide[w], nd->p.slide_scale, c);
-      }
-    }
-  }
-  ss_input_shade(nw, x, nd->nface, skin_faces, nd->mk_work, vc);
-  for (int f = 0; f < nd->nface; f++) {
-    for (int k = 0; k < 3; k++) {
-      int v = nd->faces[3 * f + k];
-      size_t c = 3 * (size_t)f + (size_t)k;
-      for (int d = 0; d < 3; d++) nd->mk_pts[3 * c + d] = nd->pos_out[3 * (size_t)v + d];
-      memcpy(nd->mk_col + 4 * c, vc + 4 * (size_t)nd->vert_weld[v], 4 * sizeof(float));
-    }
-  }
-  /* what rviz needs of a TRIANGLE_LIST: action ADD (0), identity orientation (all
-   * zero draws with a warning), unit scale, opaque white; colours come per point */
-  rosc_marker mk;
-  memset(&mk, 0, sizeof mk);
-  mk.type = ROSC_MARKER_TRIANGLE_LIST;
-  mk.orientation[3] = 1.0;
-  mk.scale[0] = mk.scale[1] = mk.scale[2] = 1.0;
-  mk.color[0] = mk.color[1] = mk.color[2] = mk.color[3] = 1.0f;
-  mk.header = *hdr;
-  snprintf(mk.ns, sizeof mk.ns, "skin");
-  mk.id = 0;
-  mk.points = nd->mk_pts;
-  mk.n_points = 3 * (size_t)nd->nface;
-  mk.colors = nd->mk_col;
-  mk.n_colors = 3 * (size_t)nd->nface;
-  rosc_publish(nd->pub_marker, ROSC_MSG_MARKER, &mk);
-}
-
 /* Puts the run settings in force where they differ from the skin's (its
  * substeps, iterations and safety_residual: from the next step, nothing
  * allocated). */
@@ -777,7 +527,7 @@ static void process(node *nd, const mailbox *b)
     nd->step_ms_sum += ms;
     if (ms > nd->step_ms_max) nd->step_ms_max = ms;
   }
-  publish(nd, &b->header, &acc, 1e3 * (t1 - t0), acc.substeps);
+  node_publish(nd, &b->header, &acc, 1e3 * (t1 - t0), acc.substeps);
   if (kind == SS_TIME_STEP && nsplit > 0) {
     /* the budget judges the whole of a step, publishing included */
     double t2 = t1;
@@ -789,214 +539,6 @@ static void process(node *nd, const mailbox *b)
                         nd->budget.substeps, nd->budget.iterations, nd->p.set.substeps,
                         nd->p.set.iterations);
   }
-}
-
-/* ------------------------------------------------------------------ services, health */
-static int on_reset(void *user)
-{
-  node *nd = user;
-  nd->reset_req = 1;
-  ROSC_INFO("~reset: the skin is created again on the next kinematic_mesh");
-  return 0;
-}
-
-/* ------------------------------------------------------------------ live tuning */
-/* A set_parameters request (inside rosc_spin_once, between steps): each changed value
- * is checked by the core and refused with a log line naming it, or taken; the skin then
- * gets them from its next step (ss_sim_set_settings refactors what needs it), or is
- * created again on the next mesh when the change needs a new skin. values go back as
- * what is in force. */
-static void on_reconfigure(rosc_dr_value *v, const int *changed, size_t n, void *user)
-{
-  node *nd = user;
-  int nset = 0;
-  const ss_setting *t = ss_settings_table(&nset);
-  ss_sim_settings want = nd->p.set;
-  char err[ERR_SZ] = "", was[128], now[128];
-  int any = 0, refactor = 0;
-  for (size_t i = 0; i < n && i < (size_t)nset; i++) {
-    if (!changed[i]) continue;
-    const ss_setting *d = &t[i];
-    ss_sim_settings trial = want;
-    int rc;
-    if (d->type == SS_SETTING_ENUM || d->type == SS_SETTING_VEC3) {
-      rc = ss_setting_parse(d, v[i].str, &trial, err, sizeof err);
-    } else {
-      ss_setting_set(d, &trial, 0, v[i].num);
-      rc = ss_setting_check(d, &trial, err, sizeof err);
-    }
-    ss_setting_format(d, &want, was, sizeof was);
-    if (rc != SS_OK) {
-      ROSC_WARN("dynamic_reconfigure: %s refused: %s; it stays %s", d->name, err, was);
-      continue;
-    }
-    ss_setting_format(d, &trial, now, sizeof now);
-    ROSC_INFO("dynamic_reconfigure: %s %s -> %s", d->name, was, now);
-    want = trial;
-    any = 1;
-    refactor |= d->apply == SS_APPLY_REFACTOR;
-  }
-  if (any && nd->sim) {
-    int recreate = 0;
-    if (ss_sim_set_settings(nd->sim, &want, &recreate, err, sizeof err) != SS_OK) {
-      ROSC_WARN("dynamic_reconfigure: refused: %s", err);
-      want = nd->p.set;
-    } else if (recreate) {
-      nd->recreate_req = 1;
-      ROSC_WARN("dynamic_reconfigure: %s: the skin is created again on the next "
-                "kinematic_mesh, on its pose", err);
-    } else {
-      ROSC_INFO("dynamic_reconfigure: in force from the next step%s",
-                refactor ? " (masses, springs and matrices rebuilt and refactored)" : "");
-    }
-  }
-  if (want.substeps != nd->p.set.substeps || want.iterations != nd->p.set.iterations)
-    ss_budget_init(&nd->budget, want.substeps, want.iterations);
-  nd->p.set = want;
-  for (size_t i = 0; i < n && i < (size_t)nset; i++) dr_value(&t[i], &nd->p.set, &v[i]);
-}
-
-/* Serves every setting of the table; 1 on success. */
-static int serve_settings(node *nd)
-{
-  int nset = 0;
-  const ss_setting *t = ss_settings_table(&nset);
-  rosc_dr_param *par = calloc((size_t)nset, sizeof *par);
-  rosc_dr_value *dflt = calloc((size_t)nset, sizeof *dflt);
-  rosc_dr_value *cur = calloc((size_t)nset, sizeof *cur);
-  char (*desc)[256] = calloc((size_t)nset, sizeof *desc);
-  int ok = par && dflt && cur && desc;
-  const ss_sim_settings def = ss_sim_default_settings();
-  for (int i = 0; ok && i < nset; i++) {
-    const ss_setting *d = &t[i];
-    char range[160];
-    ss_setting_format_range(d, range, sizeof range);
-    snprintf(desc[i], sizeof desc[i], "%s (%s%s%s; %s)", d->help, d->unit, d->unit[0] ? ", " : "",
-             range, d->apply == SS_APPLY_STEP ? "from the next step"
-             : d->apply == SS_APPLY_REFACTOR ? "from the next step, refactors"
-                                             : "creates the skin again");
-    par[i].name = d->name;
-    par[i].type = d->type == SS_SETTING_INT ? ROSC_DR_INT
-                  : d->type == SS_SETTING_DOUBLE ? ROSC_DR_DOUBLE
-                  : d->type == SS_SETTING_BOOL ? ROSC_DR_BOOL : ROSC_DR_STR;
-    par[i].description = desc[i];
-    par[i].level = 1u << d->apply;
-    par[i].min = d->min;
-    par[i].max = d->max;
-    par[i].choices = d->type == SS_SETTING_ENUM ? d->choices : NULL;
-    dr_value(d, &def, &dflt[i]);
-    dr_value(d, &nd->p.set, &cur[i]);
-  }
-  if (ok)
-    ok = rosc_dynreconf_create(&nd->dr, par, dflt, cur, (size_t)nset, on_reconfigure, nd) ==
-         ROSC_OK;
-  free(par);
-  free(dflt);
-  free(cur);
-  free(desc);
-  return ok;
-}
-
-/* The status /diagnostics says during a long step, from the shim's own thread: it
- * reads only busy_period_ms, set before the step. */
-static void busy_status(double busy_s, int last_level, rosc_diag_busy_status *out, void *user)
-{
-  const node *nd = user;
-  out->level = ss_input_busy(busy_s, nd->busy_period_ms, last_level, out->message,
-                             (int)sizeof out->message, out->value, (int)sizeof out->value);
-  snprintf(out->key, sizeof out->key, "step in progress (s)");
-}
-
-/* Publishes the status of the last window on /diagnostics when ~diagnostic_period has
- * passed; the level is the core's judgement of the window's figures (ss_input_health). */
-static void diagnose(node *nd)
-{
-  double now = 0, period = 1.0;
-  rosc_wall_now_s(&now);
-  rosc_diag_period(nd->diag, &period);
-  if (now - nd->diag_wall < period) return;
-  double window_s = now - nd->diag_wall;
-  nd->diag_wall = now;
-  uint32_t dropped = nd->dropped + (uint32_t)nd->stream.lost;
-  ss_input_window w;
-  w.arrived = (uint32_t)(nd->frames_in - nd->win.in);
-  w.stepped = (uint32_t)(nd->processed - nd->win.processed);
-  w.rejected = nd->rejected - nd->win.rejected;
-  w.dropped = dropped - nd->win.dropped;
-  w.skipped = nd->skipped - nd->win.skipped;
-  w.resets = nd->resets - nd->win.resets;
-  w.failures = nd->failures - nd->win.failures;
-  unsigned long nstep = nd->nstep_ms - nd->win.nstep_ms;
-  w.not_stepped = w.stepped - (uint32_t)nstep; /* created again, or no time to step */
-  w.step_ms_mean = nstep ? (nd->step_ms_sum - nd->win.step_ms_sum) / (double)nstep : 0.0;
-  w.period_ms = 1e-3 * (double)nd->stream.period_us;
-  w.lowered = (uint32_t)(nd->budget.lowered_steps - nd->win.lowered);
-  char msg[256];
-  int level = ss_input_health(&w, msg, sizeof msg);
-  char v[16][32];
-  snprintf(v[0], sizeof v[0], "%.1f", window_s);
-  snprintf(v[1], sizeof v[1], "%.2f", w.step_ms_mean);
-  snprintf(v[2], sizeof v[2], "%.2f", nd->step_ms_max);
-  snprintf(v[3], sizeof v[3], "%.2f", w.period_ms);
-  snprintf(v[4], sizeof v[4], "%.2f", nd->budget_ms);
-  snprintf(v[5], sizeof v[5], "%u", (unsigned)w.arrived);
-  snprintf(v[6], sizeof v[6], "%u", (unsigned)w.stepped);
-  snprintf(v[7], sizeof v[7], "%u", (unsigned)w.rejected);
-  snprintf(v[8], sizeof v[8], "%u", (unsigned)w.dropped);
-  snprintf(v[9], sizeof v[9], "%u", (unsigned)w.skipped);
-  snprintf(v[10], sizeof v[10], "%u", (unsigned)w.resets);
-  snprintf(v[11], sizeof v[11], "%u", (unsigned)w.failures);
-  snprintf(v[12], sizeof v[12], "%u", (unsigned)nd->resets);
-  snprintf(v[13], sizeof v[13], "%d", nd->nweld);
-  /* with ~threads 0 the skin measures whether all cores pay (a busy robot
-   * computer: mostly one): how many of the window's skin steps ran on more */
-  snprintf(v[14], sizeof v[14], "%lu of %lu", nd->steps_multi - nd->win.steps_multi,
-           nd->steps - nd->win.steps);
-  char wv[6][64];
-  snprintf(wv[0], sizeof wv[0], "%d x %d of %d x %d", nd->budget.substeps, nd->budget.iterations,
-           nd->p.set.substeps, nd->p.set.iterations);
-  snprintf(wv[1], sizeof wv[1], "%u", (unsigned)w.lowered);
-  snprintf(wv[2], sizeof wv[2], "%d", nd->nface_sim);
-  snprintf(wv[3], sizeof wv[3], "%d", nd->nface_carried);
-  snprintf(wv[4], sizeof wv[4], "%d", nd->faces_turned);
-  snprintf(wv[5], sizeof wv[5], "%d", nd->vertices_far);
-  enum { NKV = 21 };
-  rosc_kv kv[NKV + SS_NWARNING] = {{"window (s)", v[0]},         {"step time mean (ms)", v[1]},
-                  {"step time max (ms)", v[2]}, {"input period (ms)", v[3]},
-                  {"step budget (ms)", v[4]},   {"inputs received", v[5]},
-                  {"inputs processed", v[6]},   {"inputs rejected", v[7]},
-                  {"inputs dropped", v[8]},     {"inputs skipped", v[9]},
-                  {"resets", v[10]},            {"failures", v[11]},
-                  {"resets total", v[12]},      {"skin vertices", v[13]},
-                  {"skin steps on more than one thread", v[14]},
-                  {"substeps x iterations in force", wv[0]},
-                  {"steps below the settings' work (budget)", wv[1]},
-                  {"triangles simulated", wv[2]}, {"triangles carried rigidly", wv[3]},
-                  {"skin faces turned against the body", wv[4]},
-                  {"skin vertices over an edge from the body", wv[5]}};
-  /* the core's warnings over the skin's life (since it was last created) */
-  char wkey[SS_NWARNING][48], wval[SS_NWARNING][24];
-  const ss_warning *warn = nd->sim ? ss_sim_warnings(nd->sim) : NULL; /* no skin yet: 0 */
-  for (int k = 0; k < SS_NWARNING; k++) {
-    snprintf(wkey[k], sizeof wkey[k], "skin steps %s (since created)", ss_warning_name(k));
-    snprintf(wval[k], sizeof wval[k], "%lld", warn ? warn[k].number : 0LL);
-    kv[NKV + k].key = wkey[k];
-    kv[NKV + k].value = wval[k];
-  }
-  rosc_diag_update(nd->diag, level, msg, kv, sizeof kv / sizeof kv[0]);
-  nd->win.in = nd->frames_in;
-  nd->win.processed = nd->processed;
-  nd->win.nstep_ms = nd->nstep_ms;
-  nd->win.step_ms_sum = nd->step_ms_sum;
-  nd->win.rejected = nd->rejected;
-  nd->win.dropped = dropped;
-  nd->win.skipped = nd->skipped;
-  nd->win.resets = nd->resets;
-  nd->win.failures = nd->failures;
-  nd->win.steps = nd->steps;
-  nd->win.steps_multi = nd->steps_multi;
-  nd->win.lowered = nd->budget.lowered_steps;
-  nd->step_ms_max = 0.0;
 }
 
 int main(int argc, char **argv)
@@ -1038,13 +580,13 @@ int main(int argc, char **argv)
   }
   char node_name[256] = "skin_sim";
   rosc_node_name(node_name, sizeof node_name);
-  if (rosc_srv_empty(&srv_reset, "~reset", on_reset, nd) != ROSC_OK ||
+  if (rosc_srv_empty(&srv_reset, "~reset", node_on_reset, nd) != ROSC_OK ||
       rosc_diag_create(&nd->diag, node_name, "skin") != ROSC_OK) {
     if (rosc_ok()) ROSC_ERROR("cannot advertise ~reset or /diagnostics");
     else status = 0;
     goto done;
   }
-  if (!serve_settings(nd)) {
+  if (!node_serve_settings(nd)) {
     ROSC_ERROR("cannot serve dynamic_reconfigure (~set_parameters)");
     rosc_shutdown();
     return 1;
@@ -1060,14 +602,14 @@ int main(int argc, char **argv)
     if (nd->in.count) {
       /* /diagnostics goes on from the shim's own thread if this step takes long */
       nd->busy_period_ms = 1e-3 * (double)nd->stream.period_us;
-      rosc_diag_busy(nd->diag, busy_status, nd);
+      rosc_diag_busy(nd->diag, node_busy_status, nd);
       process(nd, &nd->in.slot[nd->in.head]);
       rosc_diag_busy(nd->diag, NULL, NULL);
       release_large(&nd->in.slot[nd->in.head]);
       nd->in.head = (nd->in.head + 1) % nd->in.cap;
       nd->in.count--;
     }
-    diagnose(nd);
+    node_diagnose(nd);
   }
   ROSC_INFO("skin_sim: %lu meshes in, %lu out, %u rejected, %u dropped, %u skipped, %u resets",
             nd->frames_in, nd->frames_out, (unsigned)nd->rejected,
