@@ -176,7 +176,26 @@ static inline void face_normal_begin(const ss_sim *sim, const ss_frames *fr, int
   else n[0] = n[1] = n[2] = 0.0;
 }
 
-/* The same for faces [q0, q1) and dofs [k0, k1), SS_ORIENT_LANES at a time
+#define SS_ORIENT_LANES 8
+
+/* The length of each lane's vector nn and nn over it, in lanes (every lane
+ * divided, whatever its length: the callers take only the lanes they judge). */
+static inline SS_ALWAYS_INLINE void unit_lanes(const double nn[3][SS_ORIENT_LANES],
+                                               double len[SS_ORIENT_LANES],
+                                               double u[3][SS_ORIENT_LANES]) {
+  enum { L = SS_ORIENT_LANES };
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+  for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
+#ifdef _OPENMP
+#pragma omp simd
+#endif
+  for (int l = 0; l < L; l++)
+    for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
+}
+
+/* face_normal_begin for faces [q0, q1) and dofs [k0, k1), SS_ORIENT_LANES at a time
  * in vector lanes: inputs gathered into lanes, one elementwise loop (the
  * same operations in the same order as face_normal_begin, and for a dof as
  * one at a time, so the same bits at any width), written back. A face
@@ -184,7 +203,6 @@ static inline void face_normal_begin(const ss_sim *sim, const ss_frames *fr, int
  * anchor face, or anchored away from home: two normals) is done again by
  * face_normal_begin. One face at a time, the chain of two square roots and
  * seven divisions per face, every substep, was a tenth of a 4 x 2 frame. */
-#define SS_ORIENT_LANES 8
 static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_frames *fr, int q0, int q1,
                                                    int k0, int k1) {
   enum { L = SS_ORIENT_LANES };
@@ -259,15 +277,7 @@ static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_f
         const double a = w[l] > 0.0 ? t[i][l] : nb[i][l];
         nn[i][l] = a + a;
       }
-#ifdef _OPENMP
-#pragma omp simd
-#endif
-    for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
-#ifdef _OPENMP
-#pragma omp simd
-#endif
-    for (int l = 0; l < L; l++)
-      for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
+    unit_lanes(nn, len, u);
     for (int l = 0; l < cnt; l++) {
       if (ok[l] == 0.0) {
         face_normal_begin(sim, fr, qb + l);
@@ -301,15 +311,7 @@ static inline SS_ALWAYS_INLINE void normals_kernel(const ss_sim *sim, const ss_f
       }
       for (int i = 0; i < 3; i++) nn[i][l] = bn[3 * (size_t)fa + i] + bn[3 * (size_t)fh + i];
     }
-#ifdef _OPENMP
-#pragma omp simd
-#endif
-    for (int l = 0; l < L; l++) len[l] = sqrt(nn[0][l] * nn[0][l] + nn[1][l] * nn[1][l] + nn[2][l] * nn[2][l]);
-#ifdef _OPENMP
-#pragma omp simd
-#endif
-    for (int l = 0; l < L; l++)
-      for (int i = 0; i < 3; i++) u[i][l] = nn[i][l] / len[l];
+    unit_lanes(nn, len, u);
     for (int l = 0; l < cnt; l++) {
       double *n = nd + 4 * (size_t)(kb + l);
       if (ok[l] != 0.0 && len[l] > 1.0)
