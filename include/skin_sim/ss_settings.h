@@ -92,6 +92,13 @@ void ss_setting_format(const ss_setting *d, const ss_sim_settings *s, char *buf,
 void ss_setting_format_default(const ss_setting *d, char *buf, size_t size);
 void ss_setting_format_range(const ss_setting *d, char *buf, size_t size);
 
+/* A number against a range from min to max, a bound excluded where its *_open
+ * is 1; NaN is in no range. The same rule and text as the settings' for tables
+ * of other parameters (the nodes' own). */
+int ss_range_contains(double v, double min, int min_open, double max, int max_open);
+/* The range as text: "[0, 0.5)", "(0, inf)"; "finite" for (-inf, inf). */
+void ss_range_format(double min, int min_open, double max, int max_open, char *buf, size_t size);
+
 /* Numeric access (int, bool, enum: the integer as a double; vec3: component i). */
 double ss_setting_get(const ss_setting *d, const ss_sim_settings *s, int i);
 void ss_setting_set(const ss_setting *d, ss_sim_settings *s, int i, double v);

@@ -228,25 +228,34 @@ void ss_setting_format_range(const ss_setting *d, char *buf, size_t size) {
     snprintf(buf, size, "true, false");
     return;
   }
+  ss_range_format(d->min, d->min_open, d->max, d->max_open, buf, size);
+}
+
+void ss_range_format(double min, int min_open, double max, int max_open, char *buf, size_t size) {
+  if (!size) return;
+  if (min == -INFINITY && max == INFINITY && min_open && max_open) {
+    snprintf(buf, size, "finite");
+    return;
+  }
   char lo[40], hi[40];
-  fmt_num(d->min, lo, sizeof lo);
-  fmt_num(d->max, hi, sizeof hi);
-  snprintf(buf, size, "%c%s, %s%c", d->min_open ? '(' : '[', lo, hi, d->max_open ? ')' : ']');
+  fmt_num(min, lo, sizeof lo);
+  fmt_num(max, hi, sizeof hi);
+  snprintf(buf, size, "%c%s, %s%c", min_open ? '(' : '[', lo, hi, max_open ? ')' : ']');
 }
 
 /* ---- checks ---------------------------------------------------------------- */
 
-static int in_range(const ss_setting *d, double v) {
+int ss_range_contains(double v, double min, int min_open, double max, int max_open) {
   if (isnan(v)) return 0;
-  if (d->min_open ? !(v > d->min) : !(v >= d->min)) return 0;
-  if (d->max_open ? !(v < d->max) : !(v <= d->max)) return 0;
+  if (min_open ? !(v > min) : !(v >= min)) return 0;
+  if (max_open ? !(v < max) : !(v <= max)) return 0;
   return 1;
 }
 
 int ss_setting_check(const ss_setting *d, const ss_sim_settings *s, char *err, int err_sz) {
   for (int i = 0; i < ncomp(d); i++) {
     double v = ss_setting_get(d, s, i);
-    if (in_range(d, v)) continue;
+    if (ss_range_contains(v, d->min, d->min_open, d->max, d->max_open)) continue;
     char range[160], got[40];
     ss_setting_format_range(d, range, sizeof range);
     fmt_num(v, got, sizeof got);

@@ -83,22 +83,7 @@ static const char *type_name(int type) {
 /* "[1, 1000]", "(0, inf]", "finite" (any finite number), "" (a string) */
 static void format_range(const node_param *d, char *buf, size_t size) {
   buf[0] = 0;
-  if (d->type == NP_STRING) return;
-  if (isinf(d->min) && isinf(d->max) && d->min_open && d->max_open) {
-    snprintf(buf, size, "finite");
-    return;
-  }
-  char lo[32], hi[32];
-  if (isinf(d->min)) snprintf(lo, sizeof lo, "-inf"); else snprintf(lo, sizeof lo, "%.15g", d->min);
-  if (isinf(d->max)) snprintf(hi, sizeof hi, "inf"); else snprintf(hi, sizeof hi, "%.15g", d->max);
-  snprintf(buf, size, "%c%s, %s%c", d->min_open ? '(' : '[', lo, hi, d->max_open ? ')' : ']');
-}
-
-static int in_range(const node_param *d, double v) {
-  if (isnan(v)) return 0;
-  if (d->min_open ? !(v > d->min) : !(v >= d->min)) return 0;
-  if (d->max_open ? !(v < d->max) : !(v <= d->max)) return 0;
-  return 1;
+  if (d->type != NP_STRING) ss_range_format(d->min, d->min_open, d->max, d->max_open, buf, size);
 }
 
 static int read_one(const node_param *d, params *p) {
@@ -116,7 +101,7 @@ static int read_one(const node_param *d, params *p) {
     if (!get_double(name, dv, d->def)) return 0;
     v = *dv;
   }
-  if (in_range(d, v)) return 1;
+  if (ss_range_contains(v, d->min, d->min_open, d->max, d->max_open)) return 1;
   char range[80];
   format_range(d, range, sizeof range);
   ROSC_ERROR("%s = %g%s%s is out of range %s", name, v, d->unit[0] ? " " : "", d->unit, range);

@@ -207,8 +207,24 @@ static void structural(void) {
   fx_free(&g);
 }
 
+/* The range rule and text the nodes' own parameter tables share with the settings. */
+static void ranges(void) {
+  CHECK(ss_range_contains(0.0, 0.0, 0, 0.5, 1) && !ss_range_contains(0.5, 0.0, 0, 0.5, 1));
+  CHECK(!ss_range_contains(0.0, 0.0, 1, INFINITY, 0) && ss_range_contains(INFINITY, 0.0, 1, INFINITY, 0));
+  CHECK(!ss_range_contains(NAN, -INFINITY, 0, INFINITY, 0));
+  CHECK(!ss_range_contains(INFINITY, -INFINITY, 1, INFINITY, 1));
+  char buf[64];
+  ss_range_format(0.0, 0, 0.5, 1, buf, sizeof buf);
+  CHECK(strcmp(buf, "[0, 0.5)") == 0);
+  ss_range_format(0.0, 1, INFINITY, 0, buf, sizeof buf);
+  CHECK(strcmp(buf, "(0, inf]") == 0);
+  ss_range_format(-INFINITY, 1, INFINITY, 1, buf, sizeof buf);
+  CHECK(strcmp(buf, "finite") == 0);
+}
+
 int main(void) {
   defaults();
+  ranges();
   refusals();
   round_trip();
   live(SS_SOLVER_QUASI_NEWTON);
