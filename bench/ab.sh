@@ -2,7 +2,9 @@
 # A/B timing of builds of bench_sim on a shared machine: runs the binaries
 # alternately ROUNDS times with the same arguments and prints, per binary,
 # the median over the rounds of each per-frame median bench_sim reports
-# (total, cpu, pose, walk, assemble, factor, solve), the iterations, the
+# (total, cpu, pose, walk, assemble, factor, solve, linesearch, orient,
+# other: total less the stages; where a build reports no linesearch and orient
+# they are in its other), the iterations, the
 # energy evaluations per iteration (where the build reports them), the hash,
 # and the ratio of each time to the first binary's.
 #
@@ -36,11 +38,13 @@ done
 for ((i = 0; i < ${#bins[@]}; i++)); do echo "${tags[$i]} = ${bins[$i]}"; done
 /usr/bin/python3 - "$out" <<'PYEOF'
 import re, statistics, sys
-keys = ["total", "cpu", "pose", "walk", "assemble", "factor", "solve"]
+keys = ["total", "cpu", "pose", "walk", "assemble", "factor", "solve", "linesearch", "orient", "other"]
 rows = {}
 for line in open(sys.argv[1]):
     tag, rest = line.split(" ", 1)
     d = {k: float(re.search(r"\b%s ([0-9.]+)" % k, rest).group(1)) for k in keys if re.search(r"\b%s ([0-9.]+)" % k, rest)}
+    if "other" not in d:  # a build without the linesearch and orient timers: the rest is "other"
+        d["other"] = d["total"] - sum(d.get(k, 0.0) for k in keys[2:-1])
     d["iterations"] = float(re.search(r"iterations ([0-9.]+)", rest).group(1))
     m = re.search(r"energy evaluations ([0-9.]+)", rest)
     if m: d["evals/it"] = float(m.group(1))
