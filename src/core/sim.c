@@ -74,6 +74,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     const ss_substep in = {
         .body_pos = body_pos,
         .w = (double)s / substeps,
+        .first = s == 1,
         .last = s == substeps,
         .h = h,
         .slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0,
