@@ -53,19 +53,19 @@ for line in open(sys.argv[1]):
 cols = keys + ["iterations", "evals/it"]
 med = {t: {k: statistics.median(r[k] for r in rows[t]) for k in cols if k in rows[t][0]} for t in rows}
 tags = sorted(rows)
-print("%-6s" % "" + "".join("%10s" % k for k in cols) + "  hash")
+print("%-6s" % "" + "".join("%11s" % k for k in cols) + "  hash")
 for t in tags:
-    print("%-6s" % t + "".join("%10.2f" % med[t].get(k, float("nan")) for k in cols) +
+    print("%-6s" % t + "".join("%11.2f" % med[t].get(k, float("nan")) for k in cols) +
           "  " + ",".join(sorted(set(r["hash"] for r in rows[t]))))
 for t in tags[1:]:
-    print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (med[t][k] / med[tags[0]][k] if med[tags[0]].get(k) else float("nan")) for k in keys))
+    print("%-6s" % (t + "/" + tags[0]) + "".join("%11.2f" % (med[t][k] / med[tags[0]][k] if med[tags[0]].get(k) else float("nan")) for k in keys))
 # The fastest round of each: the run a busy neighbour disturbed least (the
 # times are CPU-bound and deterministic, so noise only adds); read beside the
 # medians when they disagree.
 low = {t: {k: min(r[k] for r in rows[t]) for k in keys if k in rows[t][0]} for t in rows}
 print("fastest round of each:")
 for t in tags:
-    print("%-6s" % t + "".join("%10.2f" % low[t].get(k, float("nan")) for k in keys))
+    print("%-6s" % t + "".join("%11.2f" % low[t].get(k, float("nan")) for k in keys))
 for t in tags[1:]:
-    print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (low[t][k] / low[tags[0]][k] if low[tags[0]].get(k) else float("nan")) for k in keys))
+    print("%-6s" % (t + "/" + tags[0]) + "".join("%11.2f" % (low[t][k] / low[tags[0]][k] if low[tags[0]].get(k) else float("nan")) for k in keys))
 PYEOF
