@@ -2,7 +2,9 @@
 # A/B timing of builds of bench_sim on a shared machine: runs the binaries
 # alternately ROUNDS times with the same arguments and prints, per binary,
 # the median over the rounds of each per-frame median bench_sim reports
-# (total, cpu, pose, walk, assemble, factor, solve), the iterations, the
+# (total, cpu, pose, walk, assemble, factor, solve, linesearch, orient,
+# other: total less the stages; where a build reports no linesearch and orient
+# they are in its other), the iterations, the
 # energy evaluations per iteration (where the build reports them), the hash,
 # and the ratio of each time to the first binary's.
 #
@@ -36,11 +38,13 @@ done
 for ((i = 0; i < ${#bins[@]}; i++)); do echo "${tags[$i]} = ${bins[$i]}"; done
 /usr/bin/python3 - "$out" <<'PYEOF'
 import re, statistics, sys
-keys = ["total", "cpu", "pose", "walk", "assemble", "factor", "solve"]
+keys = ["total", "cpu", "pose", "walk", "assemble", "factor", "solve", "linesearch", "orient", "other"]
 rows = {}
 for line in open(sys.argv[1]):
     tag, rest = line.split(" ", 1)
     d = {k: float(re.search(r"\b%s ([0-9.]+)" % k, rest).group(1)) for k in keys if re.search(r"\b%s ([0-9.]+)" % k, rest)}
+    if "other" not in d:  # a build without the linesearch and orient timers: the rest is "other"
+        d["other"] = d["total"] - sum(d.get(k, 0.0) for k in keys[2:-1])
     d["iterations"] = float(re.search(r"iterations ([0-9.]+)", rest).group(1))
     m = re.search(r"energy evaluations ([0-9.]+)", rest)
     if m: d["evals/it"] = float(m.group(1))
@@ -49,19 +53,19 @@ for line in open(sys.argv[1]):
 cols = keys + ["iterations", "evals/it"]
 med = {t: {k: statistics.median(r[k] for r in rows[t]) for k in cols if k in rows[t][0]} for t in rows}
 tags = sorted(rows)
-print("%-6s" % "" + "".join("%10s" % k for k in cols) + "  hash")
+print("%-6s" % "" + "".join("%11s" % k for k in cols) + "  hash")
 for t in tags:
-    print("%-6s" % t + "".join("%10.2f" % med[t].get(k, float("nan")) for k in cols) +
+    print("%-6s" % t + "".join("%11.2f" % med[t].get(k, float("nan")) for k in cols) +
           "  " + ",".join(sorted(set(r["hash"] for r in rows[t]))))
 for t in tags[1:]:
-    print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (med[t][k] / med[tags[0]][k] if med[tags[0]].get(k) else float("nan")) for k in keys))
+    print("%-6s" % (t + "/" + tags[0]) + "".join("%11.2f" % (med[t][k] / med[tags[0]][k] if med[tags[0]].get(k) else float("nan")) for k in keys))
 # The fastest round of each: the run a busy neighbour disturbed least (the
 # times are CPU-bound and deterministic, so noise only adds); read beside the
 # medians when they disagree.
 low = {t: {k: min(r[k] for r in rows[t]) for k in keys if k in rows[t][0]} for t in rows}
 print("fastest round of each:")
 for t in tags:
-    print("%-6s" % t + "".join("%10.2f" % low[t].get(k, float("nan")) for k in keys))
+    print("%-6s" % t + "".join("%11.2f" % low[t].get(k, float("nan")) for k in keys))
 for t in tags[1:]:
-    print("%-6s" % (t + "/" + tags[0]) + "".join("%10.2f" % (low[t][k] / low[tags[0]][k] if low[tags[0]].get(k) else float("nan")) for k in keys))
+    print("%-6s" % (t + "/" + tags[0]) + "".join("%11.2f" % (low[t][k] / low[tags[0]][k] if low[tags[0]].get(k) else float("nan")) for k in keys))
 PYEOF

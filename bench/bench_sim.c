@@ -195,6 +195,8 @@ int main(int argc, char **argv) {
   double *t_asm = malloc((size_t)frames * sizeof(double)), *t_fac = malloc((size_t)frames * sizeof(double));
   double *t_sol = malloc((size_t)frames * sizeof(double));
   double *t_pose = malloc((size_t)frames * sizeof(double));
+  double *t_ls = malloc((size_t)frames * sizeof(double)), *t_or = malloc((size_t)frames * sizeof(double));
+  double *t_other = malloc((size_t)frames * sizeof(double));
   double *t_cpu = malloc((size_t)frames * sizeof(double));
   double it_sum = 0.0, ev_sum = 0.0, amin = 1e300, amax = 0.0, res_sum = 0.0, rms_sum = 0.0;
   int failures = 0, stalls = 0, unconverged = 0;
@@ -212,6 +214,9 @@ int main(int argc, char **argv) {
     if (anchors) probe_after(&pr, sim, pose, dt, f);
     t_total[f] = st.total_ms, t_walk[f] = st.walk_ms, t_asm[f] = st.assemble_ms;
     t_fac[f] = st.factor_ms, t_sol[f] = st.solve_ms, t_pose[f] = st.pose_ms;
+    t_ls[f] = st.linesearch_ms, t_or[f] = st.orient_ms;
+    t_other[f] = st.total_ms - st.pose_ms - st.walk_ms - st.assemble_ms - st.factor_ms - st.solve_ms -
+                 st.linesearch_ms - st.orient_ms;
     it_sum += st.iterations;
     ev_sum += st.energy_evaluations;
     res_sum += st.residual;
@@ -226,11 +231,12 @@ int main(int argc, char **argv) {
   const unsigned char *bytes = (const unsigned char *)ss_sim_skin_positions(sim);
   for (size_t i = 0; i < 3 * (size_t)nv * sizeof(double); i++) hash = (hash ^ bytes[i]) * 1099511628211ULL;
   printf("scene %s tris %d verts %d dofs %d solver %s method %s substeps %d frames %d: "
-         "ms/frame total %.2f cpu %.2f pose %.2f walk %.2f assemble %.2f factor %.2f solve %.2f (medians); "
+         "ms/frame total %.2f cpu %.2f pose %.2f walk %.2f assemble %.2f factor %.2f solve %.2f linesearch %.2f orient %.2f other %.2f (medians); "
          "iterations %.2f/frame, energy evaluations %.2f/iteration, residual mean %.2g (rms %.2g), unconverged %d, stalled %d, failures %d, area ratio [%.3f, %.3f], hash %016llx\n",
          scene_name, nf, nv, ss_sim_ndof(sim), solver, ss_method_name(set.mover.method), set.substeps, frames,
          ss_median(t_total, frames), ss_median(t_cpu, frames), ss_median(t_pose, frames), ss_median(t_walk, frames),
-         ss_median(t_asm, frames), ss_median(t_fac, frames), ss_median(t_sol, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
+         ss_median(t_asm, frames), ss_median(t_fac, frames), ss_median(t_sol, frames), ss_median(t_ls, frames), ss_median(t_or, frames),
+         ss_median(t_other, frames), it_sum / frames, it_sum > 0 ? ev_sum / it_sum : 0.0, res_sum / frames, rms_sum / frames, unconverged, stalls, failures, amin, amax, hash);
   if (anchors) {
     double w = ss_median(pr.walk_ns, frames), p = ss_median(pr.project_ns, frames);
     double b = ss_median(pr.bare_ns, frames);
@@ -244,5 +250,6 @@ int main(int argc, char **argv) {
   ss_sim_destroy(sim);
   ss_scene_destroy(scene);
   free(pose), free(t_total), free(t_walk), free(t_asm), free(t_fac), free(t_sol), free(t_pose), free(t_cpu);
+  free(t_ls), free(t_or), free(t_other);
   return 0;
 }

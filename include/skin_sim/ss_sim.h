@@ -246,6 +246,10 @@ typedef struct ss_sim_stats {
   double assemble_ms;  /* energies, gradients and (Newton) Hessian assembly */
   double factor_ms;    /* CHOLMOD numeric factorisations */
   double solve_ms;     /* CHOLMOD triangular solves and the L-BFGS two-loop */
+  double linesearch_ms; /* the line searches' own work (vector passes, the first trial's
+                           model), their energy evaluations not included (assemble_ms) */
+  double orient_ms;    /* each substep's energy set-up: inertia targets, the orient term's
+                          body normals under the skin, the skin's normals at the start */
   int substeps;
   int iterations;      /* solver iterations, all substeps */
   int factorizations;

@@ -27,7 +27,18 @@
 
 #include "solver.h"
 
+/* Times its own work into linesearch_ms: the whole search less the energy
+ * evaluations, which ss_sim_energy_at counts in assemble_ms. */
+static int line_search(ss_solve *s);
+
 int ss_line_search(ss_solve *s) {
+  const double t0 = ss_now_ms(), asm0 = s->st->assemble_ms;
+  const int ls = line_search(s);
+  s->st->linesearch_ms += ss_now_ms() - t0 - (s->st->assemble_ms - asm0);
+  return ls;
+}
+
+static int line_search(ss_solve *s) {
   ss_sim *sim = s->sim;
   int n3 = 3 * sim->m->ndof;
   const double *dir = s->dir;

@@ -74,6 +74,7 @@ int ss_sim_step(ss_sim *sim, const double *body_pos, double dt, ss_sim_stats *st
     const ss_substep in = {
         .body_pos = body_pos,
         .w = (double)s / substeps,
+        .first = s == 1,
         .last = s == substeps,
         .h = h,
         .slide_frac = sim->set.slide > 0.0 ? -expm1(-sim->set.slide * h) : 0.0,
@@ -167,7 +168,9 @@ static void stage_pose(ss_sim *sim, const ss_substep *in, ss_sim_stats *st) {
  * twist and boundary, 60% on armpit; ~5% more on fold). */
 static void stage_solve(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, substep_result *out) {
   if (sim->m->ndof == 0) return;
+  const double t0 = ss_now_ms();
   ss_sim_energy_begin(sim, in->h);
+  st->orient_ms += ss_now_ms() - t0;
   for (int k = 0; k < sim->m->ndof; k++) {
     int v = sim->m->dof_vert[k];
     for (int i = 0; i < 3; i++)

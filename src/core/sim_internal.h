@@ -143,6 +143,7 @@ struct ss_sim {
 typedef struct ss_substep {
   const double *body_pos; /* the body pose at the end of the step */
   double w;               /* share of the way from body_prev to body_pos */
+  int first;              /* the first substep of the step */
   int last;               /* the last substep: exactly body_pos */
   double h;               /* its length */
   double slide_frac;      /* share of the way to its skin point an anchor goes */

@@ -84,7 +84,9 @@ int ss_solver_solve(ss_sim *sim, const ss_substep *in, ss_sim_stats *st, double 
   int status = ops->begin(&s);
   if (status != SS_OK) return status;
   s.e = ss_sim_energy_at(sim, st, xd, s.g);
+  const double t0 = ss_now_ms();
   ss_sim_normals_begin(sim, sim->xfull_t); /* xfull_t: xd scattered by the evaluation */
+  st->orient_ms += ss_now_ms() - t0;
   double res = ss_sim_residual(sim, s.g);
   if (!isfinite(s.e) || !isfinite(res)) {
     *nonfinite = 1;
