@@ -2,7 +2,9 @@
 """Looks at the skin inside the body in frames written by `skinsim run --out DIR`:
 the exact generalized winding number of the body around each skin vertex, the
 split into clean / buried as the run measures it (src/core/inside.h: buried where
-the body face nearest the vertex lies inside the body itself), and a picture.
+the body face nearest the vertex lies inside the body itself, or where the vertex is
+in front of that face: inside another part), and a picture. The anchor faces are not
+in the files: a vertex anchored on a buried face counts as clean here.
 
   /usr/bin/python3 bench/inside_view.py DIR FRAME OUT.png [--title T] [--view ELEV,AZIM]
 
@@ -110,6 +112,11 @@ def main():
     idx = np.where(ins)[0]
     wf = winding(cen[f[idx]], V, F) - own(cen[f[idx]], V, F[f[idx]])
     buried = np.zeros(len(X), bool); buried[idx[np.abs(wf - 0.5) >= 0.25]] = True
+    # in front of the nearest face and yet inside: inside another part of the body
+    # (the run judges by the pseudo-normal at the nearest point; the face's plane here)
+    A, B, C = V[F[f[idx], 0]], V[F[f[idx], 1]], V[F[f[idx], 2]]
+    front = np.einsum("ij,ij->i", X[idx] - A, np.cross(B - A, C - A)) > 0
+    buried[idx[front]] = True
     clean = ins & ~buried
     print("frame %d: inside %d of %d; clean %d (deepest %.3f edges, >0.05: %d, >0.1: %d); "
           "buried %d (deepest %.3f); edge %.4g m" % (a.frame, ins.sum(), len(X), clean.sum(),

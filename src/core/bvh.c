@@ -225,12 +225,10 @@ static double box_dist2(const double box[6], const double p[3]) {
   return d2;
 }
 
-double ss_bvh_closest(const ss_bvh *b, const double *pos, const double p[3], int *face,
-                      double uv[2]) {
+/* The search from a bound best (squared) and a face that holds it. */
+static double closest_from(const ss_bvh *b, const double *pos, const double p[3], double best,
+                           int *face, double uv[2]) {
   const ss_topo *topo = b->topo;
-  double best = INFINITY;
-  *face = 0;
-  uv[0] = uv[1] = 1.0 / 3.0;
   if (b->nnode == 0) return best;
   if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) return best; /* no closest point */
   int stack[MAX_DEPTH * 2 + 2];
@@ -267,6 +265,20 @@ double ss_bvh_closest(const ss_bvh *b, const double *pos, const double p[3], int
     }
   }
   return best;
+}
+
+double ss_bvh_closest(const ss_bvh *b, const double *pos, const double p[3], int *face,
+                      double uv[2]) {
+  *face = 0;
+  uv[0] = uv[1] = 1.0 / 3.0;
+  return closest_from(b, pos, p, INFINITY, face, uv);
+}
+
+double ss_bvh_closest_within(const ss_bvh *b, const double *pos, const double p[3], double bound2,
+                             int *face, double uv[2]) {
+  *face = -1;
+  uv[0] = uv[1] = 1.0 / 3.0;
+  return closest_from(b, pos, p, bound2, face, uv);
 }
 
 ss_bvh_shape ss_bvh_get_shape(const ss_bvh *b) {

@@ -19,6 +19,11 @@ void ss_bvh_refit(ss_bvh *bvh, const double *pos);
  * ties go to the lower face index. Returns the squared distance. */
 double ss_bvh_closest(const ss_bvh *bvh, const double *pos, const double p[3], int *face,
                       double uv[2]);
+/* The same within a bound: the closest point nearer than sqrt(bound2), or
+ * face -1 and bound2 returned if there is none (the search visits only the
+ * boxes within the bound, so a small bound is cheap). */
+double ss_bvh_closest_within(const ss_bvh *bvh, const double *pos, const double p[3], double bound2,
+                             int *face, double uv[2]);
 /* The tree's shape (read-only; 0 nodes before the first refit): nodes in
  * depth-first order, parent before children; left/right -1 at a leaf, whose
  * faces are face_order[first .. first + count). Lets another hierarchy over

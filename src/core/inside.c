@@ -169,6 +169,58 @@ int ss_wind_face_buried(const ss_wind *w, const double *pos, int f) {
   return !(fabs(ss_wind_number(w, pos, c) - own - 0.5) < SS_WIND_CLEAN_TOL);
 }
 
+static void face_normal(const ss_topo *t, const double *pos, int f, double n[3]) {
+  const int *fv = t->face_vert + 3 * f;
+  const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *c = pos + 3 * fv[2];
+  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (len > 0.0)
+    for (int k = 0; k < 3; k++) n[k] /= len;
+}
+
+/* 1 if p lies in front of the surface at its nearest point (on face f at
+ * uv, squared distance d2): by the pseudo-normal there, the sum of the
+ * normals of the faces around f's corners as near as f (Baerentzen and
+ * Aanaes 2005), so a point by an edge or a corner is judged by all its
+ * faces. */
+static int in_front(const ss_topo *t, const double *pos, const double p[3], int f, const double uv[2],
+                    double d2) {
+  double n[3] = {0, 0, 0}, m[3];
+  const double eps = 1e-9;
+  const int *fv = t->face_vert + 3 * f;
+  if (uv[0] > eps && uv[1] > eps && 1.0 - uv[0] - uv[1] > eps) {
+    face_normal(t, pos, f, n);
+  } else {
+    const double tie = d2 * (1.0 + 1e-9) + 1e-300;
+    for (int c = 0; c < 3; c++) {
+      const int w = t->vert_weld[fv[c]];
+      for (int i = t->vf_start[w]; i < t->vf_start[w + 1]; i++) {
+        const int g = t->vf_face[i];
+        const int *gv = t->face_vert + 3 * g;
+        int seen = 0; /* met around an earlier corner of f */
+        for (int e = 0; e < c && !seen; e++) {
+          const int we = t->vert_weld[fv[e]];
+          seen = t->vert_weld[gv[0]] == we || t->vert_weld[gv[1]] == we || t->vert_weld[gv[2]] == we;
+        }
+        double guv[2];
+        if (seen || (g != f && !(ss_closest_point_triangle(p, pos + 3 * gv[0], pos + 3 * gv[1],
+                                                            pos + 3 * gv[2], guv) <= tie)))
+          continue;
+        face_normal(t, pos, g, m);
+        for (int k = 0; k < 3; k++) n[k] += m[k];
+      }
+    }
+  }
+  const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *c = pos + 3 * fv[2];
+  double s = 0.0;
+  for (int k = 0; k < 3; k++) s += (p[k] - (a[k] + uv[0] * (b[k] - a[k]) + uv[1] * (c[k] - a[k]))) * n[k];
+  return s > 0.0;
+}
+
 int ss_inside_classify(const ss_wind *w, const ss_bvh *bvh, const double *pos, const double p[3],
                        int anchor_face, double *depth) {
   *depth = 0.0;
@@ -180,5 +232,9 @@ int ss_inside_classify(const ss_wind *w, const ss_bvh *bvh, const double *pos, c
   if (anchor_face >= 0 && anchor_face != face && anchor_face < w->topo->nface &&
       ss_wind_face_buried(w, pos, anchor_face))
     return SS_INSIDE_BURIED;
+  /* in front of the surface nearest to it and yet inside: inside another
+   * part of the body that passes through this one (a leg through the
+   * belly), whose faces there are buried */
+  if (in_front(w->topo, pos, p, face, uv, *depth * *depth)) return SS_INSIDE_BURIED;
   return SS_INSIDE_CLEAN;
 }

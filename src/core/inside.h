@@ -42,6 +42,9 @@ double ss_wind_triangle(const double p[3], const double a[3], const double b[3],
 #define SS_WIND_INSIDE 0.5
 #define SS_WIND_CLEAN_TOL 0.25
 enum { SS_INSIDE_OUT = 0, SS_INSIDE_CLEAN = 1, SS_INSIDE_BURIED = 2 };
+/* A point inside by the winding number but in front of the surface nearest
+ * to it (by the pseudo-normal there) is inside another part of the body
+ * that passes through this one: buried too. */
 /* Kind of point p and its depth (distance to the nearest body point, 0
  * outside); bvh and w refitted at pos. anchor_face: the body face the point
  * is anchored on, or -1. */

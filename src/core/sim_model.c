@@ -279,7 +279,8 @@ void ss_sim_set_isa(ss_sim *sim, int isa) {
 static int sim_data(ss_sim *sim, char *err, int err_sz) {
   int status = ss_mover_create(&sim->mover, sim->m->btopo, &sim->set.mover, sim->m->bvh_rest, err, err_sz);
   if (status != SS_OK) return status;
-  if (ss_collider_create(&sim->collider, sim->m->btopo, sim->m->body_rest, sim->m->nvert))
+  if (ss_collider_create(&sim->collider, sim->m->btopo, sim->m->body_rest, sim->m->nvert,
+                         sim->m->nface, sim->m->faces))
     return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory");
   /* one walker per thread; the team is started here, so that stepping
    * allocates nothing (the OpenMP runtime keeps its threads) */

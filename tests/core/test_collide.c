@@ -3,8 +3,8 @@
  * first, is buried). A skin vertex behind the clean surface goes out to it
  * (plus the thickness) along its normal, one in front stays, one behind the
  * buried end stays where it is, a shallow one moves without the surface
- * test; the same bits on one thread and two; nothing moves with collide's
- * reach exceeded. */
+ * test, one within 0.04 edge of its anchor is not looked at (it can be no
+ * deeper); the same bits on one thread and two. */
 #include <string.h>
 
 #include "bvh.h"
@@ -16,7 +16,7 @@
 #define GRID 8
 #define NV_BOX TEST_BOX_NVERT(GRID)
 #define NF_BOX TEST_BOX_NFACE(GRID)
-#define NSKIN 7
+#define NSKIN 8
 
 int main(void) {
   static double pos[2 * 3 * NV_BOX];
@@ -34,7 +34,7 @@ int main(void) {
   CHECK_EQ_INT(ss_bvh_create(&bvh, topo), SS_OK);
   CHECK_EQ_INT(ss_frames_create(&fr, nface), SS_OK);
   if (!topo || !bvh || !fr) return ss_test_finish("test_collide");
-  CHECK_EQ_INT(ss_collider_create(&col, topo, pos, NSKIN), SS_OK);
+  CHECK_EQ_INT(ss_collider_create(&col, topo, pos, NSKIN, 0, NULL), SS_OK);
   if (!col) return ss_test_finish("test_collide");
   ss_bvh_refit(bvh, pos);
   ss_frames_update(fr, topo, pos);
@@ -47,20 +47,22 @@ int main(void) {
       {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.9}, {0.5, 0.5, 1.0}},        /* 0.1 under A's top: out */
       {{0.5, 0.5, 1.0}, {0.52, 0.5, 1.02}, {0.52, 0.5, 1.02}},    /* in front: stays */
       {{1.5, 0.5, 0.5}, {1.6, 0.5, 0.5}, {1.6, 0.5, 0.5}},        /* behind B's buried end: stays */
-      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.999}, {0.5, 0.5, 1.0}},      /* shallow: out, untested */
+      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.989}, {0.5, 0.5, 1.0}},      /* shallow: out, untested */
       {{2.5, 0.5, 0.8}, {2.5, 0.5, 0.7}, {2.5, 0.5, 0.8}},        /* under B's clean top: out */
       {{0.5, 0.99, 1.0}, {0.5, 0.985, 0.99}, {0.5, 0.985, 1.0}},  /* by A's top edge: up, the nearer */
-      {{0.5, 0.5, 1.0}, {0.5, 0.5, 1.5}, {0.5, 0.5, 1.5}},        /* beyond reach: stays */
+      {{0.5, 0.5, 1.0}, {0.5, 0.5, 1.5}, {0.5, 0.5, 1.5}},        /* far in front: stays */
+      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.995}, {0.5, 0.5, 0.995}},    /* by its anchor: not looked at */
   };
   int anchor_face[NSKIN], dof_vert[NSKIN];
-  double x[3 * NSKIN];
+  double x[3 * NSKIN], anchor_pos[3 * NSKIN];
   for (int i = 0; i < NSKIN; i++) {
     double uv[2];
     ss_bvh_closest(bvh, pos, sv[i].anchor, &anchor_face[i], uv);
     dof_vert[i] = i;
     memcpy(x + 3 * i, sv[i].x, sizeof sv[i].x);
+    memcpy(anchor_pos + 3 * i, sv[i].anchor, sizeof sv[i].anchor);
   }
-  ss_collide_in in = {topo, fr, pos, anchor_face, NULL, 0.0, edge};
+  ss_collide_in in = {topo, fr, pos, anchor_face, anchor_pos, NULL, NULL, 0.0, edge};
   const int moved = ss_collider_run(col, &in, NSKIN, dof_vert, 1, 0, x, NULL);
   CHECK_EQ_INT(moved, 4);
   for (int i = 0; i < NSKIN; i++)

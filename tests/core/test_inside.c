@@ -80,6 +80,21 @@ int main(void) {
     CHECK_MSG(kind == pt[i].kind, "point %zu: kind %d, expected %d", i, kind, pt[i].kind);
     CHECK_NEAR(depth, pt[i].depth, 1e-12);
   }
+  /* just out of A's end and inside B, by the rim where B runs into A: the
+   * nearest face is one of A's end whose centroid is out of B (clean), and
+   * the point is in front of it; inside B, which passes through A: buried */
+  int rim = 0;
+  for (int i = 0; i <= 40; i++) {
+    const double q[3] = {2.004, 0.205 + 0.001 * (i % 5), 0.3 + 0.01 * i};
+    int qf;
+    double quv[2], depth;
+    ss_bvh_closest(bvh, pos, q, &qf, quv);
+    if (ss_wind_face_buried(w, pos, qf)) continue;
+    rim++;
+    CHECK_EQ_INT(ss_inside_classify(w, bvh, pos, q, -1, &depth), SS_INSIDE_BURIED);
+  }
+  CHECK_MSG(rim > 0, "no point by B's rim has a clean nearest face");
+
   /* a face of B's end lies inside A; one of A's top does not */
   double c[3] = {1.5, 0.5, 0.5};
   int face;

@@ -67,6 +67,7 @@ int main(void) {
     set.bending = 1e-3;
     set.substeps = 2;
     set.damping = 1.0;
+    set.collide = 1; /* its pass, tree searches and winding tests too */
     ss_sim *sim = NULL;
     CHECK_EQ_INT(ss_sim_create(&sim, nv, ss_scene_rest(sc_run), ss_scene_nface(sc_run), ss_scene_faces(sc_run), NULL,
                                &set, err, sizeof err),
