@@ -39,15 +39,15 @@ int rosc_param_set_bool(const char *name, int value);
 int rosc_param_delete(const char *name);   /* ROSC_OK also when it was not set */
 
 /* ---- topics */
-/* rosc_publish of a std_msgs/String holding text. */
-int rosc_publish_string(rosc_pub *pub, const char *text);
 /* The fully resolved topic name (after remapping). */
 int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size);
 /* Number of publishers connected now. */
 int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out);
-/* Messages dropped by the shim itself (frame_id or ns too long) so far. */
-int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out);
-int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
+/* Reads buf[0, len) with roscpp's own deserialiser as the generated C++ message of
+ * `datatype` and serialises that again: *same = 1 if roscpp took exactly those bytes
+ * and gave them back (the C encoder's field table agrees with the .msg). ROSC_E_ROS
+ * if roscpp could not read them. */
+int rosc_test_reserialize(const char *datatype, const uint8_t *buf, size_t len, int *same);
 
 /* ---- services */
 /* Calls the std_srvs/Empty service `name`, waiting up to timeout_s (wall clock) for
@@ -57,8 +57,6 @@ int rosc_call_empty(const char *name, double timeout_s);
 
 /* ---- logging (rosc_log_at without the caller's place) */
 int rosc_log(int level, const char *fmt, ...) ROSC_PRINTF(2, 3);
-int rosc_log_throttle(int level, double period_s, const char *key, const char *fmt, ...)
-    ROSC_PRINTF(4, 5);
 
 #ifdef __cplusplus
 }
