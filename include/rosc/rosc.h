@@ -105,21 +105,6 @@ typedef struct rosc_time { uint32_t sec, nsec; } rosc_time;       /* since 1970 
 
 static inline double rosc_time_to_s(rosc_time t) { return (double)t.sec + 1e-9 * (double)t.nsec; }
 static inline int64_t rosc_time_to_ns(rosc_time t) { return (int64_t)t.sec * 1000000000 + (int64_t)t.nsec; }
-static inline rosc_time rosc_time_from_ns(int64_t ns)
-{
-  rosc_time t;
-  if (ns < 0) ns = 0;                                   /* clamped to what fits */
-  if (ns > (int64_t)4294967295 * 1000000000 + 999999999) ns = (int64_t)4294967295 * 1000000000 + 999999999;
-  t.sec = (uint32_t)(ns / 1000000000);
-  t.nsec = (uint32_t)(ns % 1000000000);
-  return t;
-}
-static inline rosc_time rosc_time_from_s(double s)
-{
-  if (!(s > 0.0)) return rosc_time_from_ns(0);   /* also NaN */
-  if (s >= 4294967296.0) return rosc_time_from_ns(INT64_MAX);
-  return rosc_time_from_ns((int64_t)(s * 1e9 + 0.5));
-}
 
 /* ROS time: simulated (/clock) when the parameter /use_sim_time is true, else wall.
  * With sim time it is zero until the first /clock message arrives. */
@@ -147,11 +132,11 @@ int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const ch
 int rosc_param_get_double(const char *name, double *out, double def, int *was_set);
 int rosc_param_get_int(const char *name, int *out, int def, int *was_set);
 int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
-/* What the server holds under name, in words: "the string 'abc'" (cut after 60
- * characters), "the double 2.5", "the int 3", "the bool true", "a list", "a
- * dictionary"; for a node to say why a getter returned ROSC_E_TYPE.
- * ROSC_E_NOTFOUND if it is not set. */
-int rosc_param_describe(const char *name, char *buf, size_t buf_size);
+/* The type the server holds under name (ROSC_PARAM_*), for a node to say why a
+ * getter returned ROSC_E_TYPE. ROSC_E_NOTFOUND if it is not set. */
+enum { ROSC_PARAM_STRING = 1, ROSC_PARAM_INT, ROSC_PARAM_DOUBLE, ROSC_PARAM_BOOL, ROSC_PARAM_LIST,
+       ROSC_PARAM_DICT, ROSC_PARAM_OTHER };
+int rosc_param_type(const char *name, int *type);
 /* The URDF as robot_state_publisher finds it: the parameter "robot_description"
  * searched upwards from the node's namespace (so "/robot_description" for a node in
  * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND

@@ -33,17 +33,17 @@ typedef struct msg_pub {
 static inline int msg_pub_create(msg_pub **out, int type, const char *topic, unsigned queue_size,
                                  int latch)
 {
-  if (out == NULL || ss_msg_datatype(type) == NULL) return ROSC_E_INVALID;
-  msg_pub *p = calloc(1, sizeof *p);
-  if (p == NULL) return ROSC_E_NOMEM;
-  p->type = type;
-  int st = rosc_pub_create(&p->pub, ss_msg_datatype(type), topic, queue_size, latch);
-  if (st != ROSC_OK) {
+  msg_pub *p = out != NULL && ss_msg_datatype(type) != NULL ? calloc(1, sizeof *p) : NULL;
+  int st = out == NULL || ss_msg_datatype(type) == NULL ? ROSC_E_INVALID
+           : p == NULL ? ROSC_E_NOMEM
+                       : rosc_pub_create(&p->pub, ss_msg_datatype(type), topic, queue_size, latch);
+  if (st == ROSC_OK) {
+    p->type = type;
+    *out = p;
+  } else {
     free(p);
-    return st;
   }
-  *out = p;
-  return ROSC_OK;
+  return st;
 }
 
 /* Publishes view, the struct of type (ss_msg_skin_mesh for SS_MSG_SKIN_MESH, ...):
@@ -59,9 +59,8 @@ static inline int msg_publish(msg_pub *p, int type, const void *view)
 
 static inline int msg_pub_destroy(msg_pub *p) /* NULL is fine */
 {
-  if (p == NULL) return ROSC_OK;
-  int st = rosc_pub_destroy(p->pub);
-  ss_msg_buf_free(&p->buf);
+  int st = p != NULL ? rosc_pub_destroy(p->pub) : ROSC_OK;
+  if (p != NULL) ss_msg_buf_free(&p->buf);
   free(p);
   return st;
 }
@@ -122,18 +121,12 @@ static inline int msg_subscribe(msg_sub **out, int type, const char *topic, unsi
   if (out == NULL || cb == NULL || ss_msg_datatype(type) == NULL) return ROSC_E_INVALID;
   msg_sub *s = calloc(1, sizeof *s);
   if (s == NULL) return ROSC_E_NOMEM;
-  s->type = type;
-  s->cb = cb;
-  s->check = check;
-  s->user = user;
-  s->keep_bytes = (size_t)8 << 20;
+  *s = (msg_sub){.type = type, .cb = cb, .check = check, .user = user,
+                 .keep_bytes = (size_t)8 << 20};
   int st = rosc_subscribe(&s->sub, ss_msg_datatype(type), topic, queue_size, msg_sub_bytes_, s);
-  if (st != ROSC_OK) {
-    free(s);
-    return st;
-  }
-  *out = s;
-  return ROSC_OK;
+  if (st == ROSC_OK) *out = s;
+  else free(s);
+  return st;
 }
 
 static inline int msg_sub_destroy(msg_sub *s) /* NULL is fine */

@@ -263,6 +263,13 @@ static int take_count(reader *r, const field *f, uint64_t elem, uint32_t *n) {
   return 1;
 }
 
+/* n bytes already checked to be there, passed over (a decode that only sizes). */
+static int skip(reader *r, size_t n) {
+  r->p += n;
+  r->left -= n;
+  return 0;
+}
+
 static void *grow(ss_msg_scratch *s, int slot, size_t bytes) {
   if (bytes == 0) bytes = 1;
   if (bytes > s->cap[slot]) {
@@ -304,6 +311,7 @@ static int take_field(reader *r, const field *f, void *view, ss_msg_scratch *s) 
   }
   case K_STR: {
     if (!take_count(r, f, 1, &n)) return SS_MSG_E_MALFORMED;
+    if (s == NULL) return skip(r, n);
     char *d = grow(s, f->slot, (size_t)n + 1);
     if (d == NULL) return nomem(r, f);
     take(r, f, d, n);
@@ -322,6 +330,8 @@ static int take_field(reader *r, const field *f, void *view, ss_msg_scratch *s) 
       look.left -= k;
       bytes += (size_t)k + 1;
     }
+    COUNT(view, f) = n;
+    if (s == NULL) return skip(r, (size_t)(look.p - r->p));
     char **ptr = grow(s, f->slot, bytes);
     if (ptr == NULL) return nomem(r, f);
     char *chars = (char *)(ptr + n);
@@ -334,11 +344,12 @@ static int take_field(reader *r, const field *f, void *view, ss_msg_scratch *s) 
       chars += (size_t)k + 1;
     }
     *AT(view, f, const char *const *) = (const char *const *)ptr;
-    COUNT(view, f) = n;
     return 0;
   }
   case K_ARR_PTS: {
     if (!take_count(r, f, 24, &n)) return SS_MSG_E_MALFORMED;
+    COUNT(view, f) = n;
+    if (s == NULL) return skip(r, (size_t)n * 24);
     float *d = grow(s, f->slot, (size_t)n * 3 * sizeof(float));
     if (d == NULL) return nomem(r, f);
     for (size_t i = 0; i < 3 * (size_t)n; i++) {
@@ -347,17 +358,17 @@ static int take_field(reader *r, const field *f, void *view, ss_msg_scratch *s) 
       d[i] = (float)v;
     }
     *AT(view, f, const float *) = d;
-    COUNT(view, f) = n;
     return 0;
   }
   default: {
     size_t e = elem_bytes(f);
     if (!take_count(r, f, e, &n)) return SS_MSG_E_MALFORMED;
+    COUNT(view, f) = n;
+    if (s == NULL) return skip(r, (size_t)n * e);
     void *d = grow(s, f->slot, (size_t)n * e);
     if (d == NULL) return nomem(r, f);
     take(r, f, d, (size_t)n * e);
     *AT(view, f, const void *) = d;
-    COUNT(view, f) = n;
     return 0;
   }
   }
@@ -371,7 +382,7 @@ int ss_msg_decode(int type, const uint8_t *buf, size_t len, void *view, ss_msg_s
     why_size = sizeof dummy;
   }
   why[0] = '\0';
-  if (type < 0 || type >= SS_MSG_TYPES || view == NULL || scratch == NULL ||
+  if (type < 0 || type >= SS_MSG_TYPES || view == NULL ||
       (buf == NULL && len != 0)) {
     snprintf(why, why_size, "invalid argument");
     return SS_MSG_E_INVALID;

@@ -165,7 +165,9 @@ int ss_msg_encode(int type, const void *view, ss_msg_buf *out);
  * decode with it). SS_MSG_E_MALFORMED, with one sentence in why naming the field, if
  * a length prefix claims more bytes than are left, the bytes end early or run on, or
  * a string does not fit its fixed-size field; nothing is sized from a prefix before
- * it is checked against the bytes left. */
+ * it is checked against the bytes left. scratch NULL: only sizes the message (the
+ * counts and the fixed-size fields filled in, the variable ones NULL), allocating
+ * nothing. */
 int ss_msg_decode(int type, const uint8_t *buf, size_t len, void *view, ss_msg_scratch *scratch,
                   char *why, size_t why_size);
 

@@ -442,38 +442,37 @@ static void outbox_free(outbox *o)
   }
 }
 
+/* The views of message i of each type with arrays (over o's copies). */
+static void views_of(const outbox *o, int i, ss_msg_skin_mesh *m, ss_msg_joint_state *j,
+                     ss_msg_marker *k)
+{
+  const mesh_copy *mc = &o->mesh[i];
+  const joints_copy *jc = &o->joints[i];
+  *m = (ss_msg_skin_mesh){.header = mc->h, .topology_id = mc->topo, .positions = mc->pos,
+                          .n_positions = mc->npos, .triangles = mc->tri, .n_triangles = mc->ntri,
+                          .rigid_part = mc->nrigid ? mc->rigid : NULL, .n_rigid_part = mc->nrigid};
+  *j = (ss_msg_joint_state){.header = jc->h, .name = (const char *const *)jc->name,
+                            .n_name = jc->nname, .position = jc->pos, .n_position = jc->npos,
+                            .velocity = jc->vel, .n_velocity = jc->nvel, .effort = jc->eff,
+                            .n_effort = jc->neff};
+  *k = o->marker[i].m;
+  k->points = o->marker[i].points;
+  k->colors = o->marker[i].colors;
+  k->text = o->marker[i].text;
+  k->mesh_resource = o->marker[i].res;
+}
+
 static int publish_all(outbox *o, int i, msg_pub *pm, msg_pub *ps, msg_pub *pj, msg_pub *pk,
                        msg_pub *pstr)
 {
-  int st = 0;
   ss_msg_skin_mesh m;
-  memset(&m, 0, sizeof m);
-  m.header = o->mesh[i].h;
-  m.topology_id = o->mesh[i].topo;
-  m.positions = o->mesh[i].pos;
-  m.n_positions = o->mesh[i].npos;
-  m.triangles = o->mesh[i].tri;
-  m.n_triangles = o->mesh[i].ntri;
-  m.rigid_part = o->mesh[i].nrigid ? o->mesh[i].rigid : NULL;
-  m.n_rigid_part = o->mesh[i].nrigid;
+  ss_msg_joint_state j;
+  ss_msg_marker k;
+  views_of(o, i, &m, &j, &k);
+  int st = 0;
   st |= msg_publish(pm, SS_MSG_SKIN_MESH, &m);
   st |= msg_publish(ps, SS_MSG_SKIN_STATS, &o->stats[i]);
-  ss_msg_joint_state j;
-  j.header = o->joints[i].h;
-  j.name = (const char *const *)o->joints[i].name;
-  j.n_name = o->joints[i].nname;
-  j.position = o->joints[i].pos;
-  j.n_position = o->joints[i].npos;
-  j.velocity = o->joints[i].vel;
-  j.n_velocity = o->joints[i].nvel;
-  j.effort = o->joints[i].eff;
-  j.n_effort = o->joints[i].neff;
   st |= msg_publish(pj, SS_MSG_JOINT_STATE, &j);
-  ss_msg_marker k = o->marker[i].m;
-  k.points = o->marker[i].points;
-  k.colors = o->marker[i].colors;
-  k.text = o->marker[i].text;
-  k.mesh_resource = o->marker[i].res;
   st |= msg_publish(pk, SS_MSG_MARKER, &k);
   st |= publish_string(pstr, o->string[i]);
   return st;
@@ -641,12 +640,12 @@ static void check_time(void)
   CHECK(t.sec > 1600000000u && t.nsec < 1000000000u);   /* no sim time: wall clock */
   CHECK(rosc_now_s(&ts) == ROSC_OK && rosc_wall_now_s(&ws) == ROSC_OK);
   CHECK_NEAR(ts, ws, 5.0);
-  CHECK(rosc_time_to_ns(rosc_time_from_ns(1234567890123456789LL)) == 1234567890123456789LL);
-  rosc_time x = rosc_time_from_s(12.5);
+  CHECK(ss_msg_time_to_ns(ss_msg_time_from_ns(1234567890123456789LL)) == 1234567890123456789LL);
+  ss_msg_time x = ss_msg_time_from_ns(12500000000LL);
   CHECK(x.sec == 12 && x.nsec == 500000000u);
-  x = rosc_time_from_s(-3.0);
+  x = ss_msg_time_from_ns(-3);
   CHECK(x.sec == 0 && x.nsec == 0);
-  x = rosc_time_from_s(1e12);
+  x = ss_msg_time_from_ns(INT64_MAX);
   CHECK(x.sec == 4294967295u && x.nsec == 999999999u);
   CHECK(rosc_sleep(0.02) == ROSC_OK && rosc_wall_sleep(0.01) == ROSC_OK);
   CHECK(rosc_sleep(-1.0) == ROSC_E_INVALID);
@@ -700,31 +699,9 @@ static void check_codec(const outbox *o)
   ss_msg_buf buf = {0};
   for (int i = 0; i < N_MSG; ++i) {
     ss_msg_skin_mesh m;
-    memset(&m, 0, sizeof m);
-    m.header = o->mesh[i].h;
-    m.topology_id = o->mesh[i].topo;
-    m.positions = o->mesh[i].pos;
-    m.n_positions = o->mesh[i].npos;
-    m.triangles = o->mesh[i].tri;
-    m.n_triangles = o->mesh[i].ntri;
-    m.rigid_part = o->mesh[i].rigid;
-    m.n_rigid_part = o->mesh[i].nrigid;
     ss_msg_joint_state j;
-    memset(&j, 0, sizeof j);
-    j.header = o->joints[i].h;
-    j.name = (const char *const *)o->joints[i].name;
-    j.n_name = o->joints[i].nname;
-    j.position = o->joints[i].pos;
-    j.n_position = o->joints[i].npos;
-    j.velocity = o->joints[i].vel;
-    j.n_velocity = o->joints[i].nvel;
-    j.effort = o->joints[i].eff;
-    j.n_effort = o->joints[i].neff;
-    ss_msg_marker k = o->marker[i].m;
-    k.points = o->marker[i].points;
-    k.colors = o->marker[i].colors;
-    k.text = o->marker[i].text;
-    k.mesh_resource = o->marker[i].res;
+    ss_msg_marker k;
+    views_of(o, i, &m, &j, &k);
     ss_msg_string str = {o->string[i]};
     const void *views[5] = {&m, &o->stats[i], &j, &k, &str};
     const int types[5] = {SS_MSG_SKIN_MESH, SS_MSG_SKIN_STATS, SS_MSG_JOINT_STATE, SS_MSG_MARKER,
