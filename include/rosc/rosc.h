@@ -142,6 +142,11 @@ int rosc_param_type(const char *name, int *type);
  * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND
  * if no such parameter exists. */
 int rosc_robot_description(char **out, size_t *len);
+/* Setters; bool is any non-zero int. */
+int rosc_param_set_string(const char *name, const char *value);
+int rosc_param_set_double(const char *name, double value);
+int rosc_param_set_int(const char *name, int value);
+int rosc_param_set_bool(const char *name, int value);
 
 /* ------------------------------------------------------------------ messages */
 /* Messages travel as ROS 1's serialized bytes (the wire format, without the 4-byte
@@ -151,7 +156,8 @@ int rosc_robot_description(char **out, size_t *len);
  * rviz and `rostopic echo` see the real types. It knows no field: the nodes encode
  * and decode the bytes themselves (src/stream/ss_msg.h, pure C). */
 #define ROSC_MSG_TYPES "skin_sim/SkinMesh skin_sim/SkinStats sensor_msgs/JointState " \
-                       "visualization_msgs/Marker std_msgs/String"
+                       "visualization_msgs/Marker std_msgs/String dynamic_reconfigure/Config " \
+                       "dynamic_reconfigure/ConfigDescription"
 
 /* ------------------------------------------------------------------ publishers */
 typedef struct rosc_pub rosc_pub;
@@ -186,10 +192,19 @@ int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */
-/* A std_srvs/Empty service (e.g. "~reset"). cb(user) runs inside rosc_spin_*, in the
- * spinning thread like every callback; it returns 0 for success, anything else makes
- * the call fail (the caller sees a service error). Implemented in src/rosc/rosc_srv.cpp. */
+/* Services served as bytes, like topics: a request's serialized bytes in, a response's
+ * out, under the md5sum and names of the generated C++ service of srv_type (one of
+ * ROSC_SRV_TYPES). cb runs inside rosc_spin_*, in the spinning thread like every
+ * callback; it returns 0 for success with *resp, *resp_len the response's bytes (valid
+ * until its next call; NULL, 0 for an empty response), anything else makes the call
+ * fail (the caller sees a service error). Names as topics ("~reset" is private). */
+#define ROSC_SRV_TYPES "std_srvs/Empty dynamic_reconfigure/Reconfigure"
 typedef struct rosc_srv rosc_srv;
+typedef int (*rosc_srv_cb)(const uint8_t *req, size_t req_len, const uint8_t **resp,
+                           size_t *resp_len, void *user);
+int rosc_srv_create(rosc_srv **out, const char *name, const char *srv_type, rosc_srv_cb cb,
+                    void *user);
+/* A std_srvs/Empty service: cb(user) returns 0 for success. */
 typedef int (*rosc_empty_cb)(void *user);
 int rosc_srv_empty(rosc_srv **out, const char *name, rosc_empty_cb cb, void *user);
 /* The fully resolved service name. */
@@ -228,43 +243,6 @@ typedef void (*rosc_diag_busy_cb)(double busy_s, int last_level, rosc_diag_busy_
  * silent while one step takes long. The node decides what it says. */
 int rosc_diag_busy(rosc_diag *d, rosc_diag_busy_cb cb, void *user);
 int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
-
-/* ------------------------------------------------------------------ dynamic_reconfigure */
-/* A dynamic_reconfigure server spoken from a table given at run time (no .cfg file):
- * the ~set_parameters service (dynamic_reconfigure/Reconfigure) and the latched
- * ~parameter_descriptions (ConfigDescription) and ~parameter_updates (Config)
- * topics, so that rqt_reconfigure and `rosrun dynamic_reconfigure dynparam` work.
- * Every value in force is also written to the parameter server as ~NAME, as
- * dynamic_reconfigure's own server does. Implemented in src/rosc/rosc_dynreconf.cpp. */
-enum { ROSC_DR_INT = 0, ROSC_DR_DOUBLE = 1, ROSC_DR_BOOL = 2, ROSC_DR_STR = 3 };
-#define ROSC_DR_STR_MAX 128
-typedef struct rosc_dr_param {
-  const char *name;            /* e.g. "slide" */
-  int type;                    /* ROSC_DR_* */
-  const char *description;     /* one line, shown by rqt_reconfigure */
-  unsigned level;              /* ORed over the changed parameters (dynamic_reconfigure's level) */
-  double min, max;             /* numbers: the bounds clients are told (may be infinite) */
-  const char *const *choices;  /* str: NULL-terminated names offered as a menu; NULL: free text */
-} rosc_dr_param;
-typedef struct rosc_dr_value {
-  double num;                  /* int, double, bool (0/1) */
-  char str[ROSC_DR_STR_MAX];   /* str */
-} rosc_dr_value;
-/* Called inside rosc_spin_* for a set_parameters request: values (n, in the order of the
- * table) hold the configuration asked for (parameters the request did not name keep the
- * value in force), changed[i] is 1 where it differs. The callback applies what it accepts
- * and leaves in values what is IN FORCE afterwards (a refused value back to its old one):
- * that is what the caller gets back and what ~parameter_updates publishes. */
-typedef void (*rosc_dr_cb)(rosc_dr_value *values, const int *changed, size_t n, void *user);
-typedef struct rosc_dynreconf rosc_dynreconf;
-/* params and dflt, current: n entries each (copied). Publishes the description and the
- * current configuration at once. */
-int rosc_dynreconf_create(rosc_dynreconf **out, const rosc_dr_param *params,
-                          const rosc_dr_value *dflt, const rosc_dr_value *current, size_t n,
-                          rosc_dr_cb cb, void *user);
-/* The values in force changed outside a request: publishes them (n as at create). */
-int rosc_dynreconf_update(rosc_dynreconf *dr, const rosc_dr_value *values, size_t n);
-int rosc_dynreconf_destroy(rosc_dynreconf *dr);   /* NULL is fine */
 
 /* ------------------------------------------------------------------ logging */
 /* Levels as rosconsole's. Messages go to the console and, once the node runs, to

@@ -6,6 +6,7 @@
 #define SKIN_SIM_NODE_PARAMS_H
 
 #include "rosc/rosc.h"
+#include "ss_dynreconf.h"
 #include "skin_sim/ss_settings.h"
 
 #include <stdio.h>
@@ -129,7 +130,7 @@ static inline int get_setting(const ss_setting *d, ss_sim_settings *set)
 
 /* Every setting of the table on dynamic_reconfigure (rqt_reconfigure, dynparam): ints,
  * doubles and bools as such, enums and vectors as text. */
-static inline void dr_value(const ss_setting *d, const ss_sim_settings *s, rosc_dr_value *v)
+static inline void dr_value(const ss_setting *d, const ss_sim_settings *s, ss_dr_value *v)
 {
   memset(v, 0, sizeof *v);
   if (d->type == SS_SETTING_ENUM || d->type == SS_SETTING_VEC3)

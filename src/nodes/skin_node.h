@@ -7,6 +7,7 @@
 #ifndef SKIN_SIM_SKIN_NODE_H
 #define SKIN_SIM_SKIN_NODE_H
 
+#include "node_dynreconf.h"
 #include "node_log.h"
 #include "node_msg.h"
 #include "node_params.h"
@@ -106,7 +107,7 @@ typedef struct node {
   int reset_req;
   /* dynamic_reconfigure changed a setting the skin cannot change in place: the same */
   int recreate_req;
-  rosc_dynreconf *dr;
+  node_dr *dr;
   /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
   rosc_diag *diag;
   double diag_wall;       /* wall time of the last status */

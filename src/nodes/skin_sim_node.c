@@ -617,7 +617,7 @@ int main(int argc, char **argv)
   status = 0;
 done:
   rosc_srv_destroy(srv_reset);
-  rosc_dynreconf_destroy(nd->dr);
+  node_dr_destroy(nd->dr);
   rosc_diag_destroy(nd->diag);
   msg_sub_destroy(sub);
   msg_pub_destroy(nd->pub_mesh);

@@ -106,6 +106,11 @@ int rosc_internal::need_node()
 
 bool rosc_internal::ros_initialized() { return g_node.ros_initialized; }
 
+std::string rosc_internal::resolve_private(const char *name)
+{
+  return name[0] == '~' ? ros::names::resolve(name) : std::string(name);
+}
+
 ros::NodeHandle &rosc_internal::node() { return *g_node.nh; }
 
 void rosc_internal::log_internal(const char *func, const char *what)

@@ -5,8 +5,7 @@
 //   rosc.cpp        node life, spinning, time, rates, logging
 //   rosc_param.cpp  parameters
 //   rosc_msg.cpp    one publish / subscribe path for serialized messages of any type
-//   rosc_srv.cpp    services and diagnostics
-//   rosc_dynreconf.cpp  dynamic_reconfigure from a table given at run time
+//   rosc_srv.cpp    services (bytes, like topics) and diagnostics
 #ifndef ROSC_INTERNAL_H
 #define ROSC_INTERNAL_H
 
@@ -63,6 +62,10 @@ inline int copy_out(const std::string &s, char *buf, size_t buf_size)
 }
 
 inline bool valid_name(const char *name) { return name != nullptr && name[0] != '\0'; }
+
+// "~x" resolved to the node's private name (NodeHandle methods refuse private names);
+// other names as given (the NodeHandle resolves them).
+std::string resolve_private(const char *name);
 
 // ------------------------------------------------------------------ the node (rosc.cpp)
 // ROSC_OK while the node runs (after rosc_init, before rosc_shutdown), else ROSC_E_STATE.

@@ -9,6 +9,8 @@
 #include "rosc/rosc.h"
 #include "rosc_internal.h"
 
+#include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
 #include <ros/ros.h>
 #include <ros/subscribe_options.h>
 #include <ros/subscription_callback_helper.h>
@@ -51,7 +53,8 @@ const Row *find_row(const char *datatype)
 {
   static const Row rows[] = {row<skin_sim::SkinMesh>(), row<skin_sim::SkinStats>(),
                              row<sensor_msgs::JointState>(), row<visualization_msgs::Marker>(),
-                             row<std_msgs::String>()};
+                             row<std_msgs::String>(), row<dynamic_reconfigure::Config>(),
+                             row<dynamic_reconfigure::ConfigDescription>()};
   if (datatype == nullptr) return nullptr;
   for (const Row &r : rows)
     if (r.datatype == datatype) return &r;
@@ -142,7 +145,8 @@ int rosc_pub_create(rosc_pub **out, const char *datatype, const char *topic, uns
     if (st != ROSC_OK) return st;
     std::unique_ptr<rosc_pub> p(new rosc_pub());
     p->row = r;
-    ros::AdvertiseOptions ops(topic, queue_size, r->md5, r->datatype, r->definition);
+    ros::AdvertiseOptions ops(rosc_internal::resolve_private(topic), queue_size, r->md5,
+                              r->datatype, r->definition);
     ops.latch = latch != 0;
     ops.has_header = r->has_header;
     p->pub = rosc_internal::node().advertise(ops);
@@ -197,7 +201,8 @@ int rosc_subscribe(rosc_sub **out, const char *datatype, const char *topic, unsi
     std::unique_ptr<rosc_sub> s(new rosc_sub());
     s->cb = cb;
     s->user = user;
-    ros::SubscribeOptions ops(topic, queue_size, r->md5, r->datatype);
+    ros::SubscribeOptions ops(rosc_internal::resolve_private(topic), queue_size, r->md5,
+                              r->datatype);
     ops.helper = boost::make_shared<Helper>(s.get());
     ops.transport_hints = ros::TransportHints().tcpNoDelay();
     s->sub = rosc_internal::node().subscribe(ops);

@@ -1,5 +1,5 @@
 // rosc parameters (include/rosc/rosc.h: "parameters"): typed getters that tell "not set"
-// from "set with another type", the type a parameter holds, and the URDF
+// from "set with another type", setters, the type a parameter holds, and the URDF
 // under robot_description. Each getter asks the master once (an XmlRpcValue) and checks
 // the type itself.
 #include "rosc/rosc.h"
@@ -160,3 +160,26 @@ int rosc_robot_description(char **out, size_t *len)
     return rosc_internal::param_get_string_alloc(key.c_str(), out, len);
   });
 }
+
+namespace {
+template <class T>
+int param_set(const char *func, const char *name, const T &value)
+{
+  return guard(func, [&]() -> int {
+    if (!valid_name(name)) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    ros::param::set(name, value);
+    return ROSC_OK;
+  });
+}
+}  // namespace
+
+int rosc_param_set_string(const char *name, const char *value)
+{
+  if (value == nullptr) return ROSC_E_INVALID;
+  return guard(__func__, [&]() -> int { return param_set(__func__, name, std::string(value)); });
+}
+int rosc_param_set_double(const char *name, double value) { return param_set(__func__, name, value); }
+int rosc_param_set_int(const char *name, int value) { return param_set(__func__, name, value); }
+int rosc_param_set_bool(const char *name, int value) { return param_set(__func__, name, value != 0); }

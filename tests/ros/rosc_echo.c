@@ -22,6 +22,7 @@
  */
 #include "node_log.h"  /* the nodes' throttled logging (src/nodes) */
 #include "node_msg.h" /* the nodes' typed topics (src/nodes) */
+#include "ss_dynreconf.h"
 #include "rosc_test.h" /* rosc/rosc.h and the calls only tests make */
 #include "ss_test.h"
 
@@ -735,6 +736,26 @@ static void check_codec(const outbox *o)
   CHECK(ss_msg_decode(SS_MSG_SKIN_MESH, more, buf.len + 1, &got, &scratch, why, sizeof why) ==
             SS_MSG_E_MALFORMED && strstr(why, "1 bytes after") != NULL);
   ss_msg_scratch_free(&scratch);
+  /* dynamic_reconfigure's messages as the nodes build them, and a request read back */
+  static const char *const menu[] = {"a", "b", NULL};
+  const ss_dr_param dp[4] = {{"i", SS_DR_INT, "an int", 1, 0, 10, NULL},
+                             {"d", SS_DR_DOUBLE, "a double", 2, -INFINITY, INFINITY, NULL},
+                             {"b", SS_DR_BOOL, NULL, 4, 0, 1, NULL},
+                             {"s", SS_DR_STR, "a menu", 8, 0, 0, menu}};
+  ss_dr_value dv[4] = {{3, ""}, {2.5, ""}, {1, ""}, {0, "b"}};
+  ss_dr_value want[4] = {{-7, ""}, {1e-300, ""}, {0, ""}, {0, "a"}};
+  int same = 0;
+  CHECK(ss_dr_encode_config(dp, dv, 4, &buf) == SS_MSG_OK &&
+        rosc_test_reserialize("dynamic_reconfigure/Config", buf.data, buf.len, &same) == ROSC_OK &&
+        same);
+  CHECK(ss_dr_encode_description(dp, dv, 4, &buf) == SS_MSG_OK &&
+        rosc_test_reserialize("dynamic_reconfigure/ConfigDescription", buf.data, buf.len,
+                              &same) == ROSC_OK && same);
+  CHECK(ss_dr_encode_config(dp, want, 4, &buf) == SS_MSG_OK &&
+        ss_dr_decode_request(dp, 4, buf.data, buf.len, dv, why, sizeof why) == SS_MSG_OK);
+  for (int i = 0; i < 4; ++i) CHECK_MSG(!ss_dr_differ(dp[i].type, &dv[i], &want[i]), "request %d", i);
+  CHECK(ss_dr_decode_request(dp, 4, buf.data, buf.len - 1, dv, why, sizeof why) ==
+        SS_MSG_E_MALFORMED);
   ss_msg_buf_free(&buf);
   /* the shim serves only the types it knows, and bytes only */
   rosc_pub *raw = NULL;

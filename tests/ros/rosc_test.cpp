@@ -4,6 +4,8 @@
 #include "rosc_test.h"
 #include "rosc_internal.h"
 
+#include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <skin_sim/SkinMesh.h>
@@ -89,29 +91,6 @@ int rosc_param_has(const char *name, int *out)
   });
 }
 
-namespace {
-template <class T>
-int param_set(const char *func, const char *name, const T &value)
-{
-  return guard(func, [&]() -> int {
-    if (!valid_name(name)) return ROSC_E_INVALID;
-    int st = need_node();
-    if (st != ROSC_OK) return st;
-    ros::param::set(name, value);
-    return ROSC_OK;
-  });
-}
-}  // namespace
-
-int rosc_param_set_string(const char *name, const char *value)
-{
-  if (value == nullptr) return ROSC_E_INVALID;
-  return guard(__func__, [&]() -> int { return param_set(__func__, name, std::string(value)); });
-}
-int rosc_param_set_double(const char *name, double value) { return param_set(__func__, name, value); }
-int rosc_param_set_int(const char *name, int value) { return param_set(__func__, name, value); }
-int rosc_param_set_bool(const char *name, int value) { return param_set(__func__, name, value != 0); }
-
 int rosc_param_delete(const char *name)
 {
   return guard(__func__, [&]() -> int {
@@ -167,6 +146,10 @@ int rosc_test_reserialize(const char *datatype, const uint8_t *buf, size_t len, 
     if (t == "visualization_msgs/Marker")
       return reserialize<visualization_msgs::Marker>(buf, len, same);
     if (t == "std_msgs/String") return reserialize<std_msgs::String>(buf, len, same);
+    if (t == "dynamic_reconfigure/Config")
+      return reserialize<dynamic_reconfigure::Config>(buf, len, same);
+    if (t == "dynamic_reconfigure/ConfigDescription")
+      return reserialize<dynamic_reconfigure::ConfigDescription>(buf, len, same);
     return ROSC_E_INVALID;
   });
 }

@@ -31,11 +31,6 @@ int rosc_wall_sleep(double seconds);
 int rosc_param_get_string_alloc(const char *name, char **out, size_t *len);
 /* *out = 1 if the parameter is set (any type), else 0. */
 int rosc_param_has(const char *name, int *out);
-/* Setters; bool is any non-zero int. */
-int rosc_param_set_string(const char *name, const char *value);
-int rosc_param_set_double(const char *name, double value);
-int rosc_param_set_int(const char *name, int value);
-int rosc_param_set_bool(const char *name, int value);
 int rosc_param_delete(const char *name);   /* ROSC_OK also when it was not set */
 
 /* ---- topics */
