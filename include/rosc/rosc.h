@@ -4,7 +4,7 @@
  * (src/rosc, C++14). It knows nothing about skins, nor about the fields of a
  * message: it moves serialized messages, as roscpp does on the wire, and is glue
  * only (as robot_state_publisher's main is). It declares what the nodes call; what
- * only the tests call (setters, name lookups, service calls) is in
+ * only the tests call (name lookups, service calls, parameter deletion) is in
  * tests/ros/rosc_test.h, built on the same inside.
  *
  * Why bytes, and not typed C views converted field by field in C++: a typed shim
@@ -16,9 +16,10 @@
  * roscpp node's for rosbag, rviz and rostopic. The encoding lives in pure C beside
  * the checks that must see the bytes anyway (a subscriber sizes a message before
  * anything is allocated for it: roscpp's deserialiser trusts length prefixes), with
- * no allocation per message beyond the caller's reused buffers. The cost is that the
- * C field tables must follow the .msg files: test_rosc compares them with roscpp's
- * own serialisation and with rospy's messages.
+ * no allocation per message beyond the caller's reused buffers. Services go the same
+ * way (a request's bytes in, a response's out), so dynamic_reconfigure is the nodes'
+ * too. The cost is that the C field tables must follow the .msg files: test_rosc has
+ * roscpp read the C encoder's bytes back unchanged and reads rospy's messages.
  *
  * Conventions
  * - Every function that can fail returns an int status: ROSC_OK (0) or a negative
