@@ -289,7 +289,14 @@ static int nomem(reader *r, const field *f) {
 static int take_field(reader *r, const field *f, void *view, ss_msg_scratch *s) {
   uint32_t n = 0;
   switch (f->kind) {
-  case K_U32: case K_STAMP: return take(r, f, AT(view, f, void), 4 * (size_t)f->lanes) ? 0 : SS_MSG_E_MALFORMED;
+  case K_U32: return take(r, f, AT(view, f, void), 4 * (size_t)f->lanes) ? 0 : SS_MSG_E_MALFORMED;
+  case K_STAMP: {
+    uint32_t *t = AT(view, f, uint32_t);
+    if (!take(r, f, t, 8)) return SS_MSG_E_MALFORMED;
+    if (t[1] < 1000000000u) return 0;
+    snprintf(r->why, r->why_size, "%s: nsec %u is not below 1e9", f->name, (unsigned)t[1]);
+    return SS_MSG_E_MALFORMED;
+  }
   case K_F64: return take(r, f, AT(view, f, void), 8 * (size_t)f->lanes) ? 0 : SS_MSG_E_MALFORMED;
   case K_BOOL: {
     uint8_t b = 0;

@@ -163,9 +163,10 @@ enum { SS_MSG_OK = 0, SS_MSG_E_INVALID = -1, SS_MSG_E_NOMEM = -2, SS_MSG_E_MALFO
 int ss_msg_encode(int type, const void *view, ss_msg_buf *out);
 /* buf[0, len) as message `type` into *view, its arrays in scratch (valid until the next
  * decode with it). SS_MSG_E_MALFORMED, with one sentence in why naming the field, if
- * a length prefix claims more bytes than are left, the bytes end early or run on, or
- * a string does not fit its fixed-size field; nothing is sized from a prefix before
- * it is checked against the bytes left. scratch NULL: only sizes the message (the
+ * a length prefix claims more bytes than are left, the bytes end early or run on, a
+ * string does not fit its fixed-size field, or a stamp's nsec is 1e9 or more (what the
+ * encoder refuses too); nothing is sized from a prefix before it is checked against
+ * the bytes left. scratch NULL: only sizes the message (the
  * counts and the fixed-size fields filled in, the variable ones NULL), allocating
  * nothing. */
 int ss_msg_decode(int type, const uint8_t *buf, size_t len, void *view, ss_msg_scratch *scratch,
