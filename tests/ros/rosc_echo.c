@@ -952,6 +952,9 @@ static int run_listen(int argc, char **argv)
   }
   int want = atoi(argv[2]), got = 0;
   double timeout = atof(argv[3]), t0 = 0, t = 0;
+  /* the drop's log line must reach rosout.log (test_rosc.sh looks for it there) */
+  if (rosc_test_wait_rosout(timeout) != ROSC_OK)
+    fprintf(stderr, "listen: /rosout did not subscribe within %g s\n", timeout);
   msg_sub *sub = NULL;
   if (msg_subscribe(&sub, SS_MSG_SKIN_MESH, "mesh_in", 10, listen_mesh, NULL, &got) != ROSC_OK) return 1;
   rosc_wall_now_s(&t0);

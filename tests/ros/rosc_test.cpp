@@ -7,6 +7,7 @@
 #include <dynamic_reconfigure/Config.h>
 #include <dynamic_reconfigure/ConfigDescription.h>
 #include <ros/ros.h>
+#include <ros/topic_manager.h>
 #include <sensor_msgs/JointState.h>
 #include <skin_sim/SkinMesh.h>
 #include <skin_sim/SkinStats.h>
@@ -151,6 +152,20 @@ int rosc_test_reserialize(const char *datatype, const uint8_t *buf, size_t len, 
     if (t == "dynamic_reconfigure/ConfigDescription")
       return reserialize<dynamic_reconfigure::ConfigDescription>(buf, len, same);
     return ROSC_E_INVALID;
+  });
+}
+
+int rosc_test_wait_rosout(double timeout_s)
+{
+  return guard(__func__, [&]() -> int {
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s > 0 ? timeout_s : 0);
+    while (ros::TopicManager::instance()->getNumSubscribers("/rosout") == 0) {
+      if (ros::WallTime::now() >= deadline) return ROSC_E_TIMEOUT;
+      ros::WallDuration(0.02).sleep();
+    }
+    return ROSC_OK;
   });
 }
 

@@ -44,6 +44,11 @@ int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out);
  * if roscpp could not read them. */
 int rosc_test_reserialize(const char *datatype, const uint8_t *buf, size_t len, int *same);
 
+/* Waits (wall clock, up to timeout_s) until /rosout subscribes to this node's log, so
+ * that what it logs next reaches rosout.log: roscpp drops the lines a node logs before
+ * that connection is up. ROSC_E_TIMEOUT if it did not come. */
+int rosc_test_wait_rosout(double timeout_s);
+
 /* ---- services */
 /* Calls the std_srvs/Empty service `name`, waiting up to timeout_s (wall clock) for
  * it to exist. ROSC_OK when the server answered success, ROSC_E_TIMEOUT when it did
