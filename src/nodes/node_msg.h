@@ -87,13 +87,7 @@ typedef struct msg_sub {
 static inline void msg_sub_bytes_(const uint8_t *buf, size_t len, void *user)
 {
   msg_sub *s = user;
-  union {
-    ss_msg_skin_mesh mesh;
-    ss_msg_skin_stats stats;
-    ss_msg_joint_state joints;
-    ss_msg_marker marker;
-    ss_msg_string string;
-  } view;
+  ss_msg_any view;
   char why[256], topic[256] = "?";
   if (s->check != NULL && !s->check(buf, len, s->user)) return;
   if (ss_msg_decode(s->type, buf, len, &view, &s->scratch, why, sizeof why) == SS_MSG_OK) {

@@ -137,6 +137,15 @@ typedef struct ss_msg_string {
   const char *data; /* NUL-terminated (a received one with a NUL inside reads shorter) */
 } ss_msg_string;
 
+/* Room for a view of any type (a subscriber's decode target). */
+typedef union ss_msg_any {
+  ss_msg_skin_mesh skin_mesh;
+  ss_msg_skin_stats skin_stats;
+  ss_msg_joint_state joint_state;
+  ss_msg_marker marker;
+  ss_msg_string string;
+} ss_msg_any;
+
 /* A caller's output buffer (zero-initialise it; ss_msg_buf_free at the end). */
 typedef struct ss_msg_buf {
   uint8_t *data;

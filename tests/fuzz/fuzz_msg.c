@@ -14,13 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   static ss_msg_scratch scratch;
   static ss_msg_scratch again;
-  union {
-    ss_msg_skin_mesh mesh;
-    ss_msg_skin_stats stats;
-    ss_msg_joint_state joints;
-    ss_msg_marker marker;
-    ss_msg_string string;
-  } view, sized, view2;
+  ss_msg_any view, sized, view2;
   if (size == 0) return 0;
   int type = data[0] % SS_MSG_TYPES;
   const uint8_t *buf = data + 1;
