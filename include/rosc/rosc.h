@@ -1,10 +1,25 @@
 /* rosc: a thin C API over ROS 1's roscpp for skin_sim's plain-C nodes.
  *
  * The only code in skin_sim that includes ROS headers lives behind this header
- * (src/rosc, C++14). It knows nothing about skins: it passes flat arrays
- * in and out of the few message types the nodes use. It declares what the nodes
- * call; what only the tests call (setters, string topics, name lookups, service
- * calls) is in tests/ros/rosc_test.h, built on the same inside.
+ * (src/rosc, C++14). It knows nothing about skins, nor about the fields of a
+ * message: it moves serialized messages, as roscpp does on the wire, and is glue
+ * only (as robot_state_publisher's main is). It declares what the nodes call; what
+ * only the tests call (name lookups, service calls, parameter deletion) is in
+ * tests/ros/rosc_test.h, built on the same inside.
+ *
+ * Why bytes, and not typed C views converted field by field in C++: a typed shim
+ * copies every message type a second time (a C struct plus a conversion each way
+ * per field) and grows with each type. Bytes need one generic path: a publisher
+ * takes the bytes a node encoded, a subscriber hands over the bytes it received,
+ * under the md5sum, definition and name of the generated C++ message (one table row
+ * per type, from ros::message_traits), so the topic is indistinguishable from a
+ * roscpp node's for rosbag, rviz and rostopic. The encoding lives in pure C beside
+ * the checks that must see the bytes anyway (a subscriber sizes a message before
+ * anything is allocated for it: roscpp's deserialiser trusts length prefixes), with
+ * no allocation per message beyond the caller's reused buffers. Services go the same
+ * way (a request's bytes in, a response's out), so dynamic_reconfigure is the nodes'
+ * too. The cost is that the C field tables must follow the .msg files: test_rosc has
+ * roscpp read the C encoder's bytes back unchanged and reads rospy's messages.
  *
  * Conventions
  * - Every function that can fail returns an int status: ROSC_OK (0) or a negative
@@ -17,12 +32,8 @@
  * - Threading: call everything from one thread (the one that spins); callbacks run
  *   in that thread inside rosc_spin_*. Logging is safe from any thread. (A rosc_diag
  *   publishes from a thread of its own while the spinning one is busy: rosc_diag_busy.)
- * - Message views: a message is a plain struct whose arrays are (pointer, count)
- *   pairs. A count always counts elements of the message's own array (floats of
- *   SkinMesh.positions, points of Marker.points). A subscriber callback gets a const
- *   view valid only during the callback; copy what you keep. Publishing copies the
- *   view into a message object that each publisher reuses, so steady publishing
- *   does not reallocate.
+ * - Messages are serialized bytes (see "messages" below); a subscriber callback's
+ *   bytes are valid only during the callback.
  */
 #ifndef ROSC_ROSC_H
 #define ROSC_ROSC_H
@@ -92,25 +103,9 @@ int rosc_spin_for(double duration_s);
 
 /* ------------------------------------------------------------------ time */
 typedef struct rosc_time { uint32_t sec, nsec; } rosc_time;       /* since 1970 */
-typedef struct rosc_duration { int32_t sec, nsec; } rosc_duration;
 
 static inline double rosc_time_to_s(rosc_time t) { return (double)t.sec + 1e-9 * (double)t.nsec; }
 static inline int64_t rosc_time_to_ns(rosc_time t) { return (int64_t)t.sec * 1000000000 + (int64_t)t.nsec; }
-static inline rosc_time rosc_time_from_ns(int64_t ns)
-{
-  rosc_time t;
-  if (ns < 0) ns = 0;                                   /* clamped to what fits */
-  if (ns > (int64_t)4294967295 * 1000000000 + 999999999) ns = (int64_t)4294967295 * 1000000000 + 999999999;
-  t.sec = (uint32_t)(ns / 1000000000);
-  t.nsec = (uint32_t)(ns % 1000000000);
-  return t;
-}
-static inline rosc_time rosc_time_from_s(double s)
-{
-  if (!(s > 0.0)) return rosc_time_from_ns(0);   /* also NaN */
-  if (s >= 4294967296.0) return rosc_time_from_ns(INT64_MAX);
-  return rosc_time_from_ns((int64_t)(s * 1e9 + 0.5));
-}
 
 /* ROS time: simulated (/clock) when the parameter /use_sim_time is true, else wall.
  * With sim time it is zero until the first /clock message arrives. */
@@ -138,161 +133,79 @@ int rosc_param_get_string(const char *name, char *buf, size_t buf_size, const ch
 int rosc_param_get_double(const char *name, double *out, double def, int *was_set);
 int rosc_param_get_int(const char *name, int *out, int def, int *was_set);
 int rosc_param_get_bool(const char *name, int *out, int def, int *was_set);
-/* What the server holds under name, in words: "the string 'abc'" (cut after 60
- * characters), "the double 2.5", "the int 3", "the bool true", "a list", "a
- * dictionary"; for a node to say why a getter returned ROSC_E_TYPE.
- * ROSC_E_NOTFOUND if it is not set. */
-int rosc_param_describe(const char *name, char *buf, size_t buf_size);
+/* The type the server holds under name (ROSC_PARAM_*), for a node to say why a
+ * getter returned ROSC_E_TYPE. ROSC_E_NOTFOUND if it is not set. */
+enum { ROSC_PARAM_STRING = 1, ROSC_PARAM_INT, ROSC_PARAM_DOUBLE, ROSC_PARAM_BOOL, ROSC_PARAM_LIST,
+       ROSC_PARAM_DICT, ROSC_PARAM_OTHER };
+int rosc_param_type(const char *name, int *type);
 /* The URDF as robot_state_publisher finds it: the parameter "robot_description"
  * searched upwards from the node's namespace (so "/robot_description" for a node in
  * the root namespace; remappable). Any size; malloc'd, caller frees. ROSC_E_NOTFOUND
  * if no such parameter exists. */
 int rosc_robot_description(char **out, size_t *len);
+/* Setters; bool is any non-zero int. */
+int rosc_param_set_string(const char *name, const char *value);
+int rosc_param_set_double(const char *name, double value);
+int rosc_param_set_int(const char *name, int value);
+int rosc_param_set_bool(const char *name, int value);
 
 /* ------------------------------------------------------------------ messages */
-#define ROSC_FRAME_ID_MAX 256   /* bytes, with the terminating NUL */
-
-/* std_msgs/Header. seq: roscpp writes its own sequence number into messages sent
- * over TCP, so the value given to publish is not what subscribers see. */
-typedef struct rosc_header {
-  uint32_t seq;
-  rosc_time stamp;
-  char frame_id[ROSC_FRAME_ID_MAX];   /* NUL-terminated */
-} rosc_header;
-
-/* skin_sim/SkinMesh: a whole triangle mesh in one frame. */
-typedef struct rosc_skin_mesh {
-  rosc_header header;
-  uint32_t topology_id;
-  const float *positions;      /* (n_positions) = (n_vertices x 3) xyz interleaved, metres */
-  size_t n_positions;
-  const uint32_t *triangles;   /* (n_triangles) = (n_faces x 3) vertex indices */
-  size_t n_triangles;
-  const uint32_t *rigid_part;  /* (n_rigid_part) = (n_vertices) or none (NULL, 0): see
-                                  msg/SkinMesh.msg */
-  size_t n_rigid_part;
-} rosc_skin_mesh;
-
-/* skin_sim/SkinStats: what one skin step did and cost (see msg/SkinStats.msg): its
- * fields after the header, in the message's order, as X(type, name) (the shim
- * copies them in one loop). */
-#define ROSC_SKIN_STATS_FIELDS(X) \
-  X(float, total_ms) X(float, walk_ms) X(float, assemble_ms) X(float, solve_ms) \
-  X(uint32_t, iterations) X(float, residual) X(uint32_t, substeps) \
-  X(uint32_t, anchors_at_boundary) X(uint32_t, anchors_at_crease) X(float, max_slide) \
-  X(uint32_t, inputs_rejected) X(uint32_t, inputs_dropped) X(uint32_t, resets) \
-  X(uint32_t, inputs_skipped) X(uint32_t, failures) X(float, latency_ms) \
-  X(uint32_t, triangles_simulated) X(uint32_t, triangles_carried) \
-  X(uint32_t, iterations_per_substep) X(float, step_budget_ms) X(uint32_t, faces_turned) \
-  X(uint32_t, vertices_far)
-#define ROSC_FIELD_(type, name) type name;
-typedef struct rosc_skin_stats {
-  rosc_header header;
-  ROSC_SKIN_STATS_FIELDS(ROSC_FIELD_)
-} rosc_skin_stats;
-
-/* sensor_msgs/JointState. Arrays may be empty (NULL, 0). */
-typedef struct rosc_joint_state {
-  rosc_header header;
-  const char *const *name;     /* (n_name) NUL-terminated joint names */
-  size_t n_name;
-  const double *position;      /* (n_position) rad or m */
-  size_t n_position;
-  const double *velocity;      /* (n_velocity) */
-  size_t n_velocity;
-  const double *effort;        /* (n_effort) */
-  size_t n_effort;
-} rosc_joint_state;
-
-/* visualization_msgs/Marker, all fields. Points travel as float64 in the message;
- * here they are float (the skin's type): float -> double -> float is exact. */
-enum {
-  ROSC_MARKER_ARROW = 0, ROSC_MARKER_CUBE = 1, ROSC_MARKER_SPHERE = 2,
-  ROSC_MARKER_CYLINDER = 3, ROSC_MARKER_LINE_STRIP = 4, ROSC_MARKER_LINE_LIST = 5,
-  ROSC_MARKER_CUBE_LIST = 6, ROSC_MARKER_SPHERE_LIST = 7, ROSC_MARKER_POINTS = 8,
-  ROSC_MARKER_TEXT_VIEW_FACING = 9, ROSC_MARKER_MESH_RESOURCE = 10,
-  ROSC_MARKER_TRIANGLE_LIST = 11
-};
-enum { ROSC_MARKER_ADD = 0, ROSC_MARKER_DELETE = 2, ROSC_MARKER_DELETEALL = 3 };
-#define ROSC_MARKER_NS_MAX 256
-typedef struct rosc_marker {
-  rosc_header header;
-  char ns[ROSC_MARKER_NS_MAX];  /* NUL-terminated */
-  int32_t id;
-  int32_t type;                 /* ROSC_MARKER_TRIANGLE_LIST, ... */
-  int32_t action;               /* ROSC_MARKER_ADD, ... */
-  double position[3];           /* pose of the marker frame in header.frame_id */
-  double orientation[4];        /* quaternion x y z w; all zero is read by rviz as identity
-                                   with a warning: give w = 1 */
-  double scale[3];              /* TRIANGLE_LIST: 1 1 1 */
-  float color[4];               /* r g b a in [0, 1]; used where colors is empty */
-  rosc_duration lifetime;       /* 0: forever */
-  int frame_locked;
-  const float *points;          /* (n_points x 3) xyz; TRIANGLE_LIST: 3 per triangle */
-  size_t n_points;
-  const float *colors;          /* (n_colors x 4) rgba; 0 or one per point */
-  size_t n_colors;
-  const char *text;             /* NULL means "" */
-  const char *mesh_resource;    /* NULL means "" */
-  int mesh_use_embedded_materials;
-} rosc_marker;
-
-/* std_msgs/String. */
-typedef struct rosc_string {
-  const char *data;             /* NUL-terminated; may contain no NUL inside */
-  size_t len;
-} rosc_string;
-
-typedef enum rosc_msg_type {
-  ROSC_MSG_SKIN_MESH = 1,
-  ROSC_MSG_SKIN_STATS,
-  ROSC_MSG_JOINT_STATE,
-  ROSC_MSG_MARKER,
-  ROSC_MSG_STRING
-} rosc_msg_type;
+/* Messages travel as ROS 1's serialized bytes (the wire format, without the 4-byte
+ * length that precedes a message on a connection). A type is named as ROS names it
+ * ("skin_sim/SkinMesh"); the shim knows, from the generated C++ messages, the md5sum,
+ * the definition and the name of each it serves (ROSC_MSG_TYPES), so that rosbag,
+ * rviz and `rostopic echo` see the real types. It knows no field: the nodes encode
+ * and decode the bytes themselves (src/stream/ss_msg.h, pure C). */
+#define ROSC_MSG_TYPES "skin_sim/SkinMesh skin_sim/SkinStats sensor_msgs/JointState " \
+                       "visualization_msgs/Marker std_msgs/String dynamic_reconfigure/Config " \
+                       "dynamic_reconfigure/ConfigDescription"
 
 /* ------------------------------------------------------------------ publishers */
 typedef struct rosc_pub rosc_pub;
-/* Advertises `topic` (give it relative) for one message type (a rosc_msg_type;
- * an int so that any value is safe to pass: others give ROSC_E_INVALID). queue_size: outgoing
- * messages kept per subscriber before the oldest is dropped (>= 1). latch: new
- * subscribers get the last message. */
-int rosc_pub_create(rosc_pub **out, int type, const char *topic,
+/* Advertises `topic` (give it relative) for messages of `datatype` (one of
+ * ROSC_MSG_TYPES; others are ROSC_E_INVALID). queue_size: outgoing messages kept per
+ * subscriber before the oldest is dropped (>= 1). latch: new subscribers get the last
+ * message. */
+int rosc_pub_create(rosc_pub **out, const char *datatype, const char *topic,
                     unsigned queue_size, int latch);
-/* Publishes msg, the C view of message type `type` (rosc_skin_mesh for
- * ROSC_MSG_SKIN_MESH, rosc_skin_stats, rosc_joint_state, rosc_marker, rosc_string):
- * ROSC_E_INVALID if the publisher has another message type, a pointer is NULL with a
- * non-zero count, or a string is not terminated within its buffer. */
-int rosc_publish(rosc_pub *pub, int type, const void *msg);
+/* Publishes one message of the publisher's type: its len serialized bytes (copied
+ * before it returns; ROSC_E_INVALID for NULL with len > 0 or len >= 4 GiB). */
+int rosc_publish(rosc_pub *pub, const uint8_t *bytes, size_t len);
 /* Number of subscribers connected now. */
 int rosc_pub_num_subscribers(const rosc_pub *pub, unsigned *out);
 int rosc_pub_destroy(rosc_pub *pub);   /* unadvertises; NULL is fine */
 
 /* ------------------------------------------------------------------ subscribers */
 typedef struct rosc_sub rosc_sub;
-/* A received message: msg is the C view of the subscriber's message type (a
- * const rosc_skin_mesh * for ROSC_MSG_SKIN_MESH, ...), valid during the call only. */
-typedef void (*rosc_msg_cb)(const void *msg, void *user);
-/* A received message's bytes (ROS 1's wire format) before anything is allocated for
- * it: 1 takes the message, 0 drops it unread (the check says why itself). A node
- * that takes input from outside sizes it here: roscpp's deserialiser trusts the
- * length prefixes (see src/stream/ss_wire.h). */
-typedef int (*rosc_bytes_cb)(const uint8_t *buf, size_t len, void *user);
-/* Subscribes `topic` (give it relative) for one message type (a rosc_msg_type);
- * check(bytes, user) (may be NULL) and then cb(msg, user) run inside rosc_spin_*.
- * queue_size: incoming messages kept before the oldest is dropped (>= 1); a node
- * that must not fall behind uses 1; a message dropped so is never read.
- * TCP_NODELAY is requested (low latency). A message whose frame_id or marker ns
- * does not fit the C struct is dropped with a throttled error. */
-int rosc_subscribe(rosc_sub **out, int type, const char *topic, unsigned queue_size,
-                   rosc_msg_cb cb, rosc_bytes_cb check, void *user);
+/* A received message's len serialized bytes, valid during the call only. Nothing has
+ * been read from them: a node that takes input from outside sizes them before it
+ * trusts a length prefix (src/stream/ss_msg.h does). */
+typedef void (*rosc_msg_cb)(const uint8_t *buf, size_t len, void *user);
+/* Subscribes `topic` (give it relative) for messages of `datatype` (one of
+ * ROSC_MSG_TYPES); cb(bytes, len, user) runs inside rosc_spin_*. queue_size: incoming
+ * messages kept before the oldest is dropped (>= 1); a node that must not fall behind
+ * uses 1; a message dropped so is never copied. TCP_NODELAY is requested (low
+ * latency). */
+int rosc_subscribe(rosc_sub **out, const char *datatype, const char *topic,
+                   unsigned queue_size, rosc_msg_cb cb, void *user);
+/* The fully resolved topic name (after remapping), for the node's log lines. */
+int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
 int rosc_sub_destroy(rosc_sub *sub);   /* unsubscribes; NULL is fine */
 
 /* ------------------------------------------------------------------ services */
-/* A std_srvs/Empty service (e.g. "~reset"). cb(user) runs inside rosc_spin_*, in the
- * spinning thread like every callback; it returns 0 for success, anything else makes
- * the call fail (the caller sees a service error). Implemented in src/rosc/rosc_srv.cpp. */
+/* Services served as bytes, like topics: a request's serialized bytes in, a response's
+ * out, under the md5sum and names of the generated C++ service of srv_type (one of
+ * ROSC_SRV_TYPES). cb runs inside rosc_spin_*, in the spinning thread like every
+ * callback; it returns 0 for success with *resp, *resp_len the response's bytes (valid
+ * until its next call; NULL, 0 for an empty response), anything else makes the call
+ * fail (the caller sees a service error). Names as topics ("~reset" is private). */
+#define ROSC_SRV_TYPES "std_srvs/Empty dynamic_reconfigure/Reconfigure"
 typedef struct rosc_srv rosc_srv;
+typedef int (*rosc_srv_cb)(const uint8_t *req, size_t req_len, const uint8_t **resp,
+                           size_t *resp_len, void *user);
+int rosc_srv_create(rosc_srv **out, const char *name, const char *srv_type, rosc_srv_cb cb,
+                    void *user);
+/* A std_srvs/Empty service: cb(user) returns 0 for success. */
 typedef int (*rosc_empty_cb)(void *user);
 int rosc_srv_empty(rosc_srv **out, const char *name, rosc_empty_cb cb, void *user);
 /* The fully resolved service name. */
@@ -332,69 +245,22 @@ typedef void (*rosc_diag_busy_cb)(double busy_s, int last_level, rosc_diag_busy_
 int rosc_diag_busy(rosc_diag *d, rosc_diag_busy_cb cb, void *user);
 int rosc_diag_destroy(rosc_diag *d);   /* NULL is fine */
 
-/* ------------------------------------------------------------------ dynamic_reconfigure */
-/* A dynamic_reconfigure server spoken from a table given at run time (no .cfg file):
- * the ~set_parameters service (dynamic_reconfigure/Reconfigure) and the latched
- * ~parameter_descriptions (ConfigDescription) and ~parameter_updates (Config)
- * topics, so that rqt_reconfigure and `rosrun dynamic_reconfigure dynparam` work.
- * Every value in force is also written to the parameter server as ~NAME, as
- * dynamic_reconfigure's own server does. Implemented in src/rosc/rosc_dynreconf.cpp. */
-enum { ROSC_DR_INT = 0, ROSC_DR_DOUBLE = 1, ROSC_DR_BOOL = 2, ROSC_DR_STR = 3 };
-#define ROSC_DR_STR_MAX 128
-typedef struct rosc_dr_param {
-  const char *name;            /* e.g. "slide" */
-  int type;                    /* ROSC_DR_* */
-  const char *description;     /* one line, shown by rqt_reconfigure */
-  unsigned level;              /* ORed over the changed parameters (dynamic_reconfigure's level) */
-  double min, max;             /* numbers: the bounds clients are told (may be infinite) */
-  const char *const *choices;  /* str: NULL-terminated names offered as a menu; NULL: free text */
-} rosc_dr_param;
-typedef struct rosc_dr_value {
-  double num;                  /* int, double, bool (0/1) */
-  char str[ROSC_DR_STR_MAX];   /* str */
-} rosc_dr_value;
-/* Called inside rosc_spin_* for a set_parameters request: values (n, in the order of the
- * table) hold the configuration asked for (parameters the request did not name keep the
- * value in force), changed[i] is 1 where it differs. The callback applies what it accepts
- * and leaves in values what is IN FORCE afterwards (a refused value back to its old one):
- * that is what the caller gets back and what ~parameter_updates publishes. */
-typedef void (*rosc_dr_cb)(rosc_dr_value *values, const int *changed, size_t n, void *user);
-typedef struct rosc_dynreconf rosc_dynreconf;
-/* params and dflt, current: n entries each (copied). Publishes the description and the
- * current configuration at once. */
-int rosc_dynreconf_create(rosc_dynreconf **out, const rosc_dr_param *params,
-                          const rosc_dr_value *dflt, const rosc_dr_value *current, size_t n,
-                          rosc_dr_cb cb, void *user);
-/* The values in force changed outside a request: publishes them (n as at create). */
-int rosc_dynreconf_update(rosc_dynreconf *dr, const rosc_dr_value *values, size_t n);
-int rosc_dynreconf_destroy(rosc_dynreconf *dr);   /* NULL is fine */
-
 /* ------------------------------------------------------------------ logging */
 /* Levels as rosconsole's. Messages go to the console and, once the node runs, to
  * /rosout (logger "ros.skin_sim"); the level threshold is rosconsole's (DEBUG is
  * hidden by default). Safe from any thread and before rosc_init. */
 enum { ROSC_LOG_DEBUG = 0, ROSC_LOG_INFO = 1, ROSC_LOG_WARN = 2, ROSC_LOG_ERROR = 3,
        ROSC_LOG_FATAL = 4 };
-/* The caller's file, line and function show in the log. period_s > 0 prints at most
- * once per period_s seconds of wall-clock time per key (a bag looping ROS time back
- * does not silence it); when messages were held back, the next one that prints says
- * how many. key NULL: the format string's text is the key. The macros below fill in
- * the place. */
-int rosc_log_at(int level, const char *file, int line, const char *func, double period_s,
-                const char *key, const char *fmt, ...) ROSC_PRINTF(7, 8);
+/* The caller's file, line and function show in the log; the macros below fill them
+ * in. No throttle here: a node throttles (and counts what it held back) below the shim
+ * (src/stream/ss_throttle.h, src/nodes/node_log.h) and hands rosc the finished line. */
+int rosc_log_at(int level, const char *file, int line, const char *func, const char *fmt, ...)
+    ROSC_PRINTF(5, 6);
 
-#define ROSC_STR_(x) #x
-#define ROSC_STR(x) ROSC_STR_(x)
-#define ROSC_DEBUG(...) rosc_log_at(ROSC_LOG_DEBUG, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
-#define ROSC_INFO(...) rosc_log_at(ROSC_LOG_INFO, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
-#define ROSC_WARN(...) rosc_log_at(ROSC_LOG_WARN, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
-#define ROSC_ERROR(...) rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, 0.0, NULL, __VA_ARGS__)
-/* Throttled per call site. */
-#define ROSC_LOG_THROTTLE(level, period_s, ...) \
-  rosc_log_at((level), __FILE__, __LINE__, __func__, (period_s), \
-              __FILE__ ":" ROSC_STR(__LINE__), __VA_ARGS__)
-#define ROSC_WARN_THROTTLE(period_s, ...) ROSC_LOG_THROTTLE(ROSC_LOG_WARN, period_s, __VA_ARGS__)
-#define ROSC_ERROR_THROTTLE(period_s, ...) ROSC_LOG_THROTTLE(ROSC_LOG_ERROR, period_s, __VA_ARGS__)
+#define ROSC_DEBUG(...) rosc_log_at(ROSC_LOG_DEBUG, __FILE__, __LINE__, __func__, __VA_ARGS__)
+#define ROSC_INFO(...) rosc_log_at(ROSC_LOG_INFO, __FILE__, __LINE__, __func__, __VA_ARGS__)
+#define ROSC_WARN(...) rosc_log_at(ROSC_LOG_WARN, __FILE__, __LINE__, __func__, __VA_ARGS__)
+#define ROSC_ERROR(...) rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, __VA_ARGS__)
 
 #ifdef __cplusplus
 }

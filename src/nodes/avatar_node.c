@@ -30,6 +30,8 @@
  * names the file, and the node keeps publishing its last good body. At start
  * there is no good body yet: a failed load ends the node (exit 1, or 2 for a
  * bad parameter). */
+#include "node_log.h"
+#include "node_msg.h"
 #include "node_params.h"
 #include "rosc/rosc.h"
 #include "ss_input.h"
@@ -46,7 +48,7 @@
 typedef struct body {
   ssa_avatar *av;
   const ssa_robot *robot;
-  char frame[ROSC_FRAME_ID_MAX];
+  char frame[SS_MSG_FRAME_ID_MAX];
   uint32_t topology_id;
   double *q;          /* (njoint) last joint values */
   double *q_try;      /* (njoint) */
@@ -58,7 +60,7 @@ typedef struct body {
 
 typedef struct node {
   body b;             /* the last good body */
-  rosc_pub *pub_mesh, *pub_stats;
+  msg_pub *pub_mesh, *pub_stats;
   unsigned long reloads, reload_failures;
   uint32_t rejected, unknown_names;
   unsigned long in, out;
@@ -71,13 +73,13 @@ typedef struct node {
 static void reject(node *nd, const char *why)
 {
   nd->rejected++;
-  ROSC_WARN_THROTTLE(1.0, "rejected joint_states: %s (%u rejected so far)", why,
+  NODE_WARN_THROTTLE(1.0, "rejected joint_states: %s (%u rejected so far)", why,
                      (unsigned)nd->rejected);
 }
 
 static void on_joints(const void *msg, void *user)
 {
-  const rosc_joint_state *m = msg;
+  const ss_msg_joint_state *m = msg;
   node *nd = user;
   nd->in++;
   char why[ERR_SZ];
@@ -116,7 +118,7 @@ static void on_joints(const void *msg, void *user)
   }
   if (unknown) {
     nd->unknown_names += (uint32_t)unknown;
-    ROSC_WARN_THROTTLE(5.0, "joint_states names %zu joint(s) the robot does not have (first: "
+    NODE_WARN_THROTTLE(5.0, "joint_states names %zu joint(s) the robot does not have (first: "
                        "'%s'): ignored (%u names ignored so far)", unknown, first_unknown,
                        (unsigned)nd->unknown_names);
   }
@@ -143,10 +145,10 @@ static void on_joints(const void *msg, void *user)
   for (size_t i = 0; i < n3; i++) b->pos_out[i] = (float)b->pose[i];
   rosc_wall_now_s(&t1);
 
-  rosc_skin_mesh out;
+  ss_msg_skin_mesh out;
   memset(&out, 0, sizeof out);
   out.header.stamp = m->header.stamp;
-  if (out.header.stamp.sec == 0 && out.header.stamp.nsec == 0) rosc_now(&out.header.stamp);
+  if (out.header.stamp.sec == 0 && out.header.stamp.nsec == 0) out.header.stamp = msg_now();
   snprintf(out.header.frame_id, sizeof out.header.frame_id, "%s", b->frame);
   out.topology_id = b->topology_id;
   out.positions = b->pos_out;
@@ -155,15 +157,15 @@ static void on_joints(const void *msg, void *user)
   out.n_triangles = 3 * (size_t)b->av->nface;
   out.rigid_part = b->rigid_out;
   out.n_rigid_part = (size_t)b->av->nvert;
-  if (rosc_publish(nd->pub_mesh, ROSC_MSG_SKIN_MESH, &out) == ROSC_OK) nd->out++;
+  if (msg_publish(nd->pub_mesh, SS_MSG_SKIN_MESH, &out) == ROSC_OK) nd->out++;
 
-  rosc_skin_stats s;
+  ss_msg_skin_stats s;
   memset(&s, 0, sizeof s);
   s.header = out.header;
   s.total_ms = (float)(1e3 * (t1 - t0));
   s.inputs_rejected = nd->rejected;
   s.inputs_dropped = nd->unknown_names;
-  rosc_publish(nd->pub_stats, ROSC_MSG_SKIN_STATS, &s);
+  msg_publish(nd->pub_stats, SS_MSG_SKIN_STATS, &s);
 }
 
 static void on_avatar_warning(void *user, const char *msg)
@@ -347,13 +349,13 @@ int main(int argc, char **argv)
     rosc_shutdown();
     return load;
   }
-  rosc_sub *sub = NULL;
+  msg_sub *sub = NULL;
   rosc_srv *srv_reload = NULL;
   int status = 0;
-  if (rosc_pub_create(&nd.pub_mesh, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
-      rosc_pub_create(&nd.pub_stats, ROSC_MSG_SKIN_STATS, "avatar_stats", 10, 0) != ROSC_OK ||
-      rosc_subscribe(&sub, ROSC_MSG_JOINT_STATE, "joint_states", (unsigned)nd.queue, on_joints, NULL,
-                     &nd) != ROSC_OK ||
+  if (msg_pub_create(&nd.pub_mesh, SS_MSG_SKIN_MESH, "kinematic_mesh", 4, 0) != ROSC_OK ||
+      msg_pub_create(&nd.pub_stats, SS_MSG_SKIN_STATS, "avatar_stats", 10, 0) != ROSC_OK ||
+      msg_subscribe(&sub, SS_MSG_JOINT_STATE, "joint_states", (unsigned)nd.queue, on_joints,
+                    NULL, &nd) != ROSC_OK ||
       rosc_srv_empty(&srv_reload, "~reload", on_reload, &nd) != ROSC_OK) {
     /* a SIGINT during set-up makes roscpp refuse new publishers: a clean stop */
     if (rosc_ok()) {
@@ -369,9 +371,9 @@ int main(int argc, char **argv)
               nd.reload_failures);
   }
   rosc_srv_destroy(srv_reload);
-  rosc_sub_destroy(sub);
-  rosc_pub_destroy(nd.pub_mesh);
-  rosc_pub_destroy(nd.pub_stats);
+  msg_sub_destroy(sub);
+  msg_pub_destroy(nd.pub_mesh);
+  msg_pub_destroy(nd.pub_stats);
   rosc_shutdown();
   body_free(&nd.b);
   return status;

@@ -11,6 +11,7 @@
  * ever) ends the node after that long. A parameter of the wrong type or out of
  * range, or a motion that moves no joint of robot_description, stops the node
  * at start (exit 2) with one message. */
+#include "node_msg.h"
 #include "node_params.h"
 #include "rosc/rosc.h"
 #include "skin_sim/ssa_avatar.h"
@@ -82,9 +83,9 @@ int main(int argc, char **argv)
     names[n] = robot->joint_name[j];
     idx[n++] = j;
   }
-  rosc_pub *pub = NULL;
+  msg_pub *pub = NULL;
   rosc_rate *loop = NULL;
-  if (rosc_pub_create(&pub, ROSC_MSG_JOINT_STATE, "joint_states", 10, 0) != ROSC_OK ||
+  if (msg_pub_create(&pub, SS_MSG_JOINT_STATE, "joint_states", 10, 0) != ROSC_OK ||
       rosc_rate_create(&loop, rate) != ROSC_OK) {
     ROSC_ERROR("cannot advertise joint_states");
     rosc_shutdown();
@@ -112,21 +113,21 @@ int main(int argc, char **argv)
     if (duration > 0.0 && t >= duration) break;
     ssa_motion_builtin_eval(mi, t * speed, robot, q);
     for (int k = 0; k < n; k++) val[k] = q[idx[k]];
-    rosc_joint_state js;
+    ss_msg_joint_state js;
     memset(&js, 0, sizeof js);
-    js.header.stamp = rosc_time_from_ns(stamp_ns);
+    js.header.stamp = ss_msg_time_from_ns(stamp_ns);
     js.name = names;
     js.n_name = (size_t)n;
     js.position = val;
     js.n_position = (size_t)n;
-    if (rosc_publish(pub, ROSC_MSG_JOINT_STATE, &js) == ROSC_OK) sent++;
+    if (msg_publish(pub, SS_MSG_JOINT_STATE, &js) == ROSC_OK) sent++;
     i++;
     rosc_spin_once(0.0);
     rosc_rate_sleep(loop, NULL);
   }
   ROSC_INFO("motion: %lu joint_states sent", sent);
   rosc_rate_destroy(loop);
-  rosc_pub_destroy(pub);
+  msg_pub_destroy(pub);
   rosc_shutdown();
   free(names); free(idx); free(q); free(val);
   ssa_robot_destroy(robot);

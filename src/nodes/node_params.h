@@ -6,6 +6,7 @@
 #define SKIN_SIM_NODE_PARAMS_H
 
 #include "rosc/rosc.h"
+#include "ss_dynreconf.h"
 #include "skin_sim/ss_settings.h"
 
 #include <stdio.h>
@@ -13,6 +14,39 @@
 #include <string.h>
 
 #include <stddef.h>
+
+/* What the server holds under name, in words: "the string 'abc'" (cut after 60
+ * characters), "the double 2.5", "the int 3", "the bool true", "a list", "a
+ * dictionary". */
+static inline void param_describe(const char *name, char *held, size_t size)
+{
+  int type = 0, i = 0;
+  double d = 0.0;
+  char text[64];
+  snprintf(held, size, "a value of another type");
+  if (rosc_param_type(name, &type) != ROSC_OK) return;
+  switch (type) {
+  case ROSC_PARAM_STRING:
+    rosc_param_get_string(name, text, sizeof text, "", NULL); /* a prefix if longer */
+    snprintf(held, size, "the string '%.60s%s'", text, strlen(text) > 60 ? "..." : "");
+    break;
+  case ROSC_PARAM_INT:
+    rosc_param_get_int(name, &i, 0, NULL);
+    snprintf(held, size, "the int %d", i);
+    break;
+  case ROSC_PARAM_DOUBLE:
+    rosc_param_get_double(name, &d, 0.0, NULL);
+    snprintf(held, size, "the double %g", d);
+    break;
+  case ROSC_PARAM_BOOL:
+    rosc_param_get_bool(name, &i, 0, NULL);
+    snprintf(held, size, "the bool %s", i ? "true" : "false");
+    break;
+  case ROSC_PARAM_LIST: snprintf(held, size, "a list"); break;
+  case ROSC_PARAM_DICT: snprintf(held, size, "a dictionary"); break;
+  default: break;
+  }
+}
 
 /* 1 if a getter read its parameter (or its default); else logs why (a wrong type
  * names the parameter, the type wanted and the value given: "~substeps must be an
@@ -24,8 +58,8 @@ static inline int param_ok(int status, const char *name, const char *expected)
     ROSC_ERROR("parameter %s: %s", name, rosc_strerror(status));
     return 0;
   }
-  char held[128] = "a value of another type", text[128];
-  rosc_param_describe(name, held, sizeof held);
+  char held[128], text[128];
+  param_describe(name, held, sizeof held);
   /* roslaunch reads a number without a '.' (1e-4) as a string */
   const char *hint = "";
   char *end = NULL;
@@ -96,7 +130,7 @@ static inline int get_setting(const ss_setting *d, ss_sim_settings *set)
 
 /* Every setting of the table on dynamic_reconfigure (rqt_reconfigure, dynparam): ints,
  * doubles and bools as such, enums and vectors as text. */
-static inline void dr_value(const ss_setting *d, const ss_sim_settings *s, rosc_dr_value *v)
+static inline void dr_value(const ss_setting *d, const ss_sim_settings *s, ss_dr_value *v)
 {
   memset(v, 0, sizeof *v);
   if (d->type == SS_SETTING_ENUM || d->type == SS_SETTING_VEC3)

@@ -7,6 +7,9 @@
 #ifndef SKIN_SIM_SKIN_NODE_H
 #define SKIN_SIM_SKIN_NODE_H
 
+#include "node_dynreconf.h"
+#include "node_log.h"
+#include "node_msg.h"
 #include "node_params.h"
 #include "skin_params.h"
 #include "rosc/rosc.h"
@@ -37,7 +40,7 @@ typedef struct skin_file {
 
 
 typedef struct mailbox {
-  rosc_header header;
+  ss_msg_header header;
   int disc;             /* SS_TIME_GAP / SS_TIME_BACKWARDS: the input jumped before it; else 0 */
   uint32_t topology_id;
   float *pos;
@@ -56,11 +59,15 @@ typedef struct inbox {
   int cap, head, count;
 } inbox;
 
+/* The kinds of a rejected kinematic_mesh, each logged on its own throttle. */
+enum { REJECT_SIZE, REJECT_CREATE, REJECT_NONFINITE, REJECT_MALFORMED, REJECT_TOPOLOGY,
+       REJECT_RIGID_PART, REJECT_STEP, REJECT_KINDS };
+
 typedef struct node {
   params p;
   skin_file skin;         /* ~skin_mesh, or none */
   inbox in;
-  rosc_pub *pub_mesh, *pub_stats, *pub_marker;
+  msg_pub *pub_mesh, *pub_stats, *pub_marker;
   /* simulation and its topology; the body is the received mesh, the skin its copy or
    * ~skin_mesh, published in its own vertex layout (the body's, or the file's) */
   ss_sim *sim;
@@ -93,13 +100,14 @@ typedef struct node {
   int carry_disc;         /* a jump seen on a message that was rejected: reset on the next */
   /* counters */
   uint32_t rejected, dropped, skipped, resets, failures;
+  ss_throttle reject_log[REJECT_KINDS]; /* one warning per kind of problem per second */
   unsigned long frames_in, frames_out, steps; /* steps: ss_sim_step calls */
   double last_marker_wall;
   /* ~reset (std_srvs/Empty): the next mesh creates the skin again on its pose */
   int reset_req;
   /* dynamic_reconfigure changed a setting the skin cannot change in place: the same */
   int recreate_req;
-  rosc_dynreconf *dr;
+  node_dr *dr;
   /* /diagnostics: figures since the last status (a window of ~diagnostic_period) */
   rosc_diag *diag;
   double diag_wall;       /* wall time of the last status */
@@ -116,7 +124,7 @@ typedef struct node {
 /* ---- skin_node_output.c ---- */
 /* Publishes skin_mesh and skin_stats for the input header in_hdr (stats: the
  * step's sums acc, its wall time and substeps), and skin_marker at ~marker_rate. */
-void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, double total_ms,
+void node_publish(node *nd, const ss_msg_header *in_hdr, const ss_sim_stats *acc, double total_ms,
                   int substeps);
 
 /* ---- skin_node_health.c ---- */

@@ -18,7 +18,7 @@ int node_on_reset(void *user)
  * gets them from its next step (ss_sim_set_settings refactors what needs it), or is
  * created again on the next mesh when the change needs a new skin. values go back as
  * what is in force. */
-static void on_reconfigure(rosc_dr_value *v, const int *changed, size_t n, void *user)
+static void on_reconfigure(ss_dr_value *v, const int *changed, size_t n, void *user)
 {
   node *nd = user;
   int nset = 0;
@@ -73,9 +73,9 @@ int node_serve_settings(node *nd)
 {
   int nset = 0;
   const ss_setting *t = ss_settings_table(&nset);
-  rosc_dr_param *par = calloc((size_t)nset, sizeof *par);
-  rosc_dr_value *dflt = calloc((size_t)nset, sizeof *dflt);
-  rosc_dr_value *cur = calloc((size_t)nset, sizeof *cur);
+  ss_dr_param *par = calloc((size_t)nset, sizeof *par);
+  ss_dr_value *dflt = calloc((size_t)nset, sizeof *dflt);
+  ss_dr_value *cur = calloc((size_t)nset, sizeof *cur);
   char (*desc)[256] = calloc((size_t)nset, sizeof *desc);
   int ok = par && dflt && cur && desc;
   const ss_sim_settings def = ss_sim_default_settings();
@@ -88,9 +88,9 @@ int node_serve_settings(node *nd)
              : d->apply == SS_APPLY_REFACTOR ? "from the next step, refactors"
                                              : "creates the skin again");
     par[i].name = d->name;
-    par[i].type = d->type == SS_SETTING_INT ? ROSC_DR_INT
-                  : d->type == SS_SETTING_DOUBLE ? ROSC_DR_DOUBLE
-                  : d->type == SS_SETTING_BOOL ? ROSC_DR_BOOL : ROSC_DR_STR;
+    par[i].type = d->type == SS_SETTING_INT ? SS_DR_INT
+                  : d->type == SS_SETTING_DOUBLE ? SS_DR_DOUBLE
+                  : d->type == SS_SETTING_BOOL ? SS_DR_BOOL : SS_DR_STR;
     par[i].description = desc[i];
     par[i].level = 1u << d->apply;
     par[i].min = d->min;
@@ -100,7 +100,7 @@ int node_serve_settings(node *nd)
     dr_value(d, &nd->p.set, &cur[i]);
   }
   if (ok)
-    ok = rosc_dynreconf_create(&nd->dr, par, dflt, cur, (size_t)nset, on_reconfigure, nd) ==
+    ok = node_dr_create(&nd->dr, par, dflt, cur, (size_t)nset, on_reconfigure, nd) ==
          ROSC_OK;
   free(par);
   free(dflt);

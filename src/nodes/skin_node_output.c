@@ -2,18 +2,18 @@
  * and skin_marker, a shaded TRIANGLE_LIST coloured by ~marker_color. */
 #include "skin_node.h"
 
-static void publish_marker(node *nd, const rosc_header *hdr);
+static void publish_marker(node *nd, const ss_msg_header *hdr);
 
-void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, double total_ms,
+void node_publish(node *nd, const ss_msg_header *in_hdr, const ss_sim_stats *acc, double total_ms,
                   int substeps)
 {
   /* the input's stamp; its frame unless ~frame_id names another (two skins told apart) */
-  rosc_header own = *in_hdr;
+  ss_msg_header own = *in_hdr;
   if (nd->p.frame_id[0]) snprintf(own.frame_id, sizeof own.frame_id, "%s", nd->p.frame_id);
   if (nd->p.tf_prefix[0]) {
     const char *pre = nd->p.tf_prefix + (nd->p.tf_prefix[0] == '/');
     const char *f = own.frame_id[0] == '/' ? own.frame_id + 1 : own.frame_id;
-    char joined[ROSC_FRAME_ID_MAX];
+    char joined[SS_MSG_FRAME_ID_MAX];
     size_t lp = strlen(pre), lf = strlen(f), k = 0;
     for (size_t i = 0; i < lp && k + 1 < sizeof joined; i++) joined[k++] = pre[i];
     if (lp && pre[lp - 1] != '/' && k + 1 < sizeof joined) joined[k++] = '/';
@@ -21,7 +21,7 @@ void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, 
     joined[k] = '\0';
     memcpy(own.frame_id, joined, sizeof joined);
   }
-  const rosc_header *hdr = &own;
+  const ss_msg_header *hdr = &own;
   /* in the body's layout: every seam copy from its welded skin vertex */
   const double *x = ss_sim_skin_positions(nd->sim);
   size_t n3 = 3 * (size_t)nd->nvert;
@@ -30,7 +30,7 @@ void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, 
     const double *src = nd->carried[v] ? nd->body + 3 * (size_t)v : x + 3 * (size_t)nd->vert_weld[v];
     for (int d = 0; d < 3; d++) nd->pos_out[3 * (size_t)v + d] = (float)src[d];
   }
-  rosc_skin_mesh out;
+  ss_msg_skin_mesh out;
   memset(&out, 0, sizeof out);
   out.header = *hdr;
   out.topology_id = nd->skin.weld ? nd->skin.topology_id : nd->topology_id;
@@ -38,12 +38,12 @@ void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, 
   out.n_positions = n3;
   out.triangles = nd->tri_out;
   out.n_triangles = 3 * (size_t)nd->nface;
-  if (rosc_publish(nd->pub_mesh, ROSC_MSG_SKIN_MESH, &out) == ROSC_OK) nd->frames_out++;
+  if (msg_publish(nd->pub_mesh, SS_MSG_SKIN_MESH, &out) == ROSC_OK) nd->frames_out++;
 
   double max_slide =
       ss_input_slide(nd->nanchor, ss_sim_anchor_faces(nd->sim), ss_sim_anchor_uv(nd->sim),
                      nd->face0, nd->uv0, nd->body, nd->nbvert, nd->bfaces, nd->nbface, nd->slide);
-  rosc_skin_stats s;
+  ss_msg_skin_stats s;
   memset(&s, 0, sizeof s);
   s.header = *hdr;
   s.total_ms = (float)total_ms;
@@ -63,21 +63,21 @@ void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, 
   s.failures = nd->failures;
   rosc_time now_ros;
   if (rosc_now(&now_ros) == ROSC_OK)
-    s.latency_ms = (float)(1e-6 * (double)(rosc_time_to_ns(now_ros) - rosc_time_to_ns(hdr->stamp)));
+    s.latency_ms = (float)(1e-6 * (double)(rosc_time_to_ns(now_ros) - ss_msg_time_to_ns(hdr->stamp)));
   s.triangles_simulated = (uint32_t)nd->nface_sim;
   s.triangles_carried = (uint32_t)nd->nface_carried;
   s.iterations_per_substep = (uint32_t)nd->budget.iterations;
   s.step_budget_ms = (float)nd->budget_ms;
   s.faces_turned = (uint32_t)nd->faces_turned;
   s.vertices_far = (uint32_t)nd->vertices_far;
-  rosc_publish(nd->pub_stats, ROSC_MSG_SKIN_STATS, &s);
+  msg_publish(nd->pub_stats, SS_MSG_SKIN_STATS, &s);
 
   if (nd->p.marker_rate == 0.0) return;
   double now = 0;
   rosc_wall_now_s(&now);
   if (nd->p.marker_rate > 0.0 && now - nd->last_marker_wall < 1.0 / nd->p.marker_rate) return;
   unsigned nsub = 0;
-  rosc_pub_num_subscribers(nd->pub_marker, &nsub);
+  rosc_pub_num_subscribers(nd->pub_marker->pub, &nsub);
   if (nsub == 0) return;
   nd->last_marker_wall = now;
   publish_marker(nd, hdr);
@@ -87,7 +87,7 @@ void node_publish(node *nd, const rosc_header *in_hdr, const ss_sim_stats *acc, 
  * Colours are made per skin (welded) vertex, so every seam copy gets its vertex's:
  * ~marker_color's colour times a light term from the vertex's normal (rviz draws the
  * marker unlit; without it the skin is a flat silhouette). */
-static void publish_marker(node *nd, const rosc_header *hdr)
+static void publish_marker(node *nd, const ss_msg_header *hdr)
 {
   int nw = nd->nweld;
   if (!nd->mk_vcol) { /* once per skin; freed with it (free_sim) */
@@ -96,7 +96,7 @@ static void publish_marker(node *nd, const rosc_header *hdr)
     if (!nd->mk_vcol || !nd->mk_work) {
       free(nd->mk_vcol); free(nd->mk_work);
       nd->mk_vcol = NULL; nd->mk_work = NULL;
-      ROSC_ERROR_THROTTLE(5.0, "out of memory for skin_marker's colours (%d vertices)", nw);
+      NODE_ERROR_THROTTLE(5.0, "out of memory for skin_marker's colours (%d vertices)", nw);
       return;
     }
   }
@@ -130,9 +130,9 @@ static void publish_marker(node *nd, const rosc_header *hdr)
   }
   /* what rviz needs of a TRIANGLE_LIST: action ADD (0), identity orientation (all
    * zero draws with a warning), unit scale, opaque white; colours come per point */
-  rosc_marker mk;
+  ss_msg_marker mk;
   memset(&mk, 0, sizeof mk);
-  mk.type = ROSC_MARKER_TRIANGLE_LIST;
+  mk.type = SS_MSG_MARKER_TRIANGLE_LIST;
   mk.orientation[3] = 1.0;
   mk.scale[0] = mk.scale[1] = mk.scale[2] = 1.0;
   mk.color[0] = mk.color[1] = mk.color[2] = mk.color[3] = 1.0f;
@@ -143,5 +143,5 @@ static void publish_marker(node *nd, const rosc_header *hdr)
   mk.n_points = 3 * (size_t)nd->nface;
   mk.colors = nd->mk_col;
   mk.n_colors = 3 * (size_t)nd->nface;
-  rosc_publish(nd->pub_marker, ROSC_MSG_MARKER, &mk);
+  msg_publish(nd->pub_marker, SS_MSG_MARKER, &mk);
 }

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "rosc/rosc.h"
+#include "ss_msg.h"
 #include "skin_sim/ss_settings.h"
 
 /* ~marker_color: what colours skin_marker */
@@ -31,7 +32,7 @@ typedef struct params {
   char mask_box[256];
   int have_box;
   double box[6];      /* xmin ymin zmin xmax ymax zmax */
-  char frame_id[ROSC_FRAME_ID_MAX]; /* "" : the input's frame; else the outputs' frame */
+  char frame_id[SS_MSG_FRAME_ID_MAX]; /* "" : the input's frame; else the outputs' frame */
   char tf_prefix[128];              /* "" : none; else "PREFIX/" before the outputs' frame */
   double step_budget; /* s: 0 the input's period; < 0 none (the settings' substeps and
                          iterations always) */

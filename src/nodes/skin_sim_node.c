@@ -54,7 +54,7 @@ static int grow(void **buf, size_t *cap, size_t n, size_t elem)
 
 static void on_mesh(const void *msg, void *user)
 {
-  const rosc_skin_mesh *m = msg;
+  const ss_msg_skin_mesh *m = msg;
   node *nd = user;
   inbox *q = &nd->in;
   nd->frames_in++;
@@ -65,7 +65,7 @@ static void on_mesh(const void *msg, void *user)
    * between consecutively published messages (or time going backwards) is the
    * input's own and resets the skin; it is carried over the messages the node skips,
    * to the one it steps. */
-  int kind = ss_input_stream_arrive(&nd->stream, m->header.seq, rosc_time_to_ns(m->header.stamp),
+  int kind = ss_input_stream_arrive(&nd->stream, m->header.seq, ss_msg_time_to_ns(m->header.stamp),
                                     nd->p.max_gap);
   int disc = (kind == SS_TIME_GAP || kind == SS_TIME_BACKWARDS) ? kind : 0;
   if (q->count == q->cap) { /* full: the oldest was never stepped: skipped */
@@ -80,7 +80,7 @@ static void on_mesh(const void *msg, void *user)
   if (!grow((void **)&b->pos, &b->cap_pos, m->n_positions, sizeof(float)) ||
       !grow((void **)&b->tri, &b->cap_tri, m->n_triangles, sizeof(uint32_t)) ||
       !grow((void **)&b->rigid, &b->cap_rigid, m->n_rigid_part, sizeof(uint32_t))) {
-    ROSC_ERROR_THROTTLE(2.0, "out of memory for a mesh of %zu values", m->n_positions);
+    NODE_ERROR_THROTTLE(2.0, "out of memory for a mesh of %zu values", m->n_positions);
     nd->dropped++;
     if (disc) nd->carry_disc = disc;
     return;
@@ -120,10 +120,10 @@ static void release_large(mailbox *b)
 #endif
 }
 
-/* A kinematic_mesh's bytes, sized before roscpp allocates anything for them
- * (ss_wire.h): one whose length is beyond the message's bytes, or beyond
- * ~max_vertices / ~max_triangles, is refused unread, counted as received and
- * rejected, with a throttled error naming the field and sizes. */
+/* A kinematic_mesh's bytes, sized before anything is allocated for them (ss_wire.h):
+ * one whose length is beyond the message's bytes, or beyond ~max_vertices /
+ * ~max_triangles, is refused unread, counted as received and rejected, with a
+ * throttled error naming the field and sizes. */
 static int check_mesh(const uint8_t *buf, size_t len, void *user)
 {
   node *nd = user;
@@ -132,19 +132,19 @@ static int check_mesh(const uint8_t *buf, size_t len, void *user)
   if (ss_wire_skin_mesh_check(buf, len, &lim, NULL, why, sizeof why)) return 1;
   nd->frames_in++;
   nd->rejected++;
-  rosc_log_at(ROSC_LOG_ERROR, __FILE__, __LINE__, __func__, 1.0, "skin_sim.size",
-              "rejected kinematic_mesh unread: %s (%u rejected so far)", why,
-              (unsigned)nd->rejected);
+  NODE_LOG_EVERY(&nd->reject_log[REJECT_SIZE], ROSC_LOG_ERROR, 1.0,
+                 "rejected kinematic_mesh unread: %s (%u rejected so far)", why,
+                 (unsigned)nd->rejected);
   return 0;
 }
 
 /* Counts a rejected message and logs why, at most once a second per kind of
- * problem (key), so that different problems each show. */
-static void reject(node *nd, const char *key, const char *why)
+ * problem (kind: REJECT_*), so that different problems each show. */
+static void reject(node *nd, int kind, const char *why)
 {
   nd->rejected++;
-  rosc_log_at(ROSC_LOG_WARN, __FILE__, __LINE__, __func__, 1.0, key,
-              "rejected kinematic_mesh: %s (%u rejected so far)", why, (unsigned)nd->rejected);
+  NODE_LOG_EVERY(&nd->reject_log[kind], ROSC_LOG_WARN, 1.0,
+                 "rejected kinematic_mesh: %s (%u rejected so far)", why, (unsigned)nd->rejected);
 }
 
 /* ------------------------------------------------------------------ simulation */
@@ -337,7 +337,7 @@ static int create_sim(node *nd, const mailbox *b)
     char why[ERR_SZ + 64];
     snprintf(why, sizeof why, "cannot simulate it: %s", err);
     free_sim(nd);
-    reject(nd, "skin_sim.create", why);
+    reject(nd, REJECT_CREATE, why);
     return 0;
   }
   /* the published layout: the received body's, or the file's own */
@@ -391,7 +391,7 @@ static void apply_run(node *nd, const ss_sim_settings *run)
   char err[ERR_SZ] = "";
   int recreate = 0;
   if (ss_sim_set_settings(nd->sim, &want, &recreate, err, sizeof err) != SS_OK || recreate)
-    ROSC_WARN_THROTTLE(5.0, "step budget: cannot change substeps or iterations: %s", err);
+    NODE_WARN_THROTTLE(5.0, "step budget: cannot change substeps or iterations: %s", err);
 }
 
 /* The wall time a step may take, ms: ~step_budget, or the input's period (0: none
@@ -409,17 +409,17 @@ static void process(node *nd, const mailbox *b)
   int chk = ss_input_mesh_check(b->npos, b->pos, b->ntri, b->tri, err, sizeof err);
   if (chk != SS_OK) {
     if (b->disc) nd->carry_disc = b->disc;
-    reject(nd, chk == SS_E_NONFINITE ? "skin_sim.nonfinite" : "skin_sim.malformed", err);
+    reject(nd, chk == SS_E_NONFINITE ? REJECT_NONFINITE : REJECT_MALFORMED, err);
     return;
   }
-  int64_t now_ns = rosc_time_to_ns(b->header.stamp);
+  int64_t now_ns = ss_msg_time_to_ns(b->header.stamp);
   if (nd->sim && b->topology_id == nd->topology_id &&
       !ss_input_same_topology(b->npos, b->ntri, b->tri, nd->nbvert, nd->nbface, nd->bfaces, err,
                               sizeof err)) {
     char why[ERR_SZ + 64];
     snprintf(why, sizeof why, "topology changed without a new topology_id (%s)", err);
     if (b->disc) nd->carry_disc = b->disc;
-    reject(nd, "skin_sim.topology", why);
+    reject(nd, REJECT_TOPOLOGY, why);
     return;
   }
   if (b->nrigid && b->nrigid != b->npos / 3) {
@@ -427,7 +427,7 @@ static void process(node *nd, const mailbox *b)
     snprintf(why, sizeof why, "rigid_part has %zu values for %zu vertices (0 or one a vertex)",
              b->nrigid, b->npos / 3);
     if (b->disc) nd->carry_disc = b->disc;
-    reject(nd, "skin_sim.rigid_part", why);
+    reject(nd, REJECT_RIGID_PART, why);
     return;
   }
   /* the step covers whole input periods since the skin's clock, in the substeps of
@@ -458,7 +458,7 @@ static void process(node *nd, const mailbox *b)
                 (unsigned)b->topology_id);
     else if (nd->sim) {
       nd->resets++;
-      ROSC_WARN_THROTTLE(1.0, "the input's time %s before the stamp %.3f s: skin reset (%u resets "
+      NODE_WARN_THROTTLE(1.0, "the input's time %s before the stamp %.3f s: skin reset (%u resets "
                          "so far)", kind == SS_TIME_GAP ? "jumped forward" : "went backwards",
                          1e-9 * (double)now_ns, (unsigned)nd->resets);
     }
@@ -490,13 +490,13 @@ static void process(node *nd, const mailbox *b)
       int rc = ss_sim_step(nd->sim, pose, dt / nsplit, &st, err, sizeof err);
       if (rc != SS_OK) {
         if (rc == SS_E_SOLVER) {
-          ROSC_ERROR_THROTTLE(1.0, "skin step failed, last good state kept: %s", err);
+          NODE_ERROR_THROTTLE(1.0, "skin step failed, last good state kept: %s", err);
           break;
         }
         /* input the core refused: the state is untouched */
         memcpy(nd->body, nd->body_prev, n3 * sizeof(double));
         nd->carry_disc = disc;
-        reject(nd, "skin_sim.step", err);
+        reject(nd, REJECT_STEP, err);
         return;
       }
       acc.pose_ms += st.pose_ms; acc.walk_ms += st.walk_ms; acc.assemble_ms += st.assemble_ms;
@@ -510,7 +510,7 @@ static void process(node *nd, const mailbox *b)
     }
     if (acc.failures) {
       nd->failures += (uint32_t)acc.failures;
-      ROSC_WARN_THROTTLE(1.0, "%d substeps met non-finite values (last good state kept; %u so "
+      NODE_WARN_THROTTLE(1.0, "%d substeps met non-finite values (last good state kept; %u so "
                          "far)", acc.failures, (unsigned)nd->failures);
     }
     memcpy(nd->body_prev, nd->body, n3 * sizeof(double));
@@ -534,7 +534,7 @@ static void process(node *nd, const mailbox *b)
     rosc_wall_now_s(&t2);
     int before_s = nd->budget.substeps, before_i = nd->budget.iterations;
     if (ss_budget_update(&nd->budget, 1e3 * (t2 - t0), nd->budget_ms))
-      ROSC_LOG_THROTTLE(ROSC_LOG_INFO, 1.0, "~step_budget %.1f ms: %d x %d -> %d substeps x %d "
+      NODE_LOG_THROTTLE(ROSC_LOG_INFO, 1.0, "~step_budget %.1f ms: %d x %d -> %d substeps x %d "
                         "iterations (the settings' %d x %d)", nd->budget_ms, before_s, before_i,
                         nd->budget.substeps, nd->budget.iterations, nd->p.set.substeps,
                         nd->p.set.iterations);
@@ -563,17 +563,17 @@ int main(int argc, char **argv)
   }
   nd->in.cap = nd->p.queue_size;
   nd->in.slot = calloc((size_t)nd->in.cap, sizeof *nd->in.slot);
-  rosc_sub *sub = NULL;
+  msg_sub *sub = NULL;
   rosc_srv *srv_reset = NULL;
   int status = 1;
   if (!nd->in.slot) goto done;
   /* A SIGINT during set-up (roslaunch stopping a node still starting) makes roscpp
    * refuse new publishers: then a clean stop (exit 0) that destroys what was made. */
-  if (rosc_pub_create(&nd->pub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
-      rosc_pub_create(&nd->pub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
-      rosc_pub_create(&nd->pub_marker, ROSC_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
-      rosc_subscribe(&sub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
-                     on_mesh, check_mesh, nd) != ROSC_OK) {
+  if (msg_pub_create(&nd->pub_mesh, SS_MSG_SKIN_MESH, "skin_mesh", 4, 0) != ROSC_OK ||
+      msg_pub_create(&nd->pub_stats, SS_MSG_SKIN_STATS, "skin_stats", 10, 0) != ROSC_OK ||
+      msg_pub_create(&nd->pub_marker, SS_MSG_MARKER, "skin_marker", 1, 0) != ROSC_OK ||
+      msg_subscribe(&sub, SS_MSG_SKIN_MESH, "kinematic_mesh", (unsigned)nd->p.queue_size + 2,
+                    on_mesh, check_mesh, nd) != ROSC_OK) {
     if (rosc_ok()) ROSC_ERROR("cannot advertise or subscribe");
     else status = 0;
     goto done;
@@ -617,12 +617,12 @@ int main(int argc, char **argv)
   status = 0;
 done:
   rosc_srv_destroy(srv_reset);
-  rosc_dynreconf_destroy(nd->dr);
+  node_dr_destroy(nd->dr);
   rosc_diag_destroy(nd->diag);
-  rosc_sub_destroy(sub);
-  rosc_pub_destroy(nd->pub_mesh);
-  rosc_pub_destroy(nd->pub_stats);
-  rosc_pub_destroy(nd->pub_marker);
+  msg_sub_destroy(sub);
+  msg_pub_destroy(nd->pub_mesh);
+  msg_pub_destroy(nd->pub_stats);
+  msg_pub_destroy(nd->pub_marker);
   rosc_shutdown();
   free_sim(nd);
   for (int i = 0; nd->in.slot && i < nd->in.cap; i++) {

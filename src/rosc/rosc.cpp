@@ -13,7 +13,6 @@
 #include <ros/console.h>
 #include <ros/ros.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -22,7 +21,6 @@
 #include <mutex>
 #include <new>
 #include <string>
-#include <unordered_map>
 
 using rosc_internal::copy_out;
 using rosc_internal::guard;
@@ -48,13 +46,6 @@ void atexit_cleanup() { rosc_shutdown(); }
 // ------------------------------------------------------------------ logging
 std::mutex g_log_mutex;
 ros::console::LogLocation g_log_loc[5] = {};
-
-struct Throttle {
-  double last = 0.0;
-  unsigned long long held = 0;
-};
-std::unordered_map<std::string, Throttle> g_throttle;  // under g_log_mutex
-const size_t kMaxThrottleKeys = 4096;
 
 ros::console::Level to_ros_level(int level)
 {
@@ -83,46 +74,12 @@ void log_plain(int level, const char *file, int line, const char *func, const ch
                       func != nullptr ? func : "?", "%s", msg);
 }
 
-double steady_seconds()
-{
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-// Decides whether a throttled message prints now; *held receives how many messages
-// of this key were held back since the last one printed.
-bool throttle_pass(const char *key, double period_s, unsigned long long *held)
-{
-  std::lock_guard<std::mutex> lock(g_log_mutex);
-  if (g_throttle.size() >= kMaxThrottleKeys) g_throttle.clear();  // bounded memory
-  double now = steady_seconds();
-  auto it = g_throttle.find(key);
-  if (it == g_throttle.end()) {
-    Throttle t;
-    t.last = now;
-    g_throttle.emplace(key, t);
-    *held = 0;
-    return true;
-  }
-  if (now - it->second.last < period_s) {
-    ++it->second.held;
-    return false;
-  }
-  *held = it->second.held;
-  it->second.held = 0;
-  it->second.last = now;
-  return true;
-}
-
 }  // namespace
 
-int rosc_internal::vlog(int level, const char *file, int line, const char *func, double period_s,
-                        const char *key, const char *fmt, va_list ap)
+int rosc_internal::vlog(int level, const char *file, int line, const char *func, const char *fmt,
+                        va_list ap)
 {
   if (level < ROSC_LOG_DEBUG || level > ROSC_LOG_FATAL || fmt == nullptr) return ROSC_E_INVALID;
-  unsigned long long held = 0;
-  if (period_s > 0.0 && !throttle_pass(key != nullptr ? key : fmt, period_s, &held))
-    return ROSC_OK;
   char small[512];
   va_list ap2;
   va_copy(ap2, ap);
@@ -137,7 +94,6 @@ int rosc_internal::vlog(int level, const char *file, int line, const char *func,
     std::vsnprintf(&text[0], text.size(), fmt, ap);
     text.resize((size_t)n);
   }
-  if (held > 0) text += " (" + std::to_string(held) + " similar messages held back)";
   log_plain(level, file, line, func, text.c_str());
   return ROSC_OK;
 }
@@ -149,6 +105,11 @@ int rosc_internal::need_node()
 }
 
 bool rosc_internal::ros_initialized() { return g_node.ros_initialized; }
+
+std::string rosc_internal::resolve_private(const char *name)
+{
+  return name[0] == '~' ? ros::names::resolve(name) : std::string(name);
+}
 
 ros::NodeHandle &rosc_internal::node() { return *g_node.nh; }
 
@@ -352,12 +313,11 @@ int rosc_rate_destroy(rosc_rate *rate)
 }
 
 // ------------------------------------------------------------------ logging
-int rosc_log_at(int level, const char *file, int line, const char *func, double period_s,
-                const char *key, const char *fmt, ...)
+int rosc_log_at(int level, const char *file, int line, const char *func, const char *fmt, ...)
 {
   va_list ap;
   va_start(ap, fmt);
-  int st = guard(__func__, [&]() -> int { return vlog(level, file, line, func, period_s, key, fmt, ap); });
+  int st = guard(__func__, [&]() -> int { return vlog(level, file, line, func, fmt, ap); });
   va_end(ap);
   return st;
 }

@@ -4,8 +4,8 @@
 //
 //   rosc.cpp        node life, spinning, time, rates, logging
 //   rosc_param.cpp  parameters
-//   rosc_msg.cpp    C views <-> ROS messages, and one generic publish / subscribe path
-//   rosc_srv.cpp    services and diagnostics
+//   rosc_msg.cpp    one publish / subscribe path for serialized messages of any type
+//   rosc_srv.cpp    services (bytes, like topics) and diagnostics
 #ifndef ROSC_INTERNAL_H
 #define ROSC_INTERNAL_H
 
@@ -63,6 +63,10 @@ inline int copy_out(const std::string &s, char *buf, size_t buf_size)
 
 inline bool valid_name(const char *name) { return name != nullptr && name[0] != '\0'; }
 
+// "~x" resolved to the node's private name (NodeHandle methods refuse private names);
+// other names as given (the NodeHandle resolves them).
+std::string resolve_private(const char *name);
+
 // ------------------------------------------------------------------ the node (rosc.cpp)
 // ROSC_OK while the node runs (after rosc_init, before rosc_shutdown), else ROSC_E_STATE.
 int need_node();
@@ -71,10 +75,9 @@ bool ros_initialized();
 // The node's handle; only while need_node() is ROSC_OK.
 ros::NodeHandle &node();
 
-// One log line at level with the caller's place; period_s > 0 throttles it per key
-// (NULL key: the format). What rosc_log_at and the test helpers' rosc_log run.
-int vlog(int level, const char *file, int line, const char *func, double period_s,
-         const char *key, const char *fmt, va_list ap);
+// One log line at level with the caller's place: what rosc_log_at and the test
+// helpers' rosc_log run.
+int vlog(int level, const char *file, int line, const char *func, const char *fmt, va_list ap);
 
 // ------------------------------------------------------------------ parameters (rosc_param.cpp)
 // A string parameter of any size, malloc'd (caller frees); ROSC_E_NOTFOUND if not set.
@@ -82,26 +85,17 @@ int param_get_string_alloc(const char *name, char **out, size_t *len);
 
 }  // namespace rosc_internal
 
+// The handles behind rosc_pub and rosc_sub (rosc_msg.cpp), read by the test helpers.
 struct rosc_pub {
-  int type;
+  const void *row;  // the type served (rosc_msg.cpp's table)
   ros::Publisher pub;
-  std::shared_ptr<void> msg;  // the message object of the publisher's type, reused
 };
 
 struct rosc_sub {
-  int type;
   ros::Subscriber sub;
   rosc_msg_cb cb = nullptr;
-  rosc_bytes_cb check = nullptr;  // NULL: every message is deserialised
   void *user = nullptr;
-  uint64_t dropped = 0;
   std::string topic;
-  // scratch reused across messages (views into them live only during a callback)
-  std::vector<const char *> names;
-  std::vector<float> points, colors;
-
-  // Counts a message the shim could not convert, with a throttled error naming why.
-  void drop(const char *why);
 };
 
 #endif

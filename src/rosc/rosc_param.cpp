@@ -1,5 +1,5 @@
 // rosc parameters (include/rosc/rosc.h: "parameters"): typed getters that tell "not set"
-// from "set with another type", what a parameter holds in words, and the URDF
+// from "set with another type", setters, the type a parameter holds, and the URDF
 // under robot_description. Each getter asks the master once (an XmlRpcValue) and checks
 // the type itself.
 #include "rosc/rosc.h"
@@ -127,37 +127,25 @@ int rosc_internal::param_get_string_alloc(const char *name, char **out, size_t *
 }
 
 
-int rosc_param_describe(const char *name, char *buf, size_t buf_size)
+int rosc_param_type(const char *name, int *type)
 {
   return guard(__func__, [&]() -> int {
-    if (buf == nullptr || buf_size == 0) return ROSC_E_INVALID;
+    if (type == nullptr) return ROSC_E_INVALID;
     XmlRpc::XmlRpcValue v;
     bool found = false;
     int st = param_fetch(name, v, &found);
     if (st != ROSC_OK) return st;
     if (!found) return ROSC_E_NOTFOUND;
-    std::string held = "a value of another type";
     switch (v.getType()) {
-      case XmlRpc::XmlRpcValue::TypeString: {
-        std::string t = static_cast<std::string &>(v);
-        held = "the string '" + (t.size() > 60 ? t.substr(0, 60) + "..." : t) + "'";
-        break;
-      }
-      case XmlRpc::XmlRpcValue::TypeDouble: {
-        char num[64];
-        std::snprintf(num, sizeof num, "the double %g", static_cast<double>(v));
-        held = num;
-        break;
-      }
-      case XmlRpc::XmlRpcValue::TypeInt: held = "the int " + std::to_string(static_cast<int>(v)); break;
-      case XmlRpc::XmlRpcValue::TypeBoolean:
-        held = static_cast<bool>(v) ? "the bool true" : "the bool false";
-        break;
-      case XmlRpc::XmlRpcValue::TypeArray: held = "a list"; break;
-      case XmlRpc::XmlRpcValue::TypeStruct: held = "a dictionary"; break;
-      default: break;
+    case XmlRpc::XmlRpcValue::TypeString: *type = ROSC_PARAM_STRING; break;
+    case XmlRpc::XmlRpcValue::TypeInt: *type = ROSC_PARAM_INT; break;
+    case XmlRpc::XmlRpcValue::TypeDouble: *type = ROSC_PARAM_DOUBLE; break;
+    case XmlRpc::XmlRpcValue::TypeBoolean: *type = ROSC_PARAM_BOOL; break;
+    case XmlRpc::XmlRpcValue::TypeArray: *type = ROSC_PARAM_LIST; break;
+    case XmlRpc::XmlRpcValue::TypeStruct: *type = ROSC_PARAM_DICT; break;
+    default: *type = ROSC_PARAM_OTHER; break;
     }
-    return copy_out(held, buf, buf_size);
+    return ROSC_OK;
   });
 }
 
@@ -172,3 +160,26 @@ int rosc_robot_description(char **out, size_t *len)
     return rosc_internal::param_get_string_alloc(key.c_str(), out, len);
   });
 }
+
+namespace {
+template <class T>
+int param_set(const char *func, const char *name, const T &value)
+{
+  return guard(func, [&]() -> int {
+    if (!valid_name(name)) return ROSC_E_INVALID;
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    ros::param::set(name, value);
+    return ROSC_OK;
+  });
+}
+}  // namespace
+
+int rosc_param_set_string(const char *name, const char *value)
+{
+  if (value == nullptr) return ROSC_E_INVALID;
+  return guard(__func__, [&]() -> int { return param_set(__func__, name, std::string(value)); });
+}
+int rosc_param_set_double(const char *name, double value) { return param_set(__func__, name, value); }
+int rosc_param_set_int(const char *name, int value) { return param_set(__func__, name, value); }
+int rosc_param_set_bool(const char *name, int value) { return param_set(__func__, name, value != 0); }

@@ -1,13 +1,18 @@
 // rosc services and diagnostics (include/rosc/rosc.h: "services", "diagnostics"):
-// std_srvs/Empty servers and calls, and a diagnostic_updater::Updater behind a C
-// handle. Kept apart from rosc.cpp (which holds the node, topics and logging); it uses
+// services served as bytes (one row per service type, from the generated C++ service's
+// traits), and a diagnostic_updater::Updater behind a C handle. Kept apart from rosc.cpp (which holds the node, topics and logging); it uses
 // only the node's public state (rosc_ok) and the exception guard of rosc_internal.h.
 #include "rosc/rosc.h"
 #include "rosc_internal.h"
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <ros/advertise_service_options.h>
+#include <ros/service_callback_helper.h>
 #include <std_srvs/Empty.h>
+
+#include <boost/make_shared.hpp>
 
 #include <chrono>
 #include <condition_variable>
@@ -25,26 +30,111 @@ using rosc_internal::guard;
 using rosc_internal::valid_name;
 
 // ------------------------------------------------------------------ services
+namespace {
+
+// A service type served as bytes: one row per type a node serves (rosc.h: ROSC_SRV_TYPES).
+struct SrvRow {
+  std::string datatype, md5, req_datatype, res_datatype;
+};
+
+template <class S>
+SrvRow srv_row()
+{
+  return {ros::service_traits::datatype<S>(), ros::service_traits::md5sum<S>(),
+          ros::message_traits::datatype<typename S::Request>(),
+          ros::message_traits::datatype<typename S::Response>()};
+}
+
+const SrvRow *find_srv(const char *datatype)
+{
+  static const SrvRow rows[] = {srv_row<std_srvs::Empty>(),
+                                srv_row<dynamic_reconfigure::Reconfigure>()};
+  if (datatype == nullptr) return nullptr;
+  for (const SrvRow &r : rows)
+    if (r.datatype == datatype) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
 struct rosc_srv {
   ros::ServiceServer srv;
-  rosc_empty_cb cb = nullptr;
+  rosc_srv_cb cb = nullptr;
+  rosc_empty_cb empty_cb = nullptr;  // rosc_srv_empty's: no request or response to pass
   void *user = nullptr;
-  bool on_call(std_srvs::Empty::Request &, std_srvs::Empty::Response &) { return cb(user) == 0; }
 };
+
+namespace {
+
+// roscpp's service callback helper for every service: the request's bytes go to the
+// node, its response's bytes back, framed as roscpp frames them (ok byte, then the
+// length on success).
+class SrvHelper : public ros::ServiceCallbackHelper {
+ public:
+  explicit SrvHelper(rosc_srv *s) : s_(s) {}
+  bool call(ros::ServiceCallbackHelperCallParams &p) override
+  {
+    const uint8_t *req = p.request.message_start;
+    size_t len = p.request.num_bytes - static_cast<size_t>(req - p.request.buf.get());
+    const uint8_t *resp = nullptr;
+    size_t n = 0;
+    bool ok = s_->empty_cb != nullptr ? s_->empty_cb(s_->user) == 0
+                                      : s_->cb(req, len, &resp, &n, s_->user) == 0;
+    if (resp == nullptr) n = 0;
+    size_t head = ok ? 5 : 1;
+    p.response.num_bytes = static_cast<uint32_t>(head + n);
+    p.response.buf.reset(new uint8_t[head + n]);
+    p.response.buf[0] = ok ? 1 : 0;
+    uint32_t n32 = static_cast<uint32_t>(n);
+    if (ok) std::memcpy(p.response.buf.get() + 1, &n32, 4);
+    if (n) std::memcpy(p.response.buf.get() + head, resp, n);
+    return ok;
+  }
+
+ private:
+  rosc_srv *s_;
+};
+
+int srv_advertise(rosc_srv **out, const char *name, const SrvRow *row, std::unique_ptr<rosc_srv> s)
+{
+  if (!rosc_ok()) return ROSC_E_STATE;
+  ros::AdvertiseServiceOptions ops;
+  ops.service = ros::names::resolve(name);  // NodeHandle methods refuse private names
+  ops.md5sum = row->md5;
+  ops.datatype = row->datatype;
+  ops.req_datatype = row->req_datatype;
+  ops.res_datatype = row->res_datatype;
+  ops.helper = boost::make_shared<SrvHelper>(s.get());
+  s->srv = rosc_internal::node().advertiseService(ops);
+  if (!s->srv) return ROSC_E_ROS;
+  *out = s.release();
+  return ROSC_OK;
+}
+
+}  // namespace
+
+int rosc_srv_create(rosc_srv **out, const char *name, const char *srv_type, rosc_srv_cb cb,
+                    void *user)
+{
+  return guard(__func__, [&]() -> int {
+    const SrvRow *row = find_srv(srv_type);
+    if (out == nullptr || !valid_name(name) || row == nullptr || cb == nullptr)
+      return ROSC_E_INVALID;
+    std::unique_ptr<rosc_srv> s(new rosc_srv());
+    s->cb = cb;
+    s->user = user;
+    return srv_advertise(out, name, row, std::move(s));
+  });
+}
 
 int rosc_srv_empty(rosc_srv **out, const char *name, rosc_empty_cb cb, void *user)
 {
   return guard(__func__, [&]() -> int {
     if (out == nullptr || !valid_name(name) || cb == nullptr) return ROSC_E_INVALID;
-    if (!rosc_ok()) return ROSC_E_STATE;
     std::unique_ptr<rosc_srv> s(new rosc_srv());
-    s->cb = cb;
+    s->empty_cb = cb;
     s->user = user;
-    ros::NodeHandle nh;  // "~x" is resolved first: NodeHandle methods refuse private names
-    s->srv = nh.advertiseService(ros::names::resolve(name), &rosc_srv::on_call, s.get());
-    if (!s->srv) return ROSC_E_ROS;
-    *out = s.release();
-    return ROSC_OK;
+    return srv_advertise(out, name, find_srv("std_srvs/Empty"), std::move(s));
   });
 }
 

@@ -7,9 +7,8 @@
  * 56-byte message whose positions claim 0x40000002 floats allocates 4 GiB (the byte
  * count wraps to 8 and the read succeeds). ss_wire_skin_mesh_check walks the
  * message's length prefixes first, each against the bytes the message has left and
- * against the node's limits; skin_sim_node hands it a message's bytes through the
- * shim's byte check (rosc_subscribe), and only a message it passes is handed to
- * roscpp's deserialiser, whose allocations are then bounded by the message's size. */
+ * against the node's limits; skin_sim_node checks a message's bytes so before it
+ * decodes them (ss_msg.h), whose allocations are then bounded by the message's size. */
 #ifndef SKIN_SIM_SS_WIRE_H
 #define SKIN_SIM_SS_WIRE_H
 

@@ -1,8 +1,8 @@
 /* libFuzzer harness: the first thing skin_sim_node does with a received
  * kinematic_mesh's bytes (src/stream/ss_wire.h): ss_wire_skin_mesh_check walks
- * its length prefixes before roscpp's deserialiser allocates anything. Asserts
+ * its length prefixes before anything is allocated for them. Asserts
  * the documented results: a message passed has every array within its bytes
- * (their total plus the fixed fields is at most its size: roscpp then allocates
+ * (their total plus the fixed fields is at most its size: the decoder then allocates
  * at most that) and within the limits; a message refused has a reason. The
  * limits come from the input's first bytes (0: none). */
 #include <assert.h>

@@ -15,6 +15,7 @@
  * the skin answered at least every 60 input frames plus two of its longest steps
  * (skin_stats total_ms; a slow machine is not judged, idling is), and 0 resets
  * and inputs_skipped > 0 (the overload was real). No wall-clock threshold is judged. */
+#include "node_msg.h" /* the nodes' typed topics (src/nodes) */
 #include "rosc_test.h" /* rosc/rosc.h and the calls only tests make */
 #include "ss_test.h"
 
@@ -71,19 +72,19 @@ typedef struct got {
   int nonfinite, bad_layout, open_seams;
   int nstats;
   double max_step_ms;  /* longest step reported in skin_stats */
-  rosc_skin_stats last;
+  ss_msg_skin_stats last;
   double stats_latency[MAX_OUT];
 } got;
 static got g;
 
 static void on_skin(const void *msg, void *u)
 {
-  const rosc_skin_mesh *m = msg;
+  const ss_msg_skin_mesh *m = msg;
   (void)u;
   if (g.n >= MAX_OUT) return;
   rosc_time now;
   rosc_now(&now);
-  g.stamp_ns[g.n] = rosc_time_to_ns(m->header.stamp);
+  g.stamp_ns[g.n] = ss_msg_time_to_ns(m->header.stamp);
   g.latency_ms[g.n] = 1e-6 * (double)(rosc_time_to_ns(now) - g.stamp_ns[g.n]);
   g.n++;
   if (m->n_positions != 3 * NV || m->n_triangles != 3 * NT ||
@@ -107,7 +108,7 @@ static void on_skin(const void *msg, void *u)
 
 static void on_stats(const void *msg, void *u)
 {
-  const rosc_skin_stats *m = msg;
+  const ss_msg_skin_stats *m = msg;
   (void)u;
   if (g.nstats < MAX_OUT) g.stats_latency[g.nstats] = m->latency_ms;
   g.nstats++;
@@ -145,19 +146,19 @@ int main(int argc, char **argv)
     fprintf(stderr, "overload_probe: rosc_init failed\n");
     return 1;
   }
-  rosc_pub *pub = NULL;
-  rosc_sub *sm = NULL, *ss = NULL;
-  if (rosc_pub_create(&pub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 8, 0) != ROSC_OK ||
-      rosc_subscribe(&sm, ROSC_MSG_SKIN_MESH, "skin_mesh", 8, on_skin, NULL, NULL) != ROSC_OK ||
-      rosc_subscribe(&ss, ROSC_MSG_SKIN_STATS, "skin_stats", 50, on_stats, NULL, NULL) != ROSC_OK) {
+  msg_pub *pub = NULL;
+  msg_sub *sm = NULL, *ss = NULL;
+  if (msg_pub_create(&pub, SS_MSG_SKIN_MESH, "kinematic_mesh", 8, 0) != ROSC_OK ||
+      msg_subscribe(&sm, SS_MSG_SKIN_MESH, "skin_mesh", 8, on_skin, NULL, NULL) != ROSC_OK ||
+      msg_subscribe(&ss, SS_MSG_SKIN_STATS, "skin_stats", 50, on_stats, NULL, NULL) != ROSC_OK) {
     fprintf(stderr, "overload_probe: cannot advertise or subscribe\n");
     return 1;
   }
   int connected = 0;
   for (int i = 0; i < 300 && !connected; i++) { /* up to 15 s */
     unsigned a = 0, b = 0;
-    rosc_pub_num_subscribers(pub, &a);
-    rosc_sub_num_publishers(sm, &b);
+    rosc_pub_num_subscribers(pub->pub, &a);
+    rosc_sub_num_publishers(sm->sub, &b);
     connected = a >= 1 && b >= 1;
     rosc_spin_for(0.05);
   }
@@ -176,16 +177,16 @@ int main(int argc, char **argv)
   const int64_t period_ns = (int64_t)llround(1e9 / hz);
   for (int i = 0; i < nframes; i++) {
     make_tube(i / hz);
-    rosc_skin_mesh m;
+    ss_msg_skin_mesh m;
     memset(&m, 0, sizeof m);
-    m.header.stamp = rosc_time_from_ns(t0_ns + i * period_ns);
+    m.header.stamp = ss_msg_time_from_ns(t0_ns + i * period_ns);
     snprintf(m.header.frame_id, sizeof m.header.frame_id, "tube");
     m.topology_id = 3;
     m.positions = g_pos;
     m.n_positions = 3 * NV;
     m.triangles = g_tri;
     m.n_triangles = 3 * NT;
-    rosc_publish(pub, ROSC_MSG_SKIN_MESH, &m);
+    msg_publish(pub, SS_MSG_SKIN_MESH, &m);
     /* paced by the wall clock; spinning meanwhile */
     do {
       rosc_spin_once(0.0);
@@ -251,9 +252,9 @@ int main(int argc, char **argv)
               g.last.inputs_skipped);
     CHECK_MSG(g.last.failures == 0, "no substep met a non-finite value (%u)", g.last.failures);
   }
-  rosc_pub_destroy(pub);
-  rosc_sub_destroy(sm);
-  rosc_sub_destroy(ss);
+  msg_pub_destroy(pub);
+  msg_sub_destroy(sm);
+  msg_sub_destroy(ss);
   rosc_shutdown();
   return check ? ss_test_finish("overload_probe") : 0;
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Publishes SkinMesh messages with rospy (not rosc) for test_rosc.sh: one whose
-frame_id is too long for rosc's C struct (rosc must drop it and count it), then a
+frame_id is too long for the C view (the subscriber must drop it and count it), then a
 good one. Waits (bounded) for a subscriber first, then stays up to 10 s. Usage: pub_mesh.py TOPIC."""
 import sys
 import time

@@ -4,13 +4,22 @@
 #include "rosc_test.h"
 #include "rosc_internal.h"
 
+#include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
 #include <ros/ros.h>
+#include <ros/topic_manager.h>
+#include <sensor_msgs/JointState.h>
+#include <skin_sim/SkinMesh.h>
+#include <skin_sim/SkinStats.h>
+#include <std_msgs/String.h>
 #include <std_srvs/Empty.h>
+#include <visualization_msgs/Marker.h>
 
 #include <cmath>
 #include <cstdarg>
 #include <cstring>
 #include <string>
+#include <vector>
 
 using rosc_internal::copy_out;
 using rosc_internal::guard;
@@ -83,29 +92,6 @@ int rosc_param_has(const char *name, int *out)
   });
 }
 
-namespace {
-template <class T>
-int param_set(const char *func, const char *name, const T &value)
-{
-  return guard(func, [&]() -> int {
-    if (!valid_name(name)) return ROSC_E_INVALID;
-    int st = need_node();
-    if (st != ROSC_OK) return st;
-    ros::param::set(name, value);
-    return ROSC_OK;
-  });
-}
-}  // namespace
-
-int rosc_param_set_string(const char *name, const char *value)
-{
-  if (value == nullptr) return ROSC_E_INVALID;
-  return guard(__func__, [&]() -> int { return param_set(__func__, name, std::string(value)); });
-}
-int rosc_param_set_double(const char *name, double value) { return param_set(__func__, name, value); }
-int rosc_param_set_int(const char *name, int value) { return param_set(__func__, name, value); }
-int rosc_param_set_bool(const char *name, int value) { return param_set(__func__, name, value != 0); }
-
 int rosc_param_delete(const char *name)
 {
   return guard(__func__, [&]() -> int {
@@ -118,14 +104,6 @@ int rosc_param_delete(const char *name)
 }
 
 // ------------------------------------------------------------------ topics
-int rosc_publish_string(rosc_pub *pub, const char *text)
-{
-  rosc_string s;
-  s.data = text;
-  s.len = text != nullptr ? std::strlen(text) : 0;
-  return rosc_publish(pub, ROSC_MSG_STRING, text != nullptr ? &s : nullptr);
-}
-
 int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size)
 {
   return guard(__func__, [&]() -> int {
@@ -143,20 +121,51 @@ int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out)
   });
 }
 
-int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out)
+namespace {
+template <class M>
+int reserialize(const uint8_t *buf, size_t len, int *same)
+{
+  M m;
+  ros::serialization::IStream in(const_cast<uint8_t *>(buf), static_cast<uint32_t>(len));
+  ros::serialization::deserialize(in, m);
+  std::vector<uint8_t> out(ros::serialization::serializationLength(m));
+  ros::serialization::OStream os(out.data(), static_cast<uint32_t>(out.size()));
+  ros::serialization::serialize(os, m);
+  *same = in.getLength() == 0 && out.size() == len && std::memcmp(out.data(), buf, len) == 0;
+  return ROSC_OK;
+}
+}  // namespace
+
+int rosc_test_reserialize(const char *datatype, const uint8_t *buf, size_t len, int *same)
 {
   return guard(__func__, [&]() -> int {
-    if (sub == nullptr || out == nullptr) return ROSC_E_INVALID;
-    *out = sub->dropped;
-    return ROSC_OK;
+    if (datatype == nullptr || (buf == nullptr && len) || same == nullptr) return ROSC_E_INVALID;
+    std::string t = datatype;
+    if (t == "skin_sim/SkinMesh") return reserialize<skin_sim::SkinMesh>(buf, len, same);
+    if (t == "skin_sim/SkinStats") return reserialize<skin_sim::SkinStats>(buf, len, same);
+    if (t == "sensor_msgs/JointState") return reserialize<sensor_msgs::JointState>(buf, len, same);
+    if (t == "visualization_msgs/Marker")
+      return reserialize<visualization_msgs::Marker>(buf, len, same);
+    if (t == "std_msgs/String") return reserialize<std_msgs::String>(buf, len, same);
+    if (t == "dynamic_reconfigure/Config")
+      return reserialize<dynamic_reconfigure::Config>(buf, len, same);
+    if (t == "dynamic_reconfigure/ConfigDescription")
+      return reserialize<dynamic_reconfigure::ConfigDescription>(buf, len, same);
+    return ROSC_E_INVALID;
   });
 }
 
-int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size)
+int rosc_test_wait_rosout(double timeout_s)
 {
   return guard(__func__, [&]() -> int {
-    if (sub == nullptr) return ROSC_E_INVALID;
-    return copy_out(sub->topic, buf, buf_size);
+    int st = need_node();
+    if (st != ROSC_OK) return st;
+    ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s > 0 ? timeout_s : 0);
+    while (ros::TopicManager::instance()->getNumSubscribers("/rosout") == 0) {
+      if (ros::WallTime::now() >= deadline) return ROSC_E_TIMEOUT;
+      ros::WallDuration(0.02).sleep();
+    }
+    return ROSC_OK;
   });
 }
 
@@ -180,19 +189,7 @@ int rosc_log(int level, const char *fmt, ...)
   va_list ap;
   va_start(ap, fmt);
   int st = guard(__func__, [&]() -> int {
-    return rosc_internal::vlog(level, nullptr, 0, "", 0.0, nullptr, fmt, ap);
-  });
-  va_end(ap);
-  return st;
-}
-
-int rosc_log_throttle(int level, double period_s, const char *key, const char *fmt, ...)
-{
-  va_list ap;
-  va_start(ap, fmt);
-  int st = guard(__func__, [&]() -> int {
-    if (!(period_s >= 0.0)) return ROSC_E_INVALID;
-    return rosc_internal::vlog(level, nullptr, 0, "", period_s, key, fmt, ap);
+    return rosc_internal::vlog(level, nullptr, 0, "", fmt, ap);
   });
   va_end(ap);
   return st;

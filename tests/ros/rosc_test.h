@@ -31,23 +31,23 @@ int rosc_wall_sleep(double seconds);
 int rosc_param_get_string_alloc(const char *name, char **out, size_t *len);
 /* *out = 1 if the parameter is set (any type), else 0. */
 int rosc_param_has(const char *name, int *out);
-/* Setters; bool is any non-zero int. */
-int rosc_param_set_string(const char *name, const char *value);
-int rosc_param_set_double(const char *name, double value);
-int rosc_param_set_int(const char *name, int value);
-int rosc_param_set_bool(const char *name, int value);
 int rosc_param_delete(const char *name);   /* ROSC_OK also when it was not set */
 
 /* ---- topics */
-/* rosc_publish of a std_msgs/String holding text. */
-int rosc_publish_string(rosc_pub *pub, const char *text);
 /* The fully resolved topic name (after remapping). */
 int rosc_pub_topic(const rosc_pub *pub, char *buf, size_t buf_size);
 /* Number of publishers connected now. */
 int rosc_sub_num_publishers(const rosc_sub *sub, unsigned *out);
-/* Messages dropped by the shim itself (frame_id or ns too long) so far. */
-int rosc_sub_num_dropped(const rosc_sub *sub, uint64_t *out);
-int rosc_sub_topic(const rosc_sub *sub, char *buf, size_t buf_size);
+/* Reads buf[0, len) with roscpp's own deserialiser as the generated C++ message of
+ * `datatype` and serialises that again: *same = 1 if roscpp took exactly those bytes
+ * and gave them back (the C encoder's field table agrees with the .msg). ROSC_E_ROS
+ * if roscpp could not read them. */
+int rosc_test_reserialize(const char *datatype, const uint8_t *buf, size_t len, int *same);
+
+/* Waits (wall clock, up to timeout_s) until /rosout subscribes to this node's log, so
+ * that what it logs next reaches rosout.log: roscpp drops the lines a node logs before
+ * that connection is up. ROSC_E_TIMEOUT if it did not come. */
+int rosc_test_wait_rosout(double timeout_s);
 
 /* ---- services */
 /* Calls the std_srvs/Empty service `name`, waiting up to timeout_s (wall clock) for
@@ -57,8 +57,6 @@ int rosc_call_empty(const char *name, double timeout_s);
 
 /* ---- logging (rosc_log_at without the caller's place) */
 int rosc_log(int level, const char *fmt, ...) ROSC_PRINTF(2, 3);
-int rosc_log_throttle(int level, double period_s, const char *key, const char *fmt, ...)
-    ROSC_PRINTF(4, 5);
 
 #ifdef __cplusplus
 }

@@ -27,6 +27,7 @@
  *                            is the body's pose itself and skin_stats counts one reset.
  *   skin_probe badstream S HZ  S seconds of NaN meshes at HZ (for /diagnostics tests).
  * Exit 0 when every check passes. */
+#include "node_msg.h" /* the nodes' typed topics (src/nodes) */
 #include "rosc_test.h" /* rosc/rosc.h and the calls only tests make */
 #include "ss_test.h"
 
@@ -51,7 +52,7 @@ typedef struct got {
   uint32_t topo[MAX_MSG];
   /* stats */
   int nstats;
-  rosc_skin_stats last_stats;
+  ss_msg_skin_stats last_stats;
   int64_t stats_stamp_ns[MAX_MSG];
   /* marker */
   int nmarker, marker_ok;
@@ -86,10 +87,10 @@ static void make_sheet(double t)
 
 static void on_skin(const void *msg, void *u)
 {
-  const rosc_skin_mesh *m = msg;
+  const ss_msg_skin_mesh *m = msg;
   got *g = u;
   if (g->n >= MAX_MSG) return;
-  g->stamp_ns[g->n] = rosc_time_to_ns(m->header.stamp);
+  g->stamp_ns[g->n] = ss_msg_time_to_ns(m->header.stamp);
   rosc_wall_now_s(&g->wall[g->n]);
   g->topo[g->n] = m->topology_id;
   if (strcmp(m->header.frame_id, FRAME) != 0) g->bad_frame++;
@@ -105,27 +106,27 @@ static void on_skin(const void *msg, void *u)
 
 static void on_stats(const void *msg, void *u)
 {
-  const rosc_skin_stats *m = msg;
+  const ss_msg_skin_stats *m = msg;
   got *g = u;
-  if (g->nstats < MAX_MSG) g->stats_stamp_ns[g->nstats] = rosc_time_to_ns(m->header.stamp);
+  if (g->nstats < MAX_MSG) g->stats_stamp_ns[g->nstats] = ss_msg_time_to_ns(m->header.stamp);
   g->nstats++;
   g->last_stats = *m;
 }
 
 static void on_marker(const void *msg, void *u)
 {
-  const rosc_marker *m = msg;
+  const ss_msg_marker *m = msg;
   got *g = u;
   g->nmarker++;
-  int ok = m->type == ROSC_MARKER_TRIANGLE_LIST && m->n_points == g->ntri &&
+  int ok = m->type == SS_MSG_MARKER_TRIANGLE_LIST && m->n_points == g->ntri &&
            m->n_colors == m->n_points && strcmp(m->header.frame_id, FRAME) == 0;
   for (size_t i = 0; ok && i < 4 * m->n_colors; i++)
     ok = m->colors[i] >= 0.0f && m->colors[i] <= 1.0f;
   if (ok) g->marker_ok++;
 }
 
-static rosc_pub *g_pub;
-static rosc_sub *g_sub_mesh, *g_sub_stats, *g_sub_marker;
+static msg_pub *g_pub;
+static msg_sub *g_sub_mesh, *g_sub_stats, *g_sub_marker;
 
 static int g_argc;
 static char **g_argv;
@@ -140,16 +141,16 @@ static int setup_skin(got *g, const char *name)
 
 static int connect_skin(got *g, int want_marker)
 {
-  if (rosc_pub_create(&g_pub, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 64, 0) != ROSC_OK ||
-      rosc_subscribe(&g_sub_mesh, ROSC_MSG_SKIN_MESH, "skin_mesh", 100, on_skin, NULL, g) != ROSC_OK ||
-      rosc_subscribe(&g_sub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 100, on_stats, NULL, g) != ROSC_OK ||
-      (want_marker && rosc_subscribe(&g_sub_marker, ROSC_MSG_MARKER, "skin_marker", 10, on_marker, NULL, g) != ROSC_OK))
+  if (msg_pub_create(&g_pub, SS_MSG_SKIN_MESH, "kinematic_mesh", 64, 0) != ROSC_OK ||
+      msg_subscribe(&g_sub_mesh, SS_MSG_SKIN_MESH, "skin_mesh", 100, on_skin, NULL, g) != ROSC_OK ||
+      msg_subscribe(&g_sub_stats, SS_MSG_SKIN_STATS, "skin_stats", 100, on_stats, NULL, g) != ROSC_OK ||
+      (want_marker && msg_subscribe(&g_sub_marker, SS_MSG_MARKER, "skin_marker", 10, on_marker, NULL, g) != ROSC_OK))
     return 0;
   for (int i = 0; i < 200; i++) { /* up to 10 s for the skin node */
     unsigned a = 0, b = 0, c = 0;
-    rosc_pub_num_subscribers(g_pub, &a);
-    rosc_sub_num_publishers(g_sub_mesh, &b);
-    rosc_sub_num_publishers(g_sub_stats, &c);
+    rosc_pub_num_subscribers(g_pub->pub, &a);
+    rosc_sub_num_publishers(g_sub_mesh->sub, &b);
+    rosc_sub_num_publishers(g_sub_stats->sub, &c);
     if (a >= 1 && b >= 1 && c >= 1) {
       rosc_spin_for(0.3);
       return 1;
@@ -174,10 +175,10 @@ static int start_skin_run(got *g, float *out_pos, const char *name, int want_mar
 
 static int finish(void)
 {
-  rosc_pub_destroy(g_pub);
-  rosc_sub_destroy(g_sub_mesh);
-  rosc_sub_destroy(g_sub_stats);
-  rosc_sub_destroy(g_sub_marker);
+  msg_pub_destroy(g_pub);
+  msg_sub_destroy(g_sub_mesh);
+  msg_sub_destroy(g_sub_stats);
+  msg_sub_destroy(g_sub_marker);
   rosc_shutdown();
   return ss_test_finish("skin_probe");
 }
@@ -185,16 +186,16 @@ static int finish(void)
 static void send_mesh(int64_t stamp_ns, uint32_t topo, const float *pos, size_t npos,
                       const uint32_t *tri, size_t ntri)
 {
-  rosc_skin_mesh m;
+  ss_msg_skin_mesh m;
   memset(&m, 0, sizeof m);
-  m.header.stamp = rosc_time_from_ns(stamp_ns);
+  m.header.stamp = ss_msg_time_from_ns(stamp_ns);
   snprintf(m.header.frame_id, sizeof m.header.frame_id, FRAME);
   m.topology_id = topo;
   m.positions = pos;
   m.n_positions = npos;
   m.triangles = tri;
   m.n_triangles = ntri;
-  rosc_publish(g_pub, ROSC_MSG_SKIN_MESH, &m);
+  msg_publish(g_pub, SS_MSG_SKIN_MESH, &m);
 }
 
 /* Waits (spinning) until n skin meshes and n stats have arrived, at most timeout_s. */
@@ -454,24 +455,24 @@ typedef struct jgot {
   int64_t stamp_ns[MAX_MSG];
   int n;
   int nstats;
-  rosc_skin_stats last;
-  char frame[ROSC_FRAME_ID_MAX];
+  ss_msg_skin_stats last;
+  char frame[SS_MSG_FRAME_ID_MAX];
   uint32_t topo;
   size_t npos;
 } jgot;
 
 static void on_kin(const void *msg, void *u)
 {
-  const rosc_skin_mesh *m = msg;
+  const ss_msg_skin_mesh *m = msg;
   jgot *g = u;
-  if (g->n < MAX_MSG) g->stamp_ns[g->n++] = rosc_time_to_ns(m->header.stamp);
+  if (g->n < MAX_MSG) g->stamp_ns[g->n++] = ss_msg_time_to_ns(m->header.stamp);
   snprintf(g->frame, sizeof g->frame, "%s", m->header.frame_id);
   g->topo = m->topology_id;
   g->npos = m->n_positions;
 }
 static void on_avstats(const void *msg, void *u)
 {
-  const rosc_skin_stats *m = msg;
+  const ss_msg_skin_stats *m = msg;
   jgot *g = u;
   g->nstats++;
   g->last = *m;
@@ -481,17 +482,17 @@ static int run_joints(void)
 {
   static jgot g;
   if (!setup_skin(NULL, "skin_probe_joints")) return 1;
-  rosc_pub *pub = NULL;
-  rosc_sub *s1 = NULL, *s2 = NULL;
-  if (rosc_pub_create(&pub, ROSC_MSG_JOINT_STATE, "joint_states", 10, 0) != ROSC_OK ||
-      rosc_subscribe(&s1, ROSC_MSG_SKIN_MESH, "kinematic_mesh", 100, on_kin, NULL, &g) != ROSC_OK ||
-      rosc_subscribe(&s2, ROSC_MSG_SKIN_STATS, "avatar_stats", 100, on_avstats, NULL, &g) != ROSC_OK)
+  msg_pub *pub = NULL;
+  msg_sub *s1 = NULL, *s2 = NULL;
+  if (msg_pub_create(&pub, SS_MSG_JOINT_STATE, "joint_states", 10, 0) != ROSC_OK ||
+      msg_subscribe(&s1, SS_MSG_SKIN_MESH, "kinematic_mesh", 100, on_kin, NULL, &g) != ROSC_OK ||
+      msg_subscribe(&s2, SS_MSG_SKIN_STATS, "avatar_stats", 100, on_avstats, NULL, &g) != ROSC_OK)
     return 1;
   int up = 0;
   for (int i = 0; i < 400 && !up; i++) {
     unsigned a = 0, b = 0;
-    rosc_pub_num_subscribers(pub, &a);
-    rosc_sub_num_publishers(s1, &b);
+    rosc_pub_num_subscribers(pub->pub, &a);
+    rosc_sub_num_publishers(s1->sub, &b);
     up = a >= 1 && b >= 1;
     rosc_spin_for(0.05);
   }
@@ -505,10 +506,10 @@ static int run_joints(void)
   int64_t good[16];
   int ngood = 0, nbad = 0;
   for (int i = 0; i < 9; i++) {
-    rosc_joint_state js;
+    ss_msg_joint_state js;
     memset(&js, 0, sizeof js);
     int64_t s = T0 + i * (int64_t)33333333;
-    js.header.stamp = rosc_time_from_ns(s);
+    js.header.stamp = ss_msg_time_from_ns(s);
     int is_good = 1;
     switch (i % 9) {
     case 0: case 2: case 4: case 6: case 8:
@@ -523,7 +524,7 @@ static int run_joints(void)
       js.name = mixed_names; js.n_name = 4; js.position = v4; js.n_position = 4;
       js.velocity = v4; js.n_velocity = 4; break;
     }
-    rosc_publish(pub, ROSC_MSG_JOINT_STATE, &js);
+    msg_publish(pub, SS_MSG_JOINT_STATE, &js);
     if (is_good) good[ngood++] = s; else nbad++;
     rosc_spin_for(1.0 / 30);
   }
@@ -541,9 +542,9 @@ static int run_joints(void)
             g.last.inputs_dropped);
   printf("joints: %d good, %d bad sent; %d kinematic_mesh back; %u rejected, %u names ignored\n",
          ngood, nbad, g.n, g.last.inputs_rejected, g.last.inputs_dropped);
-  rosc_pub_destroy(pub);
-  rosc_sub_destroy(s1);
-  rosc_sub_destroy(s2);
+  msg_pub_destroy(pub);
+  msg_sub_destroy(s1);
+  msg_sub_destroy(s2);
   rosc_shutdown();
   return ss_test_finish("skin_probe");
 }
@@ -555,7 +556,7 @@ static int run_await(long long stamp_ns, double timeout_s)
 {
   static got g;
   if (!setup_skin(&g, "skin_probe_await")) return 1;
-  if (rosc_subscribe(&g_sub_stats, ROSC_MSG_SKIN_STATS, "skin_stats", 1000, on_stats, NULL, &g) != ROSC_OK) return 1;
+  if (msg_subscribe(&g_sub_stats, SS_MSG_SKIN_STATS, "skin_stats", 1000, on_stats, NULL, &g) != ROSC_OK) return 1;
   int seen = 0;
   for (double t = 0; t < timeout_s && !seen; t += 0.05) {
     rosc_spin_for(0.05);
@@ -564,7 +565,7 @@ static int run_await(long long stamp_ns, double timeout_s)
   }
   printf("await: %d skin_stats, stamp %lld %s; inputs_dropped %u\n", g.nstats, stamp_ns,
          seen ? "seen" : "NOT seen", g.last_stats.inputs_dropped);
-  rosc_sub_destroy(g_sub_stats);
+  msg_sub_destroy(g_sub_stats);
   rosc_shutdown();
   return seen ? 0 : 1;
 }
