@@ -65,6 +65,16 @@ dynparam get /skin_sim > "$ROS_ENV_DIR/get1.txt" 2>&1
 n1=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 # skin_probe streams 1024 meshes at most: a second stream carries the next change
 kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+# the node drains the meshes still queued from the first stream before the change: a
+# mesh of it stepped after the change would create the skin again on the old stream,
+# and the second stream, whose stamps start again from the same time, would then go
+# back in time (a second reset)
+quiet=0
+for _ in $(seq 120); do
+  a=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log"); sleep 0.5
+  [ "$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")" = "$a" ] && quiet=$((quiet + 1)) || quiet=0
+  [ "$quiet" -ge 4 ] && break
+done
 n1=$(grep -c '^substeps:' "$ROS_ENV_DIR/stats_echo.log")
 dynparam set /skin_sim barycenters false > /dev/null 2>&1; rc=$?
 ros_env_check "dynparam set /skin_sim barycenters false exits 0" "[ $rc -eq 0 ]"
