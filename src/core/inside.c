@@ -127,6 +127,10 @@ double ss_wind_triangle(const double p[3], const double a[3], const double b[3],
 }
 
 double ss_wind_number(const ss_wind *w, const double *pos, const double p[3]) {
+  return ss_wind_number_beta(w, pos, p, SS_WIND_BETA);
+}
+
+double ss_wind_number_beta(const ss_wind *w, const double *pos, const double p[3], double beta) {
   if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])) || w->s.nnode <= 0) return 0.0;
   const ss_topo *t = w->topo;
   double sum = 0.0, far = 0.0; /* exact and dipole parts, summed apart */
@@ -138,7 +142,7 @@ double ss_wind_number(const ss_wind *w, const double *pos, const double p[3]) {
     const double *m = w->mom + 8 * (size_t)node;
     const double d[3] = {m[3] - p[0], m[4] - p[1], m[5] - p[2]};
     const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    if (r2 > SS_WIND_BETA * SS_WIND_BETA * m[6] * m[6]) {
+    if (r2 > beta * beta * m[6] * m[6]) {
       far += (m[0] * d[0] + m[1] * d[1] + m[2] * d[2]) / (r2 * sqrt(r2));
       continue;
     }
@@ -159,6 +163,10 @@ double ss_wind_number(const ss_wind *w, const double *pos, const double p[3]) {
 }
 
 int ss_wind_face_buried(const ss_wind *w, const double *pos, int f) {
+  return ss_wind_face_buried_beta(w, pos, f, SS_WIND_BETA);
+}
+
+int ss_wind_face_buried_beta(const ss_wind *w, const double *pos, int f, double beta) {
   const int *fv = w->topo->face_vert + 3 * f;
   double c[3];
   for (int k = 0; k < 3; k++) c[k] = (pos[3 * fv[0] + k] + pos[3 * fv[1] + k] + pos[3 * fv[2] + k]) / 3.0;
@@ -166,7 +174,7 @@ int ss_wind_face_buried(const ss_wind *w, const double *pos, int f) {
    * of a rounding error (det of three vectors in one plane): taken out, the
    * same value the sum added */
   const double own = ss_wind_triangle(c, pos + 3 * fv[0], pos + 3 * fv[1], pos + 3 * fv[2]);
-  return !(fabs(ss_wind_number(w, pos, c) - own - 0.5) < SS_WIND_CLEAN_TOL);
+  return !(fabs(ss_wind_number_beta(w, pos, c, beta) - own - 0.5) < SS_WIND_CLEAN_TOL);
 }
 
 static void face_normal(const ss_topo *t, const double *pos, int f, double n[3]) {

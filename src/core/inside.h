@@ -27,6 +27,10 @@ void ss_wind_refit(ss_wind *w, const double *pos);
  * thresholds used (1/2 inside, 1/2 +- 1/4 clean). */
 #define SS_WIND_BETA 3.0
 double ss_wind_number(const ss_wind *w, const double *pos, const double p[3]);
+/* The same with the near field within beta node radii: a smaller beta visits
+ * fewer faces exactly (their number grows like beta^2 around a point on the
+ * surface) for a larger far-field error. */
+double ss_wind_number_beta(const ss_wind *w, const double *pos, const double p[3], double beta);
 /* Exact winding number of one triangle (a, b, c) around p (solid angle / 4 pi). */
 double ss_wind_triangle(const double p[3], const double a[3], const double b[3], const double c[3]);
 
@@ -53,5 +57,6 @@ int ss_inside_classify(const ss_wind *w, const ss_bvh *bvh, const double *pos, c
 /* 1 if body face f is buried in the body or turned over (its centroid's
  * winding number is not 1/2 within SS_WIND_CLEAN_TOL). */
 int ss_wind_face_buried(const ss_wind *w, const double *pos, int f);
+int ss_wind_face_buried_beta(const ss_wind *w, const double *pos, int f, double beta);
 
 #endif
