@@ -67,6 +67,7 @@
 #include "closest.h"
 #include "inside.h"
 #include "sim_internal.h"
+#include "ss_free.h"
 
 struct ss_collider {
   const ss_topo *topo;
@@ -131,15 +132,8 @@ void ss_collider_destroy(ss_collider *c) {
   if (!c) return;
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
-  free(c->face_step);
-  free(c->face_buried);
-  free(c->cand_face);
-  free(c->cand_x);
-  free(c->cand_n);
-  free(c->hint);
-  free(c->vf_start);
-  free(c->vf_face);
-  free(c);
+  SS_FREE_ALL(c->face_step, c->face_buried, c->cand_face, c->cand_x, c->cand_n, c->hint, c->vf_start,
+              c->vf_face, c);
 }
 
 /* A move of at most this many edge lengths does not ask whether the face is

@@ -19,6 +19,7 @@
 #include <stdlib.h>
 
 #include "closest.h"
+#include "ss_free.h"
 
 #define WIND_STACK 256 /* bvh.c's MAX_DEPTH 96 with both children pushed */
 #define FOUR_PI 12.566370614359172953850573533118 /* 4 pi: the full solid angle */
@@ -49,8 +50,7 @@ int ss_wind_create(ss_wind **out, const ss_bvh *bvh, const ss_topo *topo) {
 
 void ss_wind_destroy(ss_wind *w) {
   if (!w) return;
-  free(w->mom);
-  free(w);
+  SS_FREE_ALL(w->mom, w);
 }
 
 static double dist2(const double a[3], const double b[3]) {
