@@ -24,6 +24,7 @@
 #include "skin_sim/ss_settings.h"
 #include "ss_track.h"
 #include "bvh.h"
+#include "ss_code_digest.h"
 #include "ss_err.h"
 #include "ss_free.h"
 
@@ -120,7 +121,7 @@ int ss_reference_key(const ss_body *body, const ss_run_settings *run, unsigned l
              ss_hash_bytes(pos, sizeof(double) * 3 * (size_t)body->nvert);
   }
   free(pos);
-  text_add(&t, "skin_sim reference %d\n", SS_REFERENCE_VERSION);
+  text_add(&t, "skin_sim reference %d code %s\n", SS_REFERENCE_VERSION, SS_CODE_DIGEST);
   text_add(&t, "body %d %d rest %016llx faces %016llx motion %016llx fps %a frames %d\n",
            body->nvert, body->nface,
            ss_hash_bytes(body->rest, sizeof(double) * 3 * (size_t)body->nvert),

@@ -12,12 +12,14 @@
  *
  * Its skin positions at every frame are cached in a folder, one file per
  * reference named by a 64-bit key: the hash of a text describing everything
- * that determines them (the code version SS_REFERENCE_VERSION, the body's
- * rest mesh and its pose at every frame, the frame count and rate, every
- * setting of the reference's ss_sim_settings, the face mask). A file is
- * trusted only if its header (magic, version, key, sizes), its exact size and
- * the checksum of its contents all match; anything else is recomputed and the
- * file rewritten (through a temporary file and a rename).
+ * that determines them (the file format SS_REFERENCE_VERSION; SS_CODE_DIGEST,
+ * the digest the build takes of the core's, the lab's and the public headers'
+ * sources, so that a reference computed by other simulation code is never
+ * reused; the body's rest mesh and its pose at every frame, the frame count
+ * and rate, every setting of the reference's ss_sim_settings, the face mask).
+ * A file is trusted only if its header (magic, version, key, sizes), its
+ * exact size and the checksum of its contents all match; anything else is
+ * recomputed and the file rewritten (through a temporary file and a rename).
  *
  * error_vs_reference = sqrt(mean over frames and skin vertices of
  * |x - x_ref|^2) / mean rest edge length of the body. A run whose skin is a
@@ -34,7 +36,7 @@
 extern "C" {
 #endif
 
-#define SS_REFERENCE_VERSION 11     /* bump when the simulation's results change */
+#define SS_REFERENCE_VERSION 11     /* the cache file's format */
 #define SS_REFERENCE_SUBSTEPS 16
 #define SS_REFERENCE_ITERATIONS 100
 #define SS_REFERENCE_TOL 1e-6

@@ -2,7 +2,9 @@
 # skinsim run --reference: the reference is cached (the second run reads it:
 # reference_cache_hit), a corrupted or truncated cache file is detected and
 # recomputed (never trusted), the reference configuration itself has error 0,
-# a coarser run has error > 0, and an unusable cache folder is one clear error.
+# a coarser run has error > 0, an unusable cache folder is one clear error, and
+# the key's code digest (cmake/code_digest.cmake) follows the code: another
+# source text, another digest; the build's digest is that of its sources now.
 # Usage: test_skinsim_reference.sh BUILD_DIR [SOURCE_DIR]
 set -u
 . "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
@@ -51,6 +53,27 @@ check "more substeps: the same reference (slide is a rate per second)" \
   "[ \"\$(field $tmp/s.json reference_key)\" = \"\$(field $tmp/a.json reference_key)\" ]"
 "$exe" run --scene elbow --tris 300 --frames 8 --json "$tmp/n.json" > /dev/null
 check "without --reference no error field" "! grep -q error_vs_reference '$tmp/n.json'"
+
+# the code digest: the same files give the same header (not rewritten), a changed
+# file another digest; the built header is the digest of the build's sources
+digest() { cmake -DLIST="$1" -DROOT="$tmp" -DOUT="$2" -P "$src/cmake/code_digest.cmake"; }
+printf 'int a;\n' > "$tmp/d1.c"; printf 'int b;\n' > "$tmp/d2.c"
+printf '%s\n' "$tmp/d1.c" "$tmp/d2.c" > "$tmp/dlist"
+digest "$tmp/dlist" "$tmp/dig.h"; cp "$tmp/dig.h" "$tmp/dig0.h"; touch -d @1 "$tmp/dig.h"
+digest "$tmp/dlist" "$tmp/dig.h"
+check "code digest: same sources, same header, left untouched" \
+  "cmp -s '$tmp/dig.h' '$tmp/dig0.h' && [ \$(stat -c %Y '$tmp/dig.h') -eq 1 ]"
+printf 'int a; /* changed */\n' > "$tmp/d1.c"
+digest "$tmp/dlist" "$tmp/dig.h"
+check "code digest: a changed source, another digest" "! cmp -s '$tmp/dig.h' '$tmp/dig0.h'"
+gen=$(find -L "$bld" -name ss_code_digest.h -path '*generated*' 2> /dev/null | head -n 1)
+lst="$(dirname "$gen")/code_digest_files.txt"
+if [ -f "$gen" ] && [ -f "$lst" ]; then
+  cmake -DLIST="$lst" -DROOT="$src" -DOUT="$tmp/now.h" -P "$src/cmake/code_digest.cmake"
+  check "the built code digest is that of the sources" "cmp -s '$gen' '$tmp/now.h'"
+else
+  check "the build has its code digest header" false
+fi
 
 touch "$tmp/notadir"
 "$exe" "${run[@]:0:7}" --reference --cache "$tmp/notadir/sub" > /dev/null 2> "$tmp/err"; rc=$?
