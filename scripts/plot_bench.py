@@ -521,15 +521,26 @@ def main():
     if not rows:
         sys.stderr.write("plot_bench: %s/results.csv has no rows\n" % out)
         return 1
-    plot_pareto(rows, out)
-    plot_pareto(rows, out, "error_vs_reference", "pareto_reference.png")
-    plot_rest_return(rows, out)
-    plot_accuracy(rows, out)
-    plot_stability(rows, out)
-    plot_scaling(rows, out)
-    plot_breakdown(rows, out)
-    plot_options(rows, out)
-    print("plot_bench: charts written to %s" % out)
+    # each chart from the sweeps it reads; a results.csv of some sweeps only
+    # (skinsim bench --sweeps) gets those charts only
+    have = set(r["sweep"] for r in rows)
+    charts = [
+        ({"solvers"}, lambda: plot_pareto(rows, out)),
+        ({"solvers"},
+         lambda: plot_pareto(rows, out, "error_vs_reference", "pareto_reference.png")),
+        ({"rest"}, lambda: plot_rest_return(rows, out)),
+        ({"methods"}, lambda: plot_accuracy(rows, out)),
+        ({"methods"}, lambda: plot_stability(rows, out)),
+        ({"scaling"}, lambda: plot_scaling(rows, out)),
+        ({"methods", "solvers", "scaling"}, lambda: plot_breakdown(rows, out)),
+        ({"options"}, lambda: plot_options(rows, out)),
+    ]
+    drawn = 0
+    for needs, draw in charts:
+        if needs & have == needs:
+            draw()
+            drawn += 1
+    print("plot_bench: %d charts written to %s" % (drawn, out))
     return 0
 
 

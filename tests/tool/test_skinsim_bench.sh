@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # skinsim bench --quick into a temporary folder: every chart, both Markdown
 # tables and the CSV exist; the CSV has a row for every anchor method and
-# every body (built-in scenes and avatars), with error_vs_reference filled in.
+# every body (built-in scenes and avatars), with error_vs_reference filled in;
+# --sweeps runs and draws only the named sweeps.
 # Usage: test_skinsim_bench.sh BUILD_DIR SOURCE_DIR
 set -u
 . "$(dirname "$0")/lib.sh"   # bld, src, exe, tmp, py, check
@@ -71,6 +72,23 @@ PY"
 check "stability.md has a row for walk on the quadruped" \
   "grep -q '^| quadruped | .* | walk |' '$tmp/out/stability.md'"
 
+# --sweeps: only the named sweeps' rows (the options' here, from the quick run's cache), and
+# only their charts
+OPENBLAS_NUM_THREADS=1 "$exe" bench --quick --sweeps options --out "$tmp/opt" --cache "$tmp/cache" \
+  --plot-script "$src/scripts/plot_bench.py" 2> "$tmp/err_opt"; rc=$?
+check "bench --sweeps options exits 0" "[ $rc -eq 0 ]" || tail -n 20 "$tmp/err_opt"
+check "--sweeps options: options rows only, every option of the quick run" "/usr/bin/python3 - '$tmp/opt/results.csv' '$tmp/out/results.csv' <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+full = [r for r in csv.DictReader(open(sys.argv[2])) if r['sweep'] == 'options']
+print('rows', len(rows), {r['sweep'] for r in rows}, 'options in the full quick run', len(full))
+sys.exit(0 if rows and {r['sweep'] for r in rows} == {'options'} and
+         [(r['scene'], r['option']) for r in rows] == [(r['scene'], r['option']) for r in full]
+         else 1)
+PY"
+check "--sweeps options: options.png and options.md, no other chart" \
+  "[ -s '$tmp/opt/options.png' ] && [ -s '$tmp/opt/options.md' ] && [ ! -e '$tmp/opt/pareto.png' ] && [ ! -e '$tmp/opt/stability.png' ]"
+
 bad() { # bad <description> <args...>: exit 2, one line on stderr
   local what="$1"; shift
   "$exe" "$@" > /dev/null 2> "$tmp/e"; local rc=$?
@@ -79,4 +97,6 @@ bad() { # bad <description> <args...>: exit 2, one line on stderr
 bad "bench without --out" bench --quick
 bad "bench unknown option" bench --out "$tmp/x" --bogus
 bad "bench missing plot script" bench --out "$tmp/x" --plot-script "$tmp/none.py"
+bad "bench unknown sweep" bench --out "$tmp/x" --sweeps options,bogus
+bad "bench --sweeps with --truth-doubling" bench --out "$tmp/x" --sweeps options --truth-doubling 32
 exit $fail

@@ -18,7 +18,9 @@
  *              a 3 s settle after the motion (rest return; no reference)
  * Every run with a reference is also measured against the truth (ss_truth_settings:
  * one per body, motion and physical settings, whatever the method).
- * --quick shrinks sizes and frame counts (and the lists) to finish in minutes. */
+ * --quick shrinks sizes and frame counts (and the lists) to finish in minutes;
+ * --sweeps runs only the named sweeps (one chart's data in minutes, e.g. after a
+ * change to an option). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -194,6 +196,44 @@ static int build_sweep(case_list *l, int quick, int have_asset) {
     }
   }
   return bad ? -1 : 0;
+}
+
+static const char *const sweep_names[] = {"methods", "solvers", "substeps", "scaling",
+                                          "options", "rest"};
+#define NSWEEP ((int)(sizeof sweep_names / sizeof sweep_names[0]))
+
+/* Parses --sweeps' comma-separated names into want[NSWEEP]. Returns 0, or -1
+ * after printing which name is unknown. */
+static int parse_sweeps(const char *list, int want[NSWEEP]) {
+  for (int k = 0; k < NSWEEP; k++) want[k] = 0;
+  const char *p = list;
+  for (;;) {
+    const char *comma = strchr(p, ',');
+    const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+    int found = -1;
+    for (int k = 0; k < NSWEEP; k++)
+      if (strlen(sweep_names[k]) == len && strncmp(p, sweep_names[k], len) == 0) found = k;
+    if (found < 0) {
+      cli_error("bench: unknown sweep '%.*s' in --sweeps (methods, solvers, substeps, scaling, "
+                "options, rest)", (int)len, p);
+      return -1;
+    }
+    want[found] = 1;
+    if (!comma) return 0;
+    p = comma + 1;
+  }
+}
+
+/* Keeps the cases of the wanted sweeps, in order. */
+static void keep_sweeps(case_list *l, const int want[NSWEEP]) {
+  int n = 0;
+  for (int i = 0; i < l->n; i++)
+    for (int k = 0; k < NSWEEP; k++)
+      if (want[k] && strcmp(l->c[i].sweep, sweep_names[k]) == 0) {
+        l->c[n++] = l->c[i];
+        break;
+      }
+  l->n = n;
 }
 
 /* ---- running one case ------------------------------------------------------- */
@@ -385,7 +425,7 @@ int cmd_bench(int argc, char **argv) {
   const char *out_dir = NULL, *cache_opt = NULL, *python = "/usr/bin/python3";
   const char *script = SS_SOURCE_DIR "/scripts/plot_bench.py";
   int quick = 0, no_plot = 0, doubling = 0, nset = 0;
-  const char *bodies = NULL;
+  const char *bodies = NULL, *sweeps = NULL;
   double truth_tol = 0.0; /* --truth-tol: the truth's Newton tolerance (0: SS_REFERENCE_TOL) */
   ss_sim_settings sim = ss_sim_default_settings(); /* --truth-doubling: physical settings */
   for (int i = 1; i < argc; i++) {
@@ -410,6 +450,8 @@ int cmd_bench(int argc, char **argv) {
       const char *v = cli_value(argc, argv, &i);
       if (!v || cli_double(a, v, 1e-14, 1.0, &truth_tol)) return EXIT_USAGE;
       nset++;
+    } else if (strcmp(a, "--sweeps") == 0) {
+      if (!(sweeps = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--bodies") == 0) {
       if (!(bodies = cli_value(argc, argv, &i))) return EXIT_USAGE;
     } else if (strcmp(a, "--no-plot") == 0) {
@@ -425,6 +467,12 @@ int cmd_bench(int argc, char **argv) {
   }
   if (!out_dir) {
     cli_error("bench needs --out DIR");
+    return EXIT_USAGE;
+  }
+  int want[NSWEEP];
+  if (sweeps && parse_sweeps(sweeps, want)) return EXIT_USAGE;
+  if (sweeps && doubling) {
+    cli_error("bench: --sweeps goes with the sweep, not with --truth-doubling");
     return EXIT_USAGE;
   }
   if (mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
@@ -460,8 +508,9 @@ int cmd_bench(int argc, char **argv) {
     cli_error("out of memory");
     return EXIT_RUN_FAILED;
   }
-  fprintf(stderr, "skinsim bench: %d runs%s, references cached in %s\n", l.n,
-          quick ? " (quick)" : "", cache_dir);
+  if (sweeps) keep_sweeps(&l, want);
+  fprintf(stderr, "skinsim bench: %d runs%s%s%s, references cached in %s\n", l.n,
+          quick ? " (quick)" : "", sweeps ? ", sweeps " : "", sweeps ? sweeps : "", cache_dir);
   bench_ctx ctx = {cache_dir, csv, 0};
   const double t0 = ss_now_ms();
   int failed = 0, with_failures = 0;

@@ -48,12 +48,15 @@ static void usage(FILE *f) {
       "                              carried with it, not simulated (JSON triangles_carried)\n"
 #endif
 
-      "  bench --out DIR [--quick] [--cache DIR] [--no-plot] [--plot-script FILE] [--python EXE]\n"
+      "  bench --out DIR [--quick] [--sweeps S,...] [--cache DIR] [--no-plot] [--plot-script FILE]\n"
+      "        [--python EXE]\n"
       "                              speed against accuracy: a sweep of methods, solvers,\n"
       "                              iterations, substeps, sizes and options over the scenes\n"
       "                              and avatars; DIR/results.csv and charts (pareto, stability,\n"
       "                              scaling, breakdown, options .png; stability.md, options.md).\n"
-      "                              --quick: small sizes, a few minutes; full: under 30 minutes\n"
+      "                              --quick: small sizes, a few minutes; full: under 30 minutes;\n"
+      "                              --sweeps: only these of methods, solvers, substeps,\n"
+      "                              scaling, options, rest (and only their charts)\n"
       "  bench --out DIR --truth-doubling MAX [--bodies B,...] [--truth-tol TOL] [SETTINGS]\n"
       "                              is the truth converged? per body of the sweep the truth at\n"
       "                              16, 32, .. MAX substeps, each doubling's RMS difference\n"
