@@ -180,13 +180,16 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   const int nblock = (nsim + L - 1) / L;
   double *fe = sim->face_energy;
   const double *bary_anchor = sim->set.barycenter_anchors ? sim->anchor_pos + 3 * (size_t)sim->m->nvert : NULL;
+  /* with the orient term, each face's s from the corners the membrane
+   * gathers (orient.c reads them: ss_sim_orient_energy's s_ready) */
+  double *os = sim->set.orient > 0.0 ? sim->orient_s : NULL;
 #ifdef _OPENMP
   if (sim->nthread > 1 && nsim > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
-      ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull,
-                                 bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, g ? fg : NULL,
-                                 NULL, NULL);
+      ss_membrane_eval_batch_orient_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim,
+                                        xfull, bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe,
+                                        g ? fg : NULL, NULL, NULL, sim->orient_n, SS_ORIENT_S0, os);
     if (g) {
       if (n > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
@@ -200,8 +203,9 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   {
     if (g)
       for (int k = 0; k < n; k++) own_grad(sim, k, xfull, g);
-    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu, sim->m->lam,
-                               sim->m->set.compression, fe, NULL, g, sim->m->dof);
+    ss_membrane_eval_batch_orient_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu,
+                                      sim->m->lam, sim->m->set.compression, fe, NULL, g, sim->m->dof,
+                                      sim->orient_n, SS_ORIENT_S0, os);
   }
   sc.a = fe;
   ss_par_sum(sim->nthread, nsim, 1, sum_block, &sc, sim->par_part, &part_sum);
@@ -215,7 +219,7 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     if (g)
       for (int c = 0; c < 4; c++) add_grad(sim, g, hv[c], g12 + 3 * c);
   }
-  e += ss_sim_orient_energy(sim, xfull, g); /* orient.c */
+  e += ss_sim_orient_energy(sim, xfull, g, os != NULL); /* orient.c */
   return e;
 }
 

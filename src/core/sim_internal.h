@@ -181,8 +181,10 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
  * (orient_n), which energy and Hessian read: after every move of either
  * (ss_sim_energy_begin calls it). */
 void ss_sim_orient_begin(ss_sim *sim);
-/* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0. */
-double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g);
+/* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0.
+ * s_ready: orient_s already holds every simulated face's s at xfull (the
+ * membrane's batch computes them, ss_membrane_eval_batch_orient_isa). */
+double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g, int s_ready);
 /* The first trial step of a quasi-Newton line search along dir from the
  * unknowns xd, where E's slope is `slope` (< 0): the minimum over (0, 1] of
  * the depth springs along the line (exact: one-sided quadratics) plus a
