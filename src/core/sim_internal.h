@@ -172,6 +172,8 @@ void ss_sim_choose_threads(ss_sim *sim, double step_ms);
 /* Sets the vector instruction set of the sim's kernels (isa.h; one the CPU
  * runs): the same bits from any. Chosen at create: the widest. */
 void ss_sim_set_isa(ss_sim *sim, int isa);
+/* sim->collider made if it is not (sim_model.c); SS_E_NOMEM. */
+int ss_sim_collider_ensure(ss_sim *sim);
 
 /* ---- orient.c: skin faces resist turning over against the body ---- */
 /* The unit body normal skin face f is judged against, in the pose of fr;
