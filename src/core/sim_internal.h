@@ -69,7 +69,8 @@
   X(walkers, ss_walker *, (size_t)sim->nthread_max, "(nthread_max) walk scratch, one per thread") \
   X(face_energy, double, (size_t)m->nface, "(nsimface) per simulated face, in one evaluation: membrane and barycenter spring") \
   X(orient_s, double, (size_t)m->nface, "(nsimface) orient.c: s of each judged face in one evaluation") \
-  X(face_grad, double, 9 * (size_t)m->nsimface + 1, "their gradients (9 per simulated face)")   \
+  X(face_grad, double, (sim->nthread_max > 1 ? 9 : 3) * (size_t)m->nsimface + 1,                 \
+    "their gradients (9 per simulated face; only on threads) or area vectors (3)")               \
   X(mi, double, (size_t)m->ndof, "(ndof) inertia weight: mass (1/h^2 + damping/h)")              \
   X(target, double, 3 * (size_t)m->ndof, "(ndof x 3) inertia target (prediction, damping, gravity)") \
   X(xd, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: the unknowns")                          \
