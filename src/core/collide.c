@@ -427,6 +427,7 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
 }
 
 int ss_sim_collide(ss_sim *sim) {
+  if (!sim->collider) return 0; /* made with collide on (ss_sim_collider_ensure) */
   const ss_model *m = sim->m;
   const double edge = m->edge_len;
   ss_collide_in in = {m->btopo, ss_mover_frames(sim->mover), sim->body_sub, sim->anchor_face,

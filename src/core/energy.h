@@ -69,6 +69,15 @@ void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, i
                                 const double *x, const double *bary_anchor, double mu, double lam,
                                 double compression, double *energy, double *grad,
                                 double *dof_grad, const int *dof_of);
+/* The same, and with orient_s (else NULL) each face q's orient ratio s
+ * (orient.c's face_ratio, bit for bit) from the corners it gathered: into
+ * orient_s[q], from orient_n + 4 q (the unit normal and face_c; face_c 0:
+ * not judged, s = orient_s0). */
+void ss_membrane_eval_batch_orient_isa(int isa, const ss_membrane_face *face, int q0, int q1,
+                                       const double *x, const double *bary_anchor, double mu, double lam,
+                                       double compression, double *energy, double *grad,
+                                       double *dof_grad, const int *dof_of, const double *orient_n,
+                                       double orient_s0, double *orient_s);
 /* One barycenter spring as the batch computes it: corners x (9), anchor a,
  * stiffness k; returns its energy, its gradient per corner into g3. */
 static inline double ss_bary_spring(const double x[9], const double a[3], double k, double g3[3]) {

@@ -503,8 +503,9 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
                                                  const double *x, const double *bary_anchor,
                                                  double mu, double lam, double compression,
                                                  double *energy, double *grad, double *dof_grad,
-                                                 const int *dof_of, const int soft,
-                                                 const int bary) {
+                                                 const int *dof_of, const double *orient_n,
+                                                 double orient_s0, double *orient_s, const int soft,
+                                                 const int bary, const int orient) {
   enum { L = SS_MEMBRANE_LANES };
   const double alpha = alpha_of(mu, lam);
   const double rest_offset = lam > 0.0 ? 0.5 * mu * mu / lam : 0.0;
@@ -513,23 +514,37 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
     double xs[9][L], dm[4][L], area[L], en[L], gr[9][L];
     double as[3][L], kb[L], eb[L], gb[3][L]; /* barycenter springs (bary) */
     double jl[L]; /* J per lane: a flag array of ints would stop the vectoriser */
+    double on[4][L], os[L]; /* the orient term's normal and face_c, its s (orient) */
     /* Gathered and scattered element by element, written out: at -O2 GCC
      * kept the loops over three coordinates as loops (a compare and a branch
      * per element, a sixth of the kernel's time in the sim). */
+    /* Row by row, each row's lanes written together: GCC builds each row
+     * of lanes in registers and stores it whole, where lane by lane it
+     * stored scalars that the simd loop then read back as rows (2% of the
+     * kernel's time on the 19k quadruped). */
+    const double *xc[3][L], *ac[L];
+    const ss_membrane_face *fl[L];
     for (int l = 0; l < L; l++) {
       const ss_membrane_face *fc = face + qb + (l < m ? l : 0);
-      const double *x0 = x + fc->xo[0], *x1 = x + fc->xo[1], *x2 = x + fc->xo[2];
-      xs[0][l] = x0[0], xs[1][l] = x0[1], xs[2][l] = x0[2];
-      xs[3][l] = x1[0], xs[4][l] = x1[1], xs[5][l] = x1[2];
-      xs[6][l] = x2[0], xs[7][l] = x2[1], xs[8][l] = x2[2];
-      dm[0][l] = fc->dm_inv[0], dm[1][l] = fc->dm_inv[1];
-      dm[2][l] = fc->dm_inv[2], dm[3][l] = fc->dm_inv[3];
-      area[l] = fc->area;
-      if (bary) {
-        const double *a = bary_anchor + fc->anchor;
-        as[0][l] = a[0], as[1][l] = a[1], as[2][l] = a[2];
-        kb[l] = fc->k_bary;
-      }
+      fl[l] = fc;
+      xc[0][l] = x + fc->xo[0], xc[1][l] = x + fc->xo[1], xc[2][l] = x + fc->xo[2];
+      if (bary) ac[l] = bary_anchor + fc->anchor;
+    }
+    for (int c = 0; c < 3; c++)
+      for (int i = 0; i < 3; i++)
+        for (int l = 0; l < L; l++) xs[3 * c + i][l] = xc[c][l][i];
+    for (int i = 0; i < 4; i++)
+      for (int l = 0; l < L; l++) dm[i][l] = fl[l]->dm_inv[i];
+    for (int l = 0; l < L; l++) area[l] = fl[l]->area;
+    if (bary) {
+      for (int i = 0; i < 3; i++)
+        for (int l = 0; l < L; l++) as[i][l] = ac[l][i];
+      for (int l = 0; l < L; l++) kb[l] = fl[l]->k_bary;
+    }
+    if (orient) {
+      const double *onb = orient_n + 4 * (size_t)qb;
+      for (int i = 0; i < 4; i++)
+        for (int l = 0; l < L; l++) on[i][l] = onb[4 * (l < m ? l : 0) + i];
     }
 #ifdef _OPENMP
 #pragma omp simd
@@ -571,6 +586,11 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
       gr[7][l] = ar * (d20 * p0y + d21 * p1y);
       gr[8][l] = ar * (d20 * p0z + d21 * p1z);
       en[l] = ar * psi;
+      if (orient) { /* orient.c's face_ratio: c ((x1 - x0) . ((x2 - x0) x n)) */
+        const double n0 = on[0][l], n1 = on[1][l], n2 = on[2][l];
+        const double w0 = e2y * n2 - e2z * n1, w1 = e2z * n0 - e2x * n2, w2 = e2x * n1 - e2y * n0;
+        os[l] = on[3][l] * (e1x * w0 + e1y * w1 + e1z * w2);
+      }
       if (bary) { /* ss_bary_spring's arithmetic */
         const double bx = (xs[0][l] + xs[3][l] + xs[6][l]) * SS_THIRD - as[0][l];
         const double by = (xs[1][l] + xs[4][l] + xs[7][l]) * SS_THIRD - as[1][l];
@@ -599,6 +619,7 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
         }
       }
       energy[qb + l] = en[l];
+      if (orient) orient_s[qb + l] = on[3][l] == 0.0 ? orient_s0 : os[l]; /* not judged: s0 */
     }
     if (grad) {
       double *gout = grad + 9 * (size_t)qb;
@@ -625,32 +646,51 @@ static inline SS_ALWAYS_INLINE void batch_kernel(const ss_membrane_face *face, i
   }
 }
 
-/* The kernel in each vector width (isa.h), specialised by its two
+/* The kernel in each vector width (isa.h), specialised by its three
  * constants: the same bits from each width. */
+#define SS_BATCH_ARGS(soft, bary, orient)                                                                    \
+  face, q0, q1, x, bary ? bary_anchor : NULL, mu, lam, soft ? compression : 1.0, energy, grad, dof_grad, dof_of, \
+      orient_n, orient_s0, orient_s, soft, bary, orient
 static inline SS_ALWAYS_INLINE void batch_dispatch(const ss_membrane_face *face, int q0, int q1,
                                                    const double *x, const double *bary_anchor,
                                                    double mu, double lam, double compression,
                                                    double *energy, double *grad, double *dof_grad,
-                                                   const int *dof_of) {
-  if (compression < 1.0 && bary_anchor)
-    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, 1);
-  else if (compression < 1.0)
-    batch_kernel(face, q0, q1, x, NULL, mu, lam, compression, energy, grad, dof_grad, dof_of, 1, 0);
-  else if (bary_anchor)
-    batch_kernel(face, q0, q1, x, bary_anchor, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 1);
-  else
-    batch_kernel(face, q0, q1, x, NULL, mu, lam, 1.0, energy, grad, dof_grad, dof_of, 0, 0);
+                                                   const int *dof_of, const double *orient_n,
+                                                   double orient_s0, double *orient_s) {
+  const int soft = compression < 1.0, bary = bary_anchor != NULL;
+  if (orient_s) {
+    if (soft && bary) batch_kernel(SS_BATCH_ARGS(1, 1, 1));
+    else if (soft) batch_kernel(SS_BATCH_ARGS(1, 0, 1));
+    else if (bary) batch_kernel(SS_BATCH_ARGS(0, 1, 1));
+    else batch_kernel(SS_BATCH_ARGS(0, 0, 1));
+  } else {
+    if (soft && bary) batch_kernel(SS_BATCH_ARGS(1, 1, 0));
+    else if (soft) batch_kernel(SS_BATCH_ARGS(1, 0, 0));
+    else if (bary) batch_kernel(SS_BATCH_ARGS(0, 1, 0));
+    else batch_kernel(SS_BATCH_ARGS(0, 0, 0));
+  }
 }
 SS_ISA_VARIANTS(batch,
                 (const ss_membrane_face *face, int q0, int q1, const double *x, const double *bary_anchor,
                  double mu, double lam, double compression, double *energy, double *grad, double *dof_grad,
-                 const int *dof_of),
+                 const int *dof_of, const double *orient_n, double orient_s0, double *orient_s),
                 batch_dispatch(face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad,
-                               dof_of);)
+                               dof_of, orient_n, orient_s0, orient_s);)
 
 void ss_membrane_eval_batch_isa(int isa, const ss_membrane_face *face, int q0, int q1,
                                 const double *x, const double *bary_anchor, double mu, double lam,
                                 double compression, double *energy, double *grad,
                                 double *dof_grad, const int *dof_of) {
-  SS_ISA_CALL(isa, batch, (face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of));
+  SS_ISA_CALL(isa, batch,
+              (face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of, NULL, 0.0, NULL));
+}
+
+void ss_membrane_eval_batch_orient_isa(int isa, const ss_membrane_face *face, int q0, int q1,
+                                       const double *x, const double *bary_anchor, double mu, double lam,
+                                       double compression, double *energy, double *grad,
+                                       double *dof_grad, const int *dof_of, const double *orient_n,
+                                       double orient_s0, double *orient_s) {
+  SS_ISA_CALL(isa, batch,
+              (face, q0, q1, x, bary_anchor, mu, lam, compression, energy, grad, dof_grad, dof_of, orient_n,
+               orient_s0, orient_s));
 }

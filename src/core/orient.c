@@ -407,15 +407,16 @@ static void depth_block(void *ctx, int q0, int q1, double *sums) {
   sums[0] = e;
 }
 
-double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g) {
+double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g, int s_ready) {
   const double k = sim->set.orient;
   if (!(k > 0.0)) return 0.0;
   const double *on = sim->orient_n;
   double e = 0.0;
-  /* s of all faces first (on the threads), then, in face order on one
+  /* s of all faces first (on the threads; or already, by the membrane's
+   * pass over the same corners, s_ready), then, in face order on one
    * thread, the few below S0: their energy and gradient (computed again
    * with s, the same bits), summed as before */
-  face_ratios(sim, xfull, sim->orient_s);
+  if (!s_ready) face_ratios(sim, xfull, sim->orient_s);
   for (int q = 0; q < sim->m->nsimface; q++) {
     if (!(sim->orient_s[q] < SS_ORIENT_S0)) continue;
     const double *n = on + 4 * (size_t)q;

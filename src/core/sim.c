@@ -309,6 +309,9 @@ int ss_sim_set_settings(ss_sim *sim, const ss_sim_settings *settings, int *recre
   if (!sim || !settings) return ss_fail(err, err_sz, SS_E_ARG, "sim or settings are NULL");
   int status = ss_settings_check(settings, err, err_sz);
   if (status != SS_OK) return status;
+  /* contact turned on: its scratch made now, not while stepping */
+  if (settings->collide && ss_sim_collider_ensure(sim) != SS_OK)
+    return ss_fail(err, err_sz, SS_E_NOMEM, "out of memory for contact");
   int n = 0, refactor = 0, material = 0;
   const ss_setting *table = ss_settings_table(&n);
   for (int i = 0; i < n; i++) {

@@ -126,13 +126,17 @@ typedef struct sum_ctx {
   const ss_sim *sim;
   const double *xfull;
   const double *a; /* sum_block's terms */
+  double *g;       /* inertia_block: each dof's own gradient (own_grad) written here too, if not NULL */
 } sum_ctx;
 
 /* Inertia (with damping and gravity) and vertex springs: energy of dofs
- * [k0, k1), dof k0 + j's into lane j % SS_PAR_LANES (par.h). */
+ * [k0, k1), dof k0 + j's into lane j % SS_PAR_LANES (par.h); with c->g
+ * also each dof's own gradient (own_grad's arithmetic), from the same
+ * differences in the same pass. */
 static void inertia_block(void *ctx, int k0, int k1, double *sums) {
   const sum_ctx *c = ctx;
   const ss_sim *sim = c->sim;
+  double *g = c->g;
   double e[SS_PAR_LANES] = {0};
   for (int k = k0, l = 0; k < k1; k++, l = (l + 1) % SS_PAR_LANES) {
     int v = sim->m->dof_vert[k];
@@ -142,6 +146,7 @@ static void inertia_block(void *ctx, int k0, int k1, double *sums) {
     for (int i = 0; i < 3; i++) {
       double dt = x[i] - t[i], da = x[i] - a[i];
       ek += 0.5 * (mi * dt * dt + kv * da * da);
+      if (g) g[3 * k + i] = mi * dt + kv * da;
     }
     e[l] += ek;
   }
@@ -164,8 +169,12 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   enum { L = SS_MEMBRANE_LANES };
   int n = sim->m->ndof;
   double *fg = sim->face_grad;
-  /* sums by blocks (par.h): the same bits for any thread count */
-  sum_ctx sc = {sim, xfull, NULL};
+  /* sums by blocks (par.h): the same bits for any thread count. On one
+   * thread (the kernel below adds the faces' gradients to the dofs' own)
+   * each dof's own gradient is written in the same pass. */
+  const int nsim = sim->m->nsimface;
+  const int threaded = sim->nthread > 1 && nsim > 256;
+  sum_ctx sc = {sim, xfull, NULL, threaded ? NULL : g};
   double part_sum;
   ss_par_sum(sim->nthread, n, 1, inertia_block, &sc, sim->par_part, &part_sum);
   double e = part_sum;
@@ -176,17 +185,19 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
    * own terms first and each face's added to its corners in face order by
    * the kernel itself: the same additions in the same order, without the
    * round trip through face_grad. */
-  const int nsim = sim->m->nsimface;
   const int nblock = (nsim + L - 1) / L;
   double *fe = sim->face_energy;
   const double *bary_anchor = sim->set.barycenter_anchors ? sim->anchor_pos + 3 * (size_t)sim->m->nvert : NULL;
+  /* with the orient term, each face's s from the corners the membrane
+   * gathers (orient.c reads them: ss_sim_orient_energy's s_ready) */
+  double *os = sim->set.orient > 0.0 ? sim->orient_s : NULL;
 #ifdef _OPENMP
-  if (sim->nthread > 1 && nsim > 256) {
+  if (threaded) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
     for (int b = 0; b < nblock; b++)
-      ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim, xfull,
-                                 bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe, g ? fg : NULL,
-                                 NULL, NULL);
+      ss_membrane_eval_batch_orient_isa(sim->isa, sim->m->mface, b * L, b * L + L < nsim ? b * L + L : nsim,
+                                        xfull, bary_anchor, sim->m->mu, sim->m->lam, sim->m->set.compression, fe,
+                                        g ? fg : NULL, NULL, NULL, sim->orient_n, SS_ORIENT_S0, os);
     if (g) {
       if (n > 256) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
@@ -198,10 +209,10 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
   } else
 #endif
   {
-    if (g)
-      for (int k = 0; k < n; k++) own_grad(sim, k, xfull, g);
-    ss_membrane_eval_batch_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu, sim->m->lam,
-                               sim->m->set.compression, fe, NULL, g, sim->m->dof);
+    /* each dof's own gradient already in g (inertia_block) */
+    ss_membrane_eval_batch_orient_isa(sim->isa, sim->m->mface, 0, nsim, xfull, bary_anchor, sim->m->mu,
+                                      sim->m->lam, sim->m->set.compression, fe, NULL, g, sim->m->dof,
+                                      sim->orient_n, SS_ORIENT_S0, os);
   }
   sc.a = fe;
   ss_par_sum(sim->nthread, nsim, 1, sum_block, &sc, sim->par_part, &part_sum);
@@ -215,7 +226,7 @@ double ss_sim_energy(const ss_sim *sim, const double *xfull, double *g) {
     if (g)
       for (int c = 0; c < 4; c++) add_grad(sim, g, hv[c], g12 + 3 * c);
   }
-  e += ss_sim_orient_energy(sim, xfull, g); /* orient.c */
+  e += ss_sim_orient_energy(sim, xfull, g, os != NULL); /* orient.c */
   return e;
 }
 

@@ -69,7 +69,8 @@
   X(walkers, ss_walker *, (size_t)sim->nthread_max, "(nthread_max) walk scratch, one per thread") \
   X(face_energy, double, (size_t)m->nface, "(nsimface) per simulated face, in one evaluation: membrane and barycenter spring") \
   X(orient_s, double, (size_t)m->nface, "(nsimface) orient.c: s of each judged face in one evaluation") \
-  X(face_grad, double, 9 * (size_t)m->nsimface + 1, "their gradients (9 per simulated face)")   \
+  X(face_grad, double, (sim->nthread_max > 1 ? 9 : 3) * (size_t)m->nsimface + 1,                 \
+    "their gradients (9 per simulated face; only on threads) or area vectors (3)")               \
   X(mi, double, (size_t)m->ndof, "(ndof) inertia weight: mass (1/h^2 + damping/h)")              \
   X(target, double, 3 * (size_t)m->ndof, "(ndof x 3) inertia target (prediction, damping, gravity)") \
   X(xd, double, 3 * (size_t)m->ndof, "(ndof x 3) solver: the unknowns")                          \
@@ -172,6 +173,8 @@ void ss_sim_choose_threads(ss_sim *sim, double step_ms);
 /* Sets the vector instruction set of the sim's kernels (isa.h; one the CPU
  * runs): the same bits from any. Chosen at create: the widest. */
 void ss_sim_set_isa(ss_sim *sim, int isa);
+/* sim->collider made if it is not (sim_model.c); SS_E_NOMEM. */
+int ss_sim_collider_ensure(ss_sim *sim);
 
 /* ---- orient.c: skin faces resist turning over against the body ---- */
 /* The unit body normal skin face f is judged against, in the pose of fr;
@@ -181,8 +184,10 @@ int ss_sim_orient_normal(const ss_sim *sim, const ss_frames *fr, int f, double n
  * (orient_n), which energy and Hessian read: after every move of either
  * (ss_sim_energy_begin calls it). */
 void ss_sim_orient_begin(ss_sim *sim);
-/* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0. */
-double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g);
+/* Energy at xfull; adds its gradient into g (dofs) if g. 0 when settings orient is 0.
+ * s_ready: orient_s already holds every simulated face's s at xfull (the
+ * membrane's batch computes them, ss_membrane_eval_batch_orient_isa). */
+double ss_sim_orient_energy(const ss_sim *sim, const double *xfull, double *g, int s_ready);
 /* The first trial step of a quasi-Newton line search along dir from the
  * unknowns xd, where E's slope is `slope` (< 0): the minimum over (0, 1] of
  * the depth springs along the line (exact: one-sided quadratics) plus a

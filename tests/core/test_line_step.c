@@ -65,7 +65,7 @@ static double orient_at(line_fixture *lf, double a, double *slope) {
   memcpy(lf->full, sim->x, 3 * (size_t)lf->g.nvert * sizeof(double));
   ss_sim_scatter(sim, lf->xs, lf->full);
   memset(lf->grad, 0, (size_t)lf->n3 * sizeof(double));
-  double e = ss_sim_orient_energy(sim, lf->full, lf->grad);
+  double e = ss_sim_orient_energy(sim, lf->full, lf->grad, 0);
   if (slope) {
     *slope = 0.0;
     for (int i = 0; i < lf->n3; i++) *slope += lf->grad[i] * lf->dir[i];
