@@ -73,13 +73,16 @@ static void nth_element(int *idx, int n, int nth, const double *centroid, int ax
   }
 }
 
+/* The box of face f: the smaller and larger coordinate of its corners (a
+ * NaN corner coordinate is passed over, as fmin and fmax do; written as
+ * comparisons, which the compiler keeps inline). */
 static void face_box(const ss_topo *topo, const double *pos, int f, double box[6]) {
   for (int c = 0; c < 3; c++) box[c] = INFINITY, box[3 + c] = -INFINITY;
   for (int k = 0; k < 3; k++) {
     const double *p = pos + 3 * topo->face_vert[3 * f + k];
     for (int c = 0; c < 3; c++) {
-      box[c] = fmin(box[c], p[c]);
-      box[3 + c] = fmax(box[3 + c], p[c]);
+      if (p[c] < box[c]) box[c] = p[c];
+      if (p[c] > box[3 + c]) box[3 + c] = p[c];
     }
   }
 }
@@ -202,15 +205,15 @@ void ss_bvh_refit(ss_bvh *b, const double *pos) {
         double fb[6];
         face_box(b->topo, pos, b->face_order[i], fb);
         for (int c = 0; c < 3; c++) {
-          box[c] = fmin(box[c], fb[c]);
-          box[3 + c] = fmax(box[3 + c], fb[3 + c]);
+          if (fb[c] < box[c]) box[c] = fb[c];
+          if (fb[3 + c] > box[3 + c]) box[3 + c] = fb[3 + c];
         }
       }
     } else {
       const double *l = b->box + 6 * b->left[node], *r = b->box + 6 * b->right[node];
       for (int c = 0; c < 3; c++) {
-        box[c] = fmin(l[c], r[c]);
-        box[3 + c] = fmax(l[3 + c], r[3 + c]);
+        box[c] = l[c] < r[c] ? l[c] : r[c];
+        box[3 + c] = l[3 + c] > r[3 + c] ? l[3 + c] : r[3 + c];
       }
     }
   }
@@ -225,18 +228,22 @@ static double box_dist2(const double box[6], const double p[3]) {
   return d2;
 }
 
-/* The search from a bound best (squared) and a face that holds it. */
+/* The search from a bound best (squared) and a face that holds it. Each
+ * node's box distance is computed once, by its parent, and kept on the
+ * stack with it. */
 static double closest_from(const ss_bvh *b, const double *pos, const double p[3], double best,
                            int *face, double uv[2]) {
   const ss_topo *topo = b->topo;
   if (b->nnode == 0) return best;
   if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) return best; /* no closest point */
   int stack[MAX_DEPTH * 2 + 2];
+  double sdist[MAX_DEPTH * 2 + 2];
   int top = 0;
-  stack[top++] = 0;
+  stack[top] = 0, sdist[top++] = box_dist2(b->box, p);
   while (top > 0) {
-    const int node = stack[--top];
-    if (box_dist2(b->box + 6 * node, p) > best) continue;
+    --top;
+    const int node = stack[top];
+    if (sdist[top] > best) continue;
     if (b->left[node] < 0) {
       for (int i = b->first[node]; i < b->first[node] + b->count[node]; i++) {
         const int f = b->face_order[i];
@@ -257,11 +264,11 @@ static double closest_from(const ss_bvh *b, const double *pos, const double p[3]
     const double dl = box_dist2(b->box + 6 * l, p), dr = box_dist2(b->box + 6 * r, p);
     /* push the farther child first so the nearer one is searched first */
     if (dl <= dr) {
-      stack[top++] = r;
-      stack[top++] = l;
+      if (dr <= best) stack[top] = r, sdist[top++] = dr;
+      if (dl <= best) stack[top] = l, sdist[top++] = dl;
     } else {
-      stack[top++] = l;
-      stack[top++] = r;
+      if (dl <= best) stack[top] = l, sdist[top++] = dl;
+      if (dr <= best) stack[top] = r, sdist[top++] = dr;
     }
   }
   return best;
@@ -285,3 +292,7 @@ ss_bvh_shape ss_bvh_get_shape(const ss_bvh *b) {
   ss_bvh_shape s = {b->nnode, b->left, b->right, b->first, b->count, b->face_order};
   return s;
 }
+
+const double *ss_bvh_boxes(const ss_bvh *b) { return b->box; }
+
+double *ss_bvh_boxes_write(ss_bvh *b) { return b->box; }

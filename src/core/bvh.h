@@ -33,5 +33,11 @@ typedef struct ss_bvh_shape {
   const int *left, *right, *first, *count, *face_order;
 } ss_bvh_shape;
 ss_bvh_shape ss_bvh_get_shape(const ss_bvh *bvh);
+/* The boxes of the last refit (nnode x 6: lo xyz, hi xyz), read-only. */
+const double *ss_bvh_boxes(const ss_bvh *bvh);
+/* The same to write: for a refit done elsewhere with another hierarchy over
+ * the same tree (ss_wind_refit_boxes), which must set them as ss_bvh_refit
+ * would. */
+double *ss_bvh_boxes_write(ss_bvh *bvh);
 
 #endif

@@ -19,44 +19,49 @@
  * (more iterations, no shallower). What is measured is the skin a step
  * leaves, and that is what the pass corrects.
  *
- * Where, cheap first: the anchor face and its edge neighbours give a point
- * of the surface near the vertex. A vertex within SS_COLLIDE_NEAR of it can
- * be no deeper (it is shallower than the depth that counts), and one in
- * front of those faces is out; the rest (about a third of the 19k
- * quadruped's skin in motion, whose anchors lag behind it) search the
- * body's tree for the nearest point, within the distance already known
- * (the tree's boxes further away are not visited). Not only the ring of the
- * anchor face: the deepest skin left by a ring search was where the anchor
- * lags more than a ring behind, or in front of its own face's plane and
- * behind a neighbour's (a crushed crease, the cap of a limb), or under a
- * face crushed by the pose. Behind the surface (by the pseudo-normal at the
- * nearest point: the normals of the faces nearest there summed, one face's
- * inside it, an edge's two, a corner's ring; Baerentzen and Aanaes 2005), it
- * moves out along that normal by its depth, and again from where it lands
- * (up to SS_COLLIDE_PASSES times, then onto the nearest point): in a crushed
- * crease the faces' planes cross, and one move along one normal left the
- * skin half an edge inside the next face.
+ * Where, cheap first. 1. Each vertex descends over the body's faces to a
+ * local nearest point of the surface (from the face its last descent ended
+ * on, else its anchor face: across the edge or around the corner the
+ * nearest point lies on, while that is nearer; usually one face or two, by
+ * the faces' frame records, walk.h). A vertex within SS_COLLIDE_NEAR of it
+ * is no deeper and is left (over 40% of the 19k quadruped's skin in
+ * motion); one in front of it and within SS_COLLIDE_FRONT is left too: it
+ * can be no deeper than that behind another part (a third). 2. The rest (a
+ * fifth: behind the local surface, or far in front of it, where another
+ * part or the far wall of a crease may be nearer) search the body's tree for the
+ * nearest point within the distance the descent found, starting at the
+ * leaf of the face it found and going up (the boxes a search from the root
+ * tests, but not the root's way down). The descent replaced the look at
+ * the anchor face and its neighbours, which left half the skin on their rim
+ * (the anchors lag) and so searched it. Behind the surface (by the
+ * pseudo-normal at the nearest point: the normals of the faces nearest
+ * there summed, one face's inside it, an edge's two, a corner's ring;
+ * Baerentzen and Aanaes 2005), the vertex moves out along that normal by
+ * its depth, and again from where it lands (up to SS_COLLIDE_PASSES times,
+ * then onto the nearest point): in a crushed crease the faces' planes
+ * cross, and one move along one normal left the skin half an edge inside
+ * the next face.
  *
  * Not against the body where it passes through itself: the nearest face of
- * a vertex found deep behind the surface, and its anchor face, must be on
- * the body's clean surface, the winding number of the whole body at their
- * centroids 1/2 (inside.h), as the inside measure judges; a face lying
- * inside another part of the body (a leg through the belly) or turned inside
- * out by the pose is not collided against, so the skin is never pushed into
- * the body's own artefacts. The test runs only for moves longer than
- * SS_COLLIDE_SHALLOW, each face's result kept a few steps, and sums the
- * faces exactly within SS_COLLIDE_WIND_BETA node radii of the centroid only
- * (the measure's 3 radii cost twice as much; telling 1/2 from 0 or 1 does
- * not need them).
+ * a vertex moved further than SS_COLLIDE_SHALLOW, and its anchor face, must
+ * be on the body's clean surface, the winding number of the whole body at
+ * their centroids 1/2 (inside.h), as the inside measure judges; a face
+ * lying inside another part of the body (a leg through the belly) or turned
+ * inside out by the pose is not collided against, so the skin is not
+ * pushed into the body's own artefacts by more than SS_COLLIDE_SHALLOW.
+ * Each face's result is kept some
+ * steps, and the winding-number moments are refitted with the tree's boxes
+ * in one sweep.
  *
  * No move squeezes a skin face: a move that would leave a face of the
- * vertex under SS_COLLIDE_SQUEEZE of its rest area, or turn it over, is
- * halved (twice), else not made; vertices of one face pushed out of a
- * crushed crease towards one line of the body made frames fail.
+ * vertex under SS_COLLIDE_SQUEEZE of its rest area, or turn it over, waits
+ * for its neighbours' moves, then is halved (twice), else not made;
+ * vertices of one face pushed out of a crushed crease towards one line of
+ * the body made frames fail.
  *
- * Deterministic: the search per vertex alone (on the threads; the face a
- * search found bounds the vertex's next search, its speed and never its
- * result), the tests and the moves in vertex order on one thread. */
+ * Deterministic: the descents and searches per vertex alone (on the
+ * threads; the face a vertex's descent ended on is its own, where its next
+ * starts), the tests and the moves in vertex order on one thread. */
 #include "collide.h"
 
 #include <math.h>
@@ -76,15 +81,56 @@ struct ss_collider {
   int nbface;
   long long *face_step;        /* (nbface) step of the cached face_buried (-1: none) */
   unsigned char *face_buried;  /* (nbface) */
-  long long step_refit;        /* the step the tree was last refitted in (-1: none) */
   int *cand_face;              /* (nvert) nearest face of a vertex behind the surface, or -1 */
   double *cand_x;              /* (nvert x 3) where it goes */
   double *cand_n;              /* (nvert x 3) the surface normal it goes along */
-  int *hint;                   /* (nvert) body face nearest to the vertex at its last search, or
-                                  -1: bounds the next search (its speed, never its result) */
+  int *hint;                   /* (nvert) the body face the vertex's last descent ended on, or -1:
+                                  where the next one starts */
   int *vf_start, *vf_face;     /* (nvert + 1), (3 nface) CSR: the skin's faces around each
                                   vertex, for the squeeze guard */
+  ss_bvh_shape shape;          /* the tree (bvh's) */
+  int *parent;                 /* (nnode) each node's parent (-1 at the root) */
+  int *leaf_of;                /* (nbface) the leaf that holds each face */
+  int *look_face;              /* (nvert) the face of the local nearest point of a vertex to look
+                                  further at, or -1 */
+  double *look_d2;             /* (nvert) its squared distance */
 };
+
+/* A move of at most this many edge lengths does not ask whether the face is
+ * on the clean surface: the test is a large part of the pass's cost, and
+ * such a move out of a buried face (inside another part, or turned over)
+ * leaves the skin within a seventh of an edge of where it was, inside that
+ * part anyway. At 0.05 edge it made three times the tests on the
+ * quadruped, and the skin no shallower. */
+#define SS_COLLIDE_SHALLOW 0.15
+/* A vertex this close to the surface (edge lengths, less the thickness) is
+ * not looked at further: it is no deeper than its distance to a point of
+ * the surface, and no deeper than the depth that counts (0.05 edge). */
+#define SS_COLLIDE_NEAR 0.045
+/* A vertex in front of its local nearest point and this close to it (edge
+ * lengths, less the thickness) is not searched for a nearer face it is
+ * behind: another part of the body, or the far wall of a crease, that it
+ * has cut into by at most that. The knob between cost and depth: on the
+ * four bodies of bench/inside.sh, the clean vertices deeper than 0.05 edge
+ * summed over the frames measured were 45 on the mannequin and 79 on the
+ * quadruped at 0.2; 35 and 48 at 0.1 for 1.6 times the quadruped's
+ * searches; 61 and 131 at 0.3 for three quarters of them. */
+#define SS_COLLIDE_FRONT 0.2
+/* Steps a face's clean-surface test is kept: a clean face 16, a buried one 2
+ * (the quadruped's legs leave the belly within a few frames, and skin kept
+ * in by a stale test stayed a quarter of an edge deep). */
+#define SS_COLLIDE_RECHECK 16
+#define SS_COLLIDE_RECHECK_BURIED 2
+/* The clean-surface test's near field (node radii; inside.h's measure uses
+ * SS_WIND_BETA, 3): it only tells 1/2 from 0, 1 or 3/2, by 1/4, and at 1.5
+ * radii the first-order far field stays within 0.13 of the exact sum on the
+ * faces the four bodies of bench/inside.sh test (at 2 radii 0.07, at 1.2
+ * 0.22, at 1 0.29) while it visits two thirds of the nodes of 2. */
+#define SS_COLLIDE_WIND_BETA 1.5
+#define SS_COLLIDE_PASSES 4  /* moves along normals before one onto the nearest point */
+#define SS_COLLIDE_SQUEEZE 0.2 /* least area ratio a move may leave a skin face at */
+#define SS_COLLIDE_DESCENT 32 /* faces a descent crosses at most */
+#define SS_COLLIDE_STACK (2 * 96 + 2) /* a search's stack: bvh.c's MAX_DEPTH 96, two children a level */
 
 int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *body_rest,
                        int nvert, int nface, const int *faces) {
@@ -94,11 +140,26 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   if (!c) return SS_E_NOMEM;
   c->topo = btopo;
   c->nbface = btopo->nface;
-  c->step_refit = -1;
   int status = ss_bvh_create(&c->bvh, btopo);
   if (!status) {
     ss_bvh_refit(c->bvh, body_rest); /* builds the tree: nothing to allocate later */
     status = ss_wind_create(&c->wind, c->bvh, btopo);
+  }
+  if (!status) {
+    const ss_bvh_shape sh = ss_bvh_get_shape(c->bvh);
+    c->shape = sh;
+    c->parent = malloc(sizeof(int) * ((size_t)sh.nnode + 1));
+    c->leaf_of = malloc(sizeof(int) * ((size_t)btopo->nface + 1));
+    if (c->parent && c->leaf_of) {
+      for (int q = 0; q < sh.nnode; q++) c->parent[q] = -1;
+      for (int q = 0; q < sh.nnode; q++) {
+        if (sh.left[q] >= 0) c->parent[sh.left[q]] = c->parent[sh.right[q]] = q;
+        else
+          for (int i = sh.first[q]; i < sh.first[q] + sh.count[q]; i++) c->leaf_of[sh.face_order[i]] = q;
+      }
+    } else {
+      status = SS_E_NOMEM;
+    }
   }
   c->face_step = malloc(((size_t)btopo->nface + 1) * sizeof *c->face_step);
   if (c->face_step)
@@ -108,6 +169,8 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   c->cand_x = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->cand_n = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->hint = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->look_face = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->look_d2 = malloc(sizeof(double) * ((size_t)nvert + 1));
   if (c->hint)
     for (int v = 0; v <= nvert; v++) c->hint[v] = -1;
   c->vf_start = calloc((size_t)nvert + 2, sizeof(int));
@@ -118,7 +181,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
   if (!status && !(c->face_step && c->face_buried && c->cand_face && c->cand_x && c->cand_n && c->hint &&
-                   c->vf_start && c->vf_face))
+                   c->look_face && c->look_d2 && c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
     ss_collider_destroy(c);
@@ -133,32 +196,143 @@ void ss_collider_destroy(ss_collider *c) {
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
   SS_FREE_ALL(c->face_step, c->face_buried, c->cand_face, c->cand_x, c->cand_n, c->hint, c->vf_start,
-              c->vf_face, c);
+              c->vf_face, c->look_face, c->look_d2, c->parent, c->leaf_of, c);
 }
 
-/* A move of at most this many edge lengths does not ask whether the face is
- * on the clean surface: the skin lying on the body sits a rounding error or
- * a chord's sag behind it almost everywhere (half the skin of a tube), and
- * the test is the pass's cost; a face buried in the body takes no harm from
- * it either. */
-#define SS_COLLIDE_SHALLOW 0.05
-/* A vertex this close to its anchor (edge lengths, less the thickness) is
- * not looked at: the anchor is a point of the body's surface, so the vertex
- * is no deeper than its distance to it, and shallower than the depth that
- * counts. Most of the skin is skipped so, before any search. */
-#define SS_COLLIDE_NEAR 0.03
-/* Steps a face's clean-surface test is kept: a clean face 8, a buried one 2
- * (the quadruped's legs leave the belly within a few frames, and skin kept
- * in by a stale test stayed a quarter of an edge deep). */
-#define SS_COLLIDE_RECHECK 8
-#define SS_COLLIDE_RECHECK_BURIED 2
-/* The clean-surface test's near field (node radii; inside.h's measure uses
- * SS_WIND_BETA, 3): it only tells 1/2 from 0, 1 or 3/2, by 1/4, and at 2
- * radii the first-order far field stays within a few hundredths of the
- * exact sum (test_inside) while about half the faces are summed exactly. */
-#define SS_COLLIDE_WIND_BETA 2.0
-#define SS_COLLIDE_PASSES 4  /* moves along normals before one onto the nearest point */
-#define SS_COLLIDE_SQUEEZE 0.2 /* least area ratio a move may leave a skin face at */
+static inline double point_box_dist2(const double box[6], const double p[3]) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double lo = box[k] - p[k], hi = p[k] - box[3 + k];
+    double d = lo > hi ? lo : hi; /* compared, not branched (maxsd) */
+    d = d > 0.0 ? d : 0.0;
+    d2 += d * d;
+  }
+  return d2;
+}
+
+/* Squared distance from p to body face g (any face) and uv of its nearest
+ * point (p0 + u e1 + v e2), from the face's frame record (walk.h): p's
+ * projection onto the plane by the canonical map, inside the face its own
+ * nearest point, else the nearest point of the edges it falls beyond (of a
+ * convex polygon those hold the nearest point). A third of the comparisons
+ * and products of ss_closest_point_triangle, which a face without an
+ * inverse map (degenerate in this pose) takes. */
+static double tri_dist2(const ss_collide_in *in, int g, const double p[3], double uv[2]) {
+  const double *o = ss_frames_origin(in->fr, g);
+  if (o[15] != 0.0) {
+    const int *gv = in->topo->face_vert + 3 * g;
+    return ss_closest_point_triangle(p, in->body + 3 * gv[0], in->body + 3 * gv[1], in->body + 3 * gv[2], uv);
+  }
+  const double *e1 = o + 3, *e2 = o + 6, *T = o + 9;
+  const double d[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+  const double u = T[0] * d[0] + T[1] * d[1] + T[2] * d[2], v = T[3] * d[0] + T[4] * d[1] + T[5] * d[2];
+  if (u >= 0.0 && v >= 0.0 && u + v <= 1.0) {
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+      const double r = d[k] - u * e1[k] - v * e2[k];
+      r2 += r * r;
+    }
+    uv[0] = u, uv[1] = v;
+    return r2;
+  }
+  double best = INFINITY;
+  if (v < 0.0) { /* beyond edge v0 v1 */
+    const double ee = dot3(e1, e1), de = dot3(d, e1);
+    const double s = de <= 0.0 || !(ee > 0.0) ? 0.0 : de >= ee ? 1.0 : de / ee;
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) r2 += (d[k] - s * e1[k]) * (d[k] - s * e1[k]);
+    best = r2, uv[0] = s, uv[1] = 0.0;
+  }
+  if (u < 0.0) { /* beyond edge v0 v2 */
+    const double ee = dot3(e2, e2), de = dot3(d, e2);
+    const double s = de <= 0.0 || !(ee > 0.0) ? 0.0 : de >= ee ? 1.0 : de / ee;
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) r2 += (d[k] - s * e2[k]) * (d[k] - s * e2[k]);
+    if (r2 < best) best = r2, uv[0] = 0.0, uv[1] = s;
+  }
+  if (u + v > 1.0) { /* beyond edge v1 v2 */
+    const double f[3] = {e2[0] - e1[0], e2[1] - e1[1], e2[2] - e1[2]};
+    const double q[3] = {d[0] - e1[0], d[1] - e1[1], d[2] - e1[2]};
+    const double ff = dot3(f, f), qf = dot3(q, f);
+    const double s = qf <= 0.0 || !(ff > 0.0) ? 0.0 : qf >= ff ? 1.0 : qf / ff;
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) r2 += (q[k] - s * f[k]) * (q[k] - s * f[k]);
+    if (r2 < best) best = r2, uv[0] = 1.0 - s, uv[1] = s;
+  }
+  return best;
+}
+
+/* Leaf node's faces against p: the nearest within best (ties to the lower
+ * face) into face, uv. */
+static double leaf_nearest(const ss_collider *c, const ss_collide_in *in, int node, const double p[3],
+                           double best, int *face, double uv[2]) {
+  const ss_bvh_shape *s = &c->shape;
+  for (int i = s->first[node]; i < s->first[node] + s->count[node]; i++) {
+    const int f = s->face_order[i];
+    double fuv[2];
+    const double d2 = tri_dist2(in, f, p, fuv);
+    if (d2 < best || (d2 == best && f < *face)) best = d2, *face = f, uv[0] = fuv[0], uv[1] = fuv[1];
+  }
+  return best;
+}
+
+/* The subtree of node (its box within best of p) searched for the nearest
+ * body point within best: nearer child first, a box farther than the best
+ * so far passed over. */
+static double subtree_nearest(const ss_collider *c, const ss_collide_in *in, int node, double dnode,
+                              const double p[3], double best, int *face, double uv[2]) {
+  const ss_bvh_shape *s = &c->shape;
+  const double *box = ss_bvh_boxes(c->bvh);
+  int stack[SS_COLLIDE_STACK];
+  double sdist[SS_COLLIDE_STACK];
+  int top = 0;
+  stack[top] = node, sdist[top++] = dnode;
+  while (top > 0) {
+    --top;
+    const int q = stack[top];
+    if (sdist[top] > best) continue;
+    if (s->left[q] < 0) {
+      best = leaf_nearest(c, in, q, p, best, face, uv);
+      continue;
+    }
+    const int l = s->left[q], r = s->right[q];
+    const double dl = point_box_dist2(box + 6 * (size_t)l, p), dr = point_box_dist2(box + 6 * (size_t)r, p);
+    if (top + 2 > (int)(sizeof stack / sizeof stack[0])) continue; /* never on trees bvh.c builds */
+    if (dl <= dr) {
+      if (dr <= best) stack[top] = r, sdist[top++] = dr;
+      if (dl <= best) stack[top] = l, sdist[top++] = dl;
+    } else {
+      if (dl <= best) stack[top] = l, sdist[top++] = dl;
+      if (dr <= best) stack[top] = r, sdist[top++] = dr;
+    }
+  }
+  return best;
+}
+
+/* The nearest body point to p within best (squared; face -1 and best if
+ * there is none; ties to the lower face, as ss_bvh_closest_within), the
+ * search starting at the leaf of face f0, a face near p: up from it, each
+ * ancestor's other child searched where its box is within the best so far.
+ * The boxes it passes by are those a search from the root would test, and
+ * the root's way down to f0 is not taken. */
+static double tree_nearest(const ss_collider *c, const ss_collide_in *in, int f0, const double p[3],
+                           double best, int *face, double uv[2]) {
+  const ss_bvh_shape *s = &c->shape;
+  const double *box = ss_bvh_boxes(c->bvh);
+  *face = -1;
+  uv[0] = uv[1] = 1.0 / 3.0;
+  if (s->nnode <= 0) return best;
+  int node = c->leaf_of[f0];
+  best = leaf_nearest(c, in, node, p, best, face, uv);
+  while (node > 0) {
+    const int up = c->parent[node];
+    const int other = s->left[up] == node ? s->right[up] : s->left[up];
+    const double d = point_box_dist2(box + 6 * (size_t)other, p);
+    if (d <= best) best = subtree_nearest(c, in, other, d, p, best, face, uv);
+    node = up;
+  }
+  return best;
+}
 
 /* The pseudo-normal of the body at c, the nearest point of face nf to x
  * (Baerentzen and Aanaes 2005: the sum of the normals of the faces nearest
@@ -188,8 +362,7 @@ static int pseudo_normal(const ss_collide_in *in, int nf, const double uv[2], co
         }
         if (seen || t->face_degenerate[g] || !(fr->area[g] > 0.0)) continue;
         double guv[2];
-        const double *p0 = in->body + 3 * gv[0], *p1 = in->body + 3 * gv[1], *p2 = in->body + 3 * gv[2];
-        if (g == nf || ss_closest_point_triangle(x, p0, p1, p2, guv) <= tie)
+        if (g == nf || tri_dist2(in, g, x, guv) <= tie)
           for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * g + k];
       }
     }
@@ -200,13 +373,10 @@ static int pseudo_normal(const ss_collide_in *in, int nf, const double uv[2], co
   return 1;
 }
 
-/* Vertex v at x: the nearest body face if x is behind the surface there
- * (and where it goes into out, along nout), -2 - that face if the move is
- * shallow, else -1. */
 /* Face g's clean-surface test, kept SS_COLLIDE_RECHECK steps (the body's
  * self-intersections move far slower than a step: a leg through the belly
  * takes a tenth of a second), each face's age its own so that the tests of
- * a step are few; the winding numbers refitted in a step that tests. */
+ * a step are few. */
 static int fresh(const ss_collider *c, long long step, int g) {
   const long long keep = c->face_buried[g] ? SS_COLLIDE_RECHECK_BURIED : SS_COLLIDE_RECHECK;
   return c->face_step[g] >= 0 && step - c->face_step[g] < keep && step >= c->face_step[g];
@@ -214,43 +384,61 @@ static int fresh(const ss_collider *c, long long step, int g) {
 
 static int buried(ss_collider *c, const ss_collide_in *in, long long step, int g) {
   if (!fresh(c, step, g)) {
-    if (c->step_refit != step) {
-      ss_wind_refit(c->wind, in->body);
-      c->step_refit = step;
-    }
     c->face_step[g] = step;
     c->face_buried[g] = (unsigned char)ss_wind_face_buried_beta(c->wind, in->body, g, SS_COLLIDE_WIND_BETA);
   }
   return c->face_buried[g];
 }
 
-/* The nearest point to p among the anchor face fa and its edge neighbours:
- * its face (-1 if none), uv and squared distance; *inner 1 if the point is
- * not on the outer rim of those faces (in fa, or inside a neighbour, or on
- * its edge with fa), where nearer faces may lie beyond. */
-static int local_nearest(const ss_collide_in *in, int fa, const double p[3], double uv[2], double *d2,
-                         int *inner) {
+/* Squared distance from p to body face g (its nearest point at uv), or
+ * infinity for a face with no area. */
+static double face_dist2(const ss_collide_in *in, int g, const double p[3], double uv[2]) {
   const ss_topo *t = in->topo;
-  int best = -1, best_k = -1;
-  *d2 = INFINITY;
-  for (int k = -1; k < 3; k++) {
-    const int g = k < 0 ? fa : t->face_adj[3 * fa + k];
-    if (g < 0 || t->face_degenerate[g] || !(in->fr->area[g] > 0.0)) continue;
-    const int *gv = t->face_vert + 3 * g;
-    double guv[2];
-    const double d = ss_closest_point_triangle(p, in->body + 3 * gv[0], in->body + 3 * gv[1],
-                                               in->body + 3 * gv[2], guv);
-    if (d < *d2) *d2 = d, best = g, best_k = k, uv[0] = guv[0], uv[1] = guv[1];
-  }
+  if (g < 0 || t->face_degenerate[g] || !(in->fr->area[g] > 0.0)) return INFINITY;
+  return tri_dist2(in, g, p, uv);
+}
+
+/* A local nearest point of the body's surface to p: from face f, over to
+ * the face across the edge, or around the corner, that the nearest point so
+ * far lies on, while one is nearer (the distance falls at every move, so
+ * the descent never returns to a face). Its face (-1 if f has no area),
+ * uv and squared distance; *settled 0 if it was still moving after
+ * SS_COLLIDE_DESCENT faces. */
+static int descend(const ss_collide_in *in, int f, const double p[3], double uv[2], double *d2,
+                   int *settled) {
+  const ss_topo *t = in->topo;
   const double eps = 1e-9;
-  *inner = best_k < 0 || (uv[0] > eps && uv[1] > eps && 1.0 - uv[0] - uv[1] > eps);
-  if (!*inner && best >= 0) {
-    /* on the edge it shares with fa: within the patch */
-    const int e = t->face_adj_edge[3 * fa + best_k];
+  *settled = 1;
+  *d2 = face_dist2(in, f, p, uv);
+  if (!(*d2 < INFINITY)) return -1;
+  for (int s = 0; s < SS_COLLIDE_DESCENT; s++) {
     const double w[3] = {1.0 - uv[0] - uv[1], uv[0], uv[1]}; /* at corners 0, 1, 2 */
-    if (e >= 0) *inner = w[(e + 2) % 3] <= eps; /* edge e joins corners e and e + 1 */
+    const int z0 = w[0] <= eps, z1 = w[1] <= eps, z2 = w[2] <= eps;
+    if (!(z0 || z1 || z2)) return f; /* inside the face: a local nearest point */
+    int next = -1;
+    double nuv[2], guv[2];
+    if (z0 + z1 + z2 == 1) {
+      /* on edge k (corners k, k + 1), the corner k + 2 opposite it */
+      const int k = z0 ? 1 : z1 ? 2 : 0;
+      const int g = t->face_adj[3 * f + k];
+      const double e = face_dist2(in, g, p, guv);
+      if (e < *d2) next = g, *d2 = e, nuv[0] = guv[0], nuv[1] = guv[1];
+    } else {
+      /* at a corner: the faces around it */
+      const int c = !z0 ? 0 : !z1 ? 1 : 2;
+      const int wv = t->vert_weld[t->face_vert[3 * f + c]];
+      for (int i = t->vf_start[wv]; i < t->vf_start[wv + 1]; i++) {
+        const int g = t->vf_face[i];
+        if (g == f) continue;
+        const double e = face_dist2(in, g, p, guv);
+        if (e < *d2) next = g, *d2 = e, nuv[0] = guv[0], nuv[1] = guv[1];
+      }
+    }
+    if (next < 0) return f;
+    f = next, uv[0] = nuv[0], uv[1] = nuv[1];
   }
-  return best;
+  *settled = 0;
+  return f;
 }
 
 /* Where point p is against the body's surface near face nf (its nearest
@@ -270,47 +458,58 @@ static int surface_at(const ss_collide_in *in, int nf, const double uv[2], const
   return 1;
 }
 
-/* Vertex v at x: the nearest body face if x is deeper behind the surface
- * there than SS_COLLIDE_NEAR (and where it goes into out, along nout), -2 -
- * that face if the move is shallow, else -1. */
-static int judge_vertex(ss_collider *col, const ss_collide_in *in, long long step, int v,
-                        const double x[3], double out[3], double nout[3]) {
+/* Vertex v at x, first look: the face of a local nearest point of the
+ * surface (its squared distance into *d2) if the vertex may be deeper than
+ * SS_COLLIDE_NEAR behind the surface, else -1. */
+static int look_local(ss_collider *col, const ss_collide_in *in, long long step, int v, const double x[3],
+                      double *d2) {
   const int fa = in->anchor_face[v];
   if (fa < 0) return -1;
   /* anchored on a face known to be buried (skin inside a leg that passes
    * through the belly): not moved, whatever its depth, and not searched */
   if (fresh(col, step, fa) && col->face_buried[fa]) return -1;
-  const double tiny = 1e-9 * in->reach; /* a point put on a plane is behind it half the time */
-  /* the cheap look, around the anchor: the anchor face and its neighbours */
-  double uv[2], d2, n[3], cp[3], sd;
-  int inner;
-  const int lf = local_nearest(in, fa, x, uv, &d2, &inner);
+  /* a local nearest point of the surface, by descent from the face the
+   * last one ended on (else, or if that face has no area in this pose, from
+   * the anchor face): an upper bound of the distance to the surface */
+  double uv[2];
+  int settled = 0, lf = -1;
+  const int hf = col->hint[v];
+  if (hf >= 0) lf = descend(in, hf, x, uv, d2, &settled);
+  if (lf < 0 && hf != fa) lf = descend(in, fa, x, uv, d2, &settled);
   if (lf < 0) return -1;
+  col->hint[v] = lf;
   const double near = SS_COLLIDE_NEAR * in->reach - in->thickness;
   /* no deeper than the distance to a point of the surface */
-  if (near > 0.0 && d2 <= near * near) return -1;
-  /* in front of the surface around the anchor, away from its rim (on the
-   * rim the search below decides, whatever the side) */
-  if (inner && (!surface_at(in, lf, uv, x, d2, n, cp, &sd) || !(sd < in->thickness - tiny))) return -1;
-  double p[3] = {x[0], x[1], x[2]};
-  const int hf = col->hint[v];
-  if (hf >= 0 && hf != lf) {
-    const int *hv = in->topo->face_vert + 3 * hf;
-    double huv[2];
-    const double h2 = ss_closest_point_triangle(x, in->body + 3 * hv[0], in->body + 3 * hv[1],
-                                                in->body + 3 * hv[2], huv);
-    if (h2 < d2) d2 = h2;
-  }
+  if (near > 0.0 && *d2 <= near * near) return -1;
+  /* in front of the surface there, and too near it to be deeper than
+   * SS_COLLIDE_FRONT behind another part of the body */
+  const double front = SS_COLLIDE_FRONT * in->reach - in->thickness;
+  double n[3], cp[3], sd;
+  if (settled && front > 0.0 && *d2 <= front * front &&
+      (!surface_at(in, lf, uv, x, *d2, n, cp, &sd) || !(sd < in->thickness - 1e-9 * in->reach)))
+    return -1;
+  return lf;
+}
+
+/* Vertex v at x, looked at further (lf, d2: look_local's): the nearest
+ * body face if x is deeper behind the surface there than SS_COLLIDE_NEAR
+ * (and where it goes into out, along nout), -2 - that face if the move is
+ * shallow, else -1. */
+static int look_global(const ss_collider *col, const ss_collide_in *in, int lf, double d2,
+                       const double x[3], double out[3], double nout[3]) {
+  const double tiny = 1e-9 * in->reach; /* a point put on a plane is behind it half the time */
+  const double near = SS_COLLIDE_NEAR * in->reach - in->thickness;
+  double p[3] = {x[0], x[1], x[2]}, uv[2], n[3], cp[3], sd;
   int first = -1;
   double bound2 = d2;
+  int from = lf;
   for (int it = 0; it < SS_COLLIDE_PASSES; it++) {
-    /* the nearest body point, within the bound known: a search that
-     * visits the few boxes around the vertex */
+    /* the nearest body point, within the bound known */
     int nf;
-    const double e2 = ss_bvh_closest_within(col->bvh, in->body, p, bound2 * (1.0 + 1e-9) + 1e-300, &nf, uv);
-    if (nf >= 0 && it == 0) col->hint[v] = nf;
+    const double e2 = tree_nearest(col, in, from, p, bound2 * (1.0 + 1e-9) + 1e-300, &nf, uv);
     if (nf < 0 || !surface_at(in, nf, uv, p, e2, n, cp, &sd)) break;
     if (!(sd < in->thickness - tiny)) break;
+    from = nf;
     if (first < 0) {
       if (near > 0.0 && e2 <= near * near) return -1;
       first = nf;
@@ -319,15 +518,17 @@ static int judge_vertex(ss_collider *col, const ss_collide_in *in, long long ste
     if (it == SS_COLLIDE_PASSES - 1) {
       /* still behind after moves along normals (a crushed crease, whose
        * faces' planes cross): onto the nearest point */
-      for (int k = 0; k < 3; k++) p[k] = cp[k] + in->thickness * n[k];
+      for (int q = 0; q < 3; q++) p[q] = cp[q] + in->thickness * n[q];
       break;
     }
     /* along the pseudo-normal by the depth, not onto the nearest point:
      * vertices deep under a corner or an edge would all land on that one
      * point and their faces collapse */
-    for (int k = 0; k < 3; k++) p[k] += (in->thickness - sd) * n[k];
+    for (int q = 0; q < 3; q++) p[q] += (in->thickness - sd) * n[q];
     const double pc[3] = {p[0] - cp[0], p[1] - cp[1], p[2] - cp[2]}; /* cp: on the surface */
     bound2 = dot3(pc, pc);
+    /* on the surface itself: behind no face by more than nothing */
+    if (!(bound2 > tiny * tiny)) break;
   }
   if (first < 0) return -1;
   memcpy(out, p, 3 * sizeof(double));
@@ -379,50 +580,77 @@ static int squeezes(const ss_collider *c, const ss_collide_in *in, int v, const 
   return 0;
 }
 
+/* Vertex k of the pass (dof_vert[k] at x), first look: look_face, look_d2. */
+static inline void look_local_k(ss_collider *c, const ss_collide_in *in, long long step, const int *dof_vert,
+                                const double *x, int k) {
+  const int v = dof_vert[k];
+  c->look_face[k] = look_local(c, in, step, v, x + 3 * v, c->look_d2 + k);
+}
+
+/* Vertex k, looked at further: cand_face (and cand_x, cand_n); 1 if a
+ * candidate. */
+static inline int look_global_k(ss_collider *c, const ss_collide_in *in, const int *dof_vert, const double *x,
+                                int k) {
+  const int v = dof_vert[k], lf = c->look_face[k];
+  c->cand_face[k] = lf < 0 ? -1 : look_global(c, in, lf, c->look_d2[k], x + 3 * v, c->cand_x + 3 * k,
+                                              c->cand_n + 3 * k);
+  return c->cand_face[k] != -1;
+}
+
 int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int *dof_vert,
                     int nthread, long long step, double *x, double *vel) {
-  ss_bvh_refit(c->bvh, in->body);
+  /* the tree's boxes and winding-number moments in this pose, in one sweep */
+  ss_wind_refit_boxes(c->wind, in->body, ss_bvh_boxes_write(c->bvh));
+  /* 1. each vertex's local nearest point of the surface, by descent; 2. for
+   * those it leaves, the nearest point of the body, and where they go (on
+   * the threads where there are enough vertices; one thread calls no
+   * OpenMP, which allocates) */
   int ncand = 0;
 #ifdef _OPENMP
   if (nthread > 1 && ndof > 1024) {
+#pragma omp parallel for schedule(static) num_threads(nthread)
+    for (int k = 0; k < ndof; k++) look_local_k(c, in, step, dof_vert, x, k);
 #pragma omp parallel for schedule(static) num_threads(nthread) reduction(+ : ncand)
-    for (int k = 0; k < ndof; k++) {
-      const int v = dof_vert[k];
-      c->cand_face[k] = judge_vertex(c, in, step, v, x + 3 * v, c->cand_x + 3 * k, c->cand_n + 3 * k);
-      ncand += c->cand_face[k] != -1;
-    }
+    for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   } else
 #endif
   {
     (void)nthread;
-    for (int k = 0; k < ndof; k++) {
-      const int v = dof_vert[k];
-      c->cand_face[k] = judge_vertex(c, in, step, v, x + 3 * v, c->cand_x + 3 * k, c->cand_n + 3 * k);
-      ncand += c->cand_face[k] != -1;
-    }
+    for (int k = 0; k < ndof; k++) look_local_k(c, in, step, dof_vert, x, k);
+    for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   }
   if (ncand == 0) return 0;
   /* a deep move only out of the clean surface: neither the nearest face nor
    * the anchor's buried in the body (as the inside measure judges) */
-  int moved = 0;
   for (int k = 0; k < ndof; k++) {
     const int g = c->cand_face[k];
-    const int v = dof_vert[k];
-    if (g == -1) continue;
-    if (g >= 0) {
-      const int fa = in->anchor_face[v];
-      if (buried(c, in, step, g) || (fa != g && buried(c, in, step, fa))) continue;
-    }
-    /* the whole move, else half, else a quarter, if one squeezes none */
-    double *q = c->cand_x + 3 * k;
-    const double x0[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
-    int ok = 0;
-    for (int h = 0; h < 3 && !(ok = !squeezes(c, in, v, x, q)); h++)
-      for (int i = 0; i < 3; i++) q[i] = 0.5 * (x0[i] + q[i]);
-    if (!ok) continue;
-    move(c, k, v, x, vel);
-    moved++;
+    if (g < 0) continue;
+    const int fa = in->anchor_face[dof_vert[k]];
+    if (buried(c, in, step, g) || (fa != g && buried(c, in, step, fa))) c->cand_face[k] = -1;
   }
+  /* the whole moves that squeeze no skin face first; then, their neighbours
+   * moved meanwhile, the rest: the whole move, else half, else a quarter
+   * (in vertex order alone, a vertex that went before its neighbours had
+   * its move halved for a face their moves then opened again, and stayed
+   * half as deep) */
+  int moved = 0;
+  for (int sweep = 0; sweep < 2; sweep++)
+    for (int k = 0; k < ndof; k++) {
+      if (c->cand_face[k] == -1) continue;
+      const int v = dof_vert[k];
+      const double x0[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
+      double *q = c->cand_x + 3 * k;
+      int ok = !squeezes(c, in, v, x, q);
+      if (!ok && sweep == 0) continue;
+      for (int h = 0; h < 2 && !ok; h++) {
+        for (int i = 0; i < 3; i++) q[i] = 0.5 * (x0[i] + q[i]);
+        ok = !squeezes(c, in, v, x, q);
+      }
+      c->cand_face[k] = -1;
+      if (!ok) continue;
+      move(c, k, v, x, vel);
+      moved++;
+    }
   return moved;
 }
 

@@ -58,20 +58,35 @@ static double dist2(const double a[3], const double b[3]) {
   return x * x + y * y + z * z;
 }
 
+/* max(a, b) as fmax for the values here (a NaN passed over), inline. */
+static inline double max_num(double a, double b) { return a > b || b != b ? a : b; }
+
 /* Leaf moments from its faces; internal nodes from their children, in one
  * reverse sweep (children after their parent in the order). The radius
  * bounds every corner of the node's faces around its centroid: a leaf's from
  * its corners, a parent's from its children's balls. */
-void ss_wind_refit(ss_wind *w, const double *pos) {
+void ss_wind_refit(ss_wind *w, const double *pos) { ss_wind_refit_boxes(w, pos, NULL); }
+
+void ss_wind_refit_boxes(ss_wind *w, const double *pos, double *box) {
   const ss_topo *t = w->topo;
   for (int node = w->s.nnode - 1; node >= 0; node--) {
     double *m = w->mom + 8 * (size_t)node;
     if (w->s.left[node] < 0) {
-      double N[3] = {0, 0, 0}, c[3] = {0, 0, 0}, mean[3] = {0, 0, 0}, area = 0.0;
+      double N[3] = {0, 0, 0}, c[3] = {0, 0, 0}, area = 0.0;
+      double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
       const int i0 = w->s.first[node], i1 = i0 + w->s.count[node];
       for (int i = i0; i < i1; i++) {
         const int *fv = t->face_vert + 3 * w->s.face_order[i];
         const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *d = pos + 3 * fv[2];
+        if (box)
+          for (int k = 0; k < 3; k++) { /* as bvh.c's face boxes (a NaN passed over) */
+            if (a[k] < lo[k]) lo[k] = a[k];
+            if (b[k] < lo[k]) lo[k] = b[k];
+            if (d[k] < lo[k]) lo[k] = d[k];
+            if (a[k] > hi[k]) hi[k] = a[k];
+            if (b[k] > hi[k]) hi[k] = b[k];
+            if (d[k] > hi[k]) hi[k] = d[k];
+          }
         const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         const double e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
         const double n[3] = {0.5 * (e1[1] * e2[2] - e1[2] * e2[1]),
@@ -80,19 +95,29 @@ void ss_wind_refit(ss_wind *w, const double *pos) {
         const double A = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (int k = 0; k < 3; k++) {
           N[k] += n[k];
-          c[k] += A * (a[k] + b[k] + d[k]) / 3.0;
-          mean[k] += (a[k] + b[k] + d[k]) / (3.0 * (i1 - i0));
+          c[k] += A * (a[k] + b[k] + d[k]); /* 3 x the area-weighted centroid */
         }
         area += A;
       }
-      for (int k = 0; k < 3; k++) c[k] = area > 0.0 ? c[k] / area : mean[k];
+      if (area > 0.0) {
+        for (int k = 0; k < 3; k++) c[k] /= 3.0 * area;
+      } else { /* faces without area: the mean of their corners */
+        for (int k = 0; k < 3; k++) c[k] = 0.0;
+        for (int i = i0; i < i1; i++) {
+          const int *fv = t->face_vert + 3 * w->s.face_order[i];
+          for (int k = 0; k < 3; k++) c[k] += pos[3 * fv[0] + k] + pos[3 * fv[1] + k] + pos[3 * fv[2] + k];
+        }
+        for (int k = 0; k < 3; k++) c[k] /= 3.0 * (i1 - i0);
+      }
       double r2 = 0.0;
       for (int i = i0; i < i1; i++) {
         const int *fv = t->face_vert + 3 * w->s.face_order[i];
-        for (int k = 0; k < 3; k++) r2 = fmax(r2, dist2(pos + 3 * fv[k], c));
+        for (int k = 0; k < 3; k++) r2 = max_num(r2, dist2(pos + 3 * fv[k], c));
       }
       m[0] = N[0], m[1] = N[1], m[2] = N[2], m[3] = c[0], m[4] = c[1], m[5] = c[2];
       m[6] = sqrt(r2), m[7] = area;
+      if (box)
+        for (int k = 0; k < 3; k++) box[6 * (size_t)node + k] = lo[k], box[6 * (size_t)node + 3 + k] = hi[k];
     } else {
       const double *l = w->mom + 8 * (size_t)w->s.left[node];
       const double *r = w->mom + 8 * (size_t)w->s.right[node];
@@ -101,8 +126,16 @@ void ss_wind_refit(ss_wind *w, const double *pos) {
         m[k] = l[k] + r[k];
         m[3 + k] = area > 0.0 ? (l[7] * l[3 + k] + r[7] * r[3 + k]) / area : 0.5 * (l[3 + k] + r[3 + k]);
       }
-      m[6] = fmax(sqrt(dist2(l + 3, m + 3)) + l[6], sqrt(dist2(r + 3, m + 3)) + r[6]);
+      m[6] = max_num(sqrt(dist2(l + 3, m + 3)) + l[6], sqrt(dist2(r + 3, m + 3)) + r[6]);
       m[7] = area;
+      if (box) {
+        double *bx = box + 6 * (size_t)node;
+        const double *bl = box + 6 * (size_t)w->s.left[node], *br = box + 6 * (size_t)w->s.right[node];
+        for (int k = 0; k < 3; k++) {
+          bx[k] = bl[k] < br[k] ? bl[k] : br[k];
+          bx[3 + k] = bl[3 + k] > br[3 + k] ? bl[3 + k] : br[3 + k];
+        }
+      }
     }
   }
 }

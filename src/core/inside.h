@@ -20,6 +20,9 @@ void ss_wind_destroy(ss_wind *w);
 /* The node moments (area vectors, centroids, radii) for positions pos (the
  * body's caller vertices x 3). Allocates nothing. */
 void ss_wind_refit(ss_wind *w, const double *pos);
+/* The same, and the boxes of the BVH the hierarchy is on (ss_bvh_boxes_write
+ * of it: as ss_bvh_refit sets them) in the same sweep, if box is not NULL. */
+void ss_wind_refit_boxes(ss_wind *w, const double *pos, double *box);
 /* Winding number of the body (pose of the last refit) around p: 1 inside a
  * closed outward-wound body, 0 outside, 1/2 on its surface, 2 inside two
  * overlapping parts. Exact per triangle near p (within SS_WIND_BETA node

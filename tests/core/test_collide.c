@@ -3,8 +3,9 @@
  * first, is buried). A skin vertex behind the clean surface goes out to it
  * (plus the thickness) along its normal, one in front stays, one behind the
  * buried end stays where it is, a shallow one moves without the surface
- * test, one within 0.04 edge of its anchor is not looked at (it can be no
- * deeper); the same bits on one thread and two. */
+ * test, one within 0.045 edge of the surface is not looked at (it can be no
+ * deeper), one in front of the first box's end but inside the second box
+ * goes out of the second; the same bits on one thread and two. */
 #include <string.h>
 
 #include "bvh.h"
@@ -16,7 +17,7 @@
 #define GRID 8
 #define NV_BOX TEST_BOX_NVERT(GRID)
 #define NF_BOX TEST_BOX_NFACE(GRID)
-#define NSKIN 8
+#define NSKIN 9
 
 int main(void) {
   static double pos[2 * 3 * NV_BOX];
@@ -47,11 +48,12 @@ int main(void) {
       {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.9}, {0.5, 0.5, 1.0}},        /* 0.1 under A's top: out */
       {{0.5, 0.5, 1.0}, {0.52, 0.5, 1.02}, {0.52, 0.5, 1.02}},    /* in front: stays */
       {{1.5, 0.5, 0.5}, {1.6, 0.5, 0.5}, {1.6, 0.5, 0.5}},        /* behind B's buried end: stays */
-      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.989}, {0.5, 0.5, 1.0}},      /* shallow: out, untested */
+      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.98}, {0.5, 0.5, 1.0}},       /* shallow: out, untested */
       {{2.5, 0.5, 0.8}, {2.5, 0.5, 0.7}, {2.5, 0.5, 0.8}},        /* under B's clean top: out */
-      {{0.5, 0.99, 1.0}, {0.5, 0.985, 0.99}, {0.5, 0.985, 1.0}},  /* by A's top edge: up, the nearer */
+      {{0.5, 0.99, 1.0}, {0.5, 0.97, 0.98}, {0.5, 0.97, 1.0}},    /* by A's top edge: up, the nearer */
       {{0.5, 0.5, 1.0}, {0.5, 0.5, 1.5}, {0.5, 0.5, 1.5}},        /* far in front: stays */
-      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.995}, {0.5, 0.5, 0.995}},    /* by its anchor: not looked at */
+      {{0.5, 0.5, 1.0}, {0.5, 0.5, 0.995}, {0.5, 0.5, 0.995}},    /* by the surface: not looked at */
+      {{2.0, 0.95, 0.9}, {2.1, 0.5, 0.75}, {2.1, 0.5, 0.8}},      /* off A's end, in B: out of B's top */
   };
   int anchor_face[NSKIN], dof_vert[NSKIN];
   double x[3 * NSKIN], anchor_pos[3 * NSKIN];
@@ -64,7 +66,7 @@ int main(void) {
   }
   ss_collide_in in = {topo, fr, pos, anchor_face, anchor_pos, NULL, NULL, 0.0, edge};
   const int moved = ss_collider_run(col, &in, NSKIN, dof_vert, 1, 0, x, NULL);
-  CHECK_EQ_INT(moved, 4);
+  CHECK_EQ_INT(moved, 5);
   for (int i = 0; i < NSKIN; i++)
     for (int k = 0; k < 3; k++) CHECK_NEAR(x[3 * i + k], sv[i].expect[k], 1e-12);
 
