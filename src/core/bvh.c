@@ -219,15 +219,6 @@ void ss_bvh_refit(ss_bvh *b, const double *pos) {
   }
 }
 
-static double box_dist2(const double box[6], const double p[3]) {
-  double d2 = 0.0;
-  for (int c = 0; c < 3; c++) {
-    double d = p[c] < box[c] ? box[c] - p[c] : p[c] > box[3 + c] ? p[c] - box[3 + c] : 0.0;
-    d2 += d * d;
-  }
-  return d2;
-}
-
 /* The search from a bound best (squared) and a face that holds it. Each
  * node's box distance is computed once, by its parent, and kept on the
  * stack with it. */
@@ -239,7 +230,7 @@ static double closest_from(const ss_bvh *b, const double *pos, const double p[3]
   int stack[MAX_DEPTH * 2 + 2];
   double sdist[MAX_DEPTH * 2 + 2];
   int top = 0;
-  stack[top] = 0, sdist[top++] = box_dist2(b->box, p);
+  stack[top] = 0, sdist[top++] = ss_bvh_box_dist2(b->box, p);
   while (top > 0) {
     --top;
     const int node = stack[top];
@@ -261,15 +252,8 @@ static double closest_from(const ss_bvh *b, const double *pos, const double p[3]
       continue;
     }
     const int l = b->left[node], r = b->right[node];
-    const double dl = box_dist2(b->box + 6 * l, p), dr = box_dist2(b->box + 6 * r, p);
-    /* push the farther child first so the nearer one is searched first */
-    if (dl <= dr) {
-      if (dr <= best) stack[top] = r, sdist[top++] = dr;
-      if (dl <= best) stack[top] = l, sdist[top++] = dl;
-    } else {
-      if (dl <= best) stack[top] = l, sdist[top++] = dl;
-      if (dr <= best) stack[top] = r, sdist[top++] = dr;
-    }
+    ss_bvh_push_children(stack, sdist, &top, l, ss_bvh_box_dist2(b->box + 6 * l, p), r,
+                         ss_bvh_box_dist2(b->box + 6 * r, p), best);
   }
   return best;
 }

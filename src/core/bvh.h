@@ -40,4 +40,33 @@ const double *ss_bvh_boxes(const ss_bvh *bvh);
  * would. */
 double *ss_bvh_boxes_write(ss_bvh *bvh);
 
+/* Squared distance from p to a box (lo xyz, hi xyz); 0 inside. Compared,
+ * not branched (maxsd); the nearest-point searches of bvh.c and collide.c. */
+static inline double ss_bvh_box_dist2(const double box[6], const double p[3]) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double lo = box[k] - p[k], hi = p[k] - box[3 + k];
+    double d = lo > hi ? lo : hi;
+    d = d > 0.0 ? d : 0.0;
+    d2 += d * d;
+  }
+  return d2;
+}
+
+/* A nearest-point search's step down: children l and r (box distances dl,
+ * dr) pushed on the stack where within best, the farther first so that the
+ * nearer is searched first. The caller leaves room for two. */
+static inline void ss_bvh_push_children(int *stack, double *sdist, int *top, int l, double dl,
+                                        int r, double dr, double best) {
+  int t = *top;
+  if (dl <= dr) {
+    if (dr <= best) stack[t] = r, sdist[t++] = dr;
+    if (dl <= best) stack[t] = l, sdist[t++] = dl;
+  } else {
+    if (dl <= best) stack[t] = l, sdist[t++] = dl;
+    if (dr <= best) stack[t] = r, sdist[t++] = dr;
+  }
+  *top = t;
+}
+
 #endif

@@ -199,17 +199,6 @@ void ss_collider_destroy(ss_collider *c) {
               c->vf_face, c->look_face, c->look_d2, c->parent, c->leaf_of, c);
 }
 
-static inline double point_box_dist2(const double box[6], const double p[3]) {
-  double d2 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    const double lo = box[k] - p[k], hi = p[k] - box[3 + k];
-    double d = lo > hi ? lo : hi; /* compared, not branched (maxsd) */
-    d = d > 0.0 ? d : 0.0;
-    d2 += d * d;
-  }
-  return d2;
-}
-
 /* Squared distance from p to body face g (any face) and uv of its nearest
  * point (p0 + u e1 + v e2), from the face's frame record (walk.h): p's
  * projection onto the plane by the canonical map, inside the face its own
@@ -296,15 +285,9 @@ static double subtree_nearest(const ss_collider *c, const ss_collide_in *in, int
       continue;
     }
     const int l = s->left[q], r = s->right[q];
-    const double dl = point_box_dist2(box + 6 * (size_t)l, p), dr = point_box_dist2(box + 6 * (size_t)r, p);
     if (top + 2 > (int)(sizeof stack / sizeof stack[0])) continue; /* never on trees bvh.c builds */
-    if (dl <= dr) {
-      if (dr <= best) stack[top] = r, sdist[top++] = dr;
-      if (dl <= best) stack[top] = l, sdist[top++] = dl;
-    } else {
-      if (dl <= best) stack[top] = l, sdist[top++] = dl;
-      if (dr <= best) stack[top] = r, sdist[top++] = dr;
-    }
+    ss_bvh_push_children(stack, sdist, &top, l, ss_bvh_box_dist2(box + 6 * (size_t)l, p), r,
+                         ss_bvh_box_dist2(box + 6 * (size_t)r, p), best);
   }
   return best;
 }
@@ -327,7 +310,7 @@ static double tree_nearest(const ss_collider *c, const ss_collide_in *in, int f0
   while (node > 0) {
     const int up = c->parent[node];
     const int other = s->left[up] == node ? s->right[up] : s->left[up];
-    const double d = point_box_dist2(box + 6 * (size_t)other, p);
+    const double d = ss_bvh_box_dist2(box + 6 * (size_t)other, p);
     if (d <= best) best = subtree_nearest(c, in, other, d, p, best, face, uv);
     node = up;
   }
