@@ -10,8 +10,11 @@
 #
 #   bash bench/ab.sh A_BENCH_SIM B_BENCH_SIM ROUNDS [bench_sim arguments...]
 #   bash bench/ab.sh --bins A,B,C ROUNDS [bench_sim arguments...]   (any number of builds)
-#   e.g. bash bench/ab.sh /tmp/base/devel/lib/skin_sim/bench_sim \
+#   e.g. OPENBLAS_NUM_THREADS=1 bash bench/ab.sh /tmp/base/devel/lib/skin_sim/bench_sim \
 #          build/release/devel/lib/skin_sim/bench_sim 5 quadruped 19000 60 quasi-newton 1 8 1e-4 walk 1
+#
+# OPENBLAS_NUM_THREADS=1: otherwise OpenBLAS starts a thread pool whose threads
+# spin for about 0.1 s after each call and take a core from the timed run.
 #
 # Read "cpu" (process CPU time per step, all threads) for one thread on a
 # loaded machine: wall-clock times there mostly measure the other jobs. After
