@@ -26,8 +26,8 @@
  * the faces' frame records, walk.h). A vertex within SS_COLLIDE_NEAR of it
  * is no deeper and is left (over 40% of the 19k quadruped's skin in
  * motion); one in front of it and within SS_COLLIDE_FRONT is left too: it
- * can be no deeper than that behind another part (a third). 2. The rest (a
- * fifth: behind the local surface, or far in front of it, where another
+ * can be no deeper than that behind another part. 2. The rest (behind
+ * the local surface, or further in front of it, where another
  * part or the far wall of a crease may be nearer) search the body's tree for the
  * nearest point within the distance the descent found, starting at the
  * leaf of the face it found and going up (the boxes a search from the root
@@ -49,15 +49,21 @@
  * lying inside another part of the body (a leg through the belly) or turned
  * inside out by the pose is not collided against, so the skin is not
  * pushed into the body's own artefacts by more than SS_COLLIDE_SHALLOW.
- * Each face's result is kept some
- * steps, and the winding-number moments are refitted with the tree's boxes
+ * A clean face's result is kept some steps, a buried one's only in the
+ * step it was found (a face the pose has just freed must not keep the skin
+ * in), and the winding-number moments are refitted with the tree's boxes
  * in one sweep.
  *
  * No move squeezes a skin face: a move that would leave a face of the
  * vertex under SS_COLLIDE_SQUEEZE of its rest area, or turn it over, waits
- * for its neighbours' moves, then is halved (twice), else not made;
- * vertices of one face pushed out of a crushed crease towards one line of
- * the body made frames fail.
+ * for its neighbours' moves; then the vertex moves with its ring carried
+ * along (its own faces move whole), unless that squeezes or turns a face
+ * of the patch; else it is halved (twice), and what is left of the move is
+ * tried again in the next sweep, the neighbours moved meanwhile (up to
+ * SS_COLLIDE_SWEEPS). Vertices of one face pushed out of a crushed crease
+ * towards one line of the body made frames fail; moves only halved left
+ * the skin in the folds at the quadruped's paws, the elbow's crease and
+ * the Fox's legs a quarter to a half edge deep.
  *
  * Deterministic: the descents and searches per vertex alone (on the
  * threads; the face a vertex's descent ended on is its own, where its next
@@ -94,6 +100,8 @@ struct ss_collider {
   int *look_face;              /* (nvert) the face of the local nearest point of a vertex to look
                                   further at, or -1 */
   double *look_d2;             /* (nvert) its squared distance */
+  int nvert;
+  unsigned char *free_vert;    /* (nvert) 1 for a vertex of the pass: what a patch move may carry */
 };
 
 /* A move of at most this many edge lengths does not ask whether the face is
@@ -110,17 +118,20 @@ struct ss_collider {
 /* A vertex in front of its local nearest point and this close to it (edge
  * lengths, less the thickness) is not searched for a nearer face it is
  * behind: another part of the body, or the far wall of a crease, that it
- * has cut into by at most that. The knob between cost and depth: on the
- * four bodies of bench/inside.sh, the clean vertices deeper than 0.05 edge
- * summed over the frames measured were 45 on the mannequin and 79 on the
- * quadruped at 0.2; 35 and 48 at 0.1 for 1.6 times the quadruped's
- * searches; 61 and 131 at 0.3 for three quarters of them. */
-#define SS_COLLIDE_FRONT 0.2
-/* Steps a face's clean-surface test is kept: a clean face 16, a buried one 2
- * (the quadruped's legs leave the belly within a few frames, and skin kept
- * in by a stale test stayed a quarter of an edge deep). */
+ * has cut into by at most that. The knob between cost and depth: at 0.2,
+ * the mannequin's deepest clean vertex was such a one, 0.19 edge in (the
+ * target is 0.1), and 0.1 costs 1.6 times the quadruped's searches (about
+ * a millisecond a frame of its 19k faces). */
+#define SS_COLLIDE_FRONT 0.1
+/* Steps a face's clean-surface test is kept: a clean face 16, a buried one
+ * only the step it was made in (the quadruped's legs leave the belly within
+ * a few frames, and skin kept in by a stale test stayed a quarter of an
+ * edge deep; kept 2 steps it still left the mannequin's skin a quarter of
+ * an edge deep for a frame). A vertex anchored on a buried face is looked
+ * at like any other: the test of its anchor face is made only if it is to
+ * move. */
 #define SS_COLLIDE_RECHECK 16
-#define SS_COLLIDE_RECHECK_BURIED 2
+#define SS_COLLIDE_RECHECK_BURIED 1
 /* The clean-surface test's near field (node radii; inside.h's measure uses
  * SS_WIND_BETA, 3): it only tells 1/2 from 0, 1 or 3/2, by 1/4, and at 1.5
  * radii the first-order far field stays within 0.13 of the exact sum on the
@@ -129,6 +140,8 @@ struct ss_collider {
 #define SS_COLLIDE_WIND_BETA 1.5
 #define SS_COLLIDE_PASSES 4  /* moves along normals before one onto the nearest point */
 #define SS_COLLIDE_SQUEEZE 0.2 /* least area ratio a move may leave a skin face at */
+#define SS_COLLIDE_PATCH 32 /* vertices a patch move carries at most (a vertex and its ring) */
+#define SS_COLLIDE_SWEEPS 4 /* sweeps over the moves (a move made part of the way tries the rest) */
 #define SS_COLLIDE_DESCENT 32 /* faces a descent crosses at most */
 #define SS_COLLIDE_STACK (2 * 96 + 2) /* a search's stack: bvh.c's MAX_DEPTH 96, two children a level */
 
@@ -171,6 +184,8 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   c->hint = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->look_face = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->look_d2 = malloc(sizeof(double) * ((size_t)nvert + 1));
+  c->nvert = nvert;
+  c->free_vert = calloc((size_t)nvert + 1, 1);
   if (c->hint)
     for (int v = 0; v <= nvert; v++) c->hint[v] = -1;
   c->vf_start = calloc((size_t)nvert + 2, sizeof(int));
@@ -181,7 +196,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
   if (!status && !(c->face_step && c->face_buried && c->cand_face && c->cand_x && c->cand_n && c->hint &&
-                   c->look_face && c->look_d2 && c->vf_start && c->vf_face))
+                   c->look_face && c->look_d2 && c->free_vert && c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
     ss_collider_destroy(c);
@@ -196,7 +211,7 @@ void ss_collider_destroy(ss_collider *c) {
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
   SS_FREE_ALL(c->face_step, c->face_buried, c->cand_face, c->cand_x, c->cand_n, c->hint, c->vf_start,
-              c->vf_face, c->look_face, c->look_d2, c->parent, c->leaf_of, c);
+              c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of, c);
 }
 
 /* Squared distance from p to body face g (any face) and uv of its nearest
@@ -444,13 +459,9 @@ static int surface_at(const ss_collide_in *in, int nf, const double uv[2], const
 /* Vertex v at x, first look: the face of a local nearest point of the
  * surface (its squared distance into *d2) if the vertex may be deeper than
  * SS_COLLIDE_NEAR behind the surface, else -1. */
-static int look_local(ss_collider *col, const ss_collide_in *in, long long step, int v, const double x[3],
-                      double *d2) {
+static int look_local(ss_collider *col, const ss_collide_in *in, int v, const double x[3], double *d2) {
   const int fa = in->anchor_face[v];
   if (fa < 0) return -1;
-  /* anchored on a face known to be buried (skin inside a leg that passes
-   * through the belly): not moved, whatever its depth, and not searched */
-  if (fresh(col, step, fa) && col->face_buried[fa]) return -1;
   /* a local nearest point of the surface, by descent from the face the
    * last one ended on (else, or if that face has no area in this pose, from
    * the anchor face): an upper bound of the distance to the surface */
@@ -525,8 +536,8 @@ static int look_global(const ss_collider *col, const ss_collide_in *in, int lf, 
  * into the body (an inelastic contact). The move itself is not turned into
  * velocity: a move of half an edge in a substep of 1/480 s launched the
  * skin off the body at 16 substeps. */
-static void move(const ss_collider *c, int k, int v, double *x, double *vel) {
-  memcpy(x + 3 * v, c->cand_x + 3 * k, 3 * sizeof(double));
+static void move_to(const ss_collider *c, int k, int v, const double p[3], double *x, double *vel) {
+  memcpy(x + 3 * v, p, 3 * sizeof(double));
   if (!vel) return;
   const double *n = c->cand_n + 3 * k;
   double *u = vel + 3 * v;
@@ -535,11 +546,24 @@ static void move(const ss_collider *c, int k, int v, double *x, double *vel) {
     for (int i = 0; i < 3; i++) u[i] -= un * n[i];
 }
 
+/* 1 if a skin face of rest area a0 whose corners were at o and are at q
+ * is squeezed below SS_COLLIDE_SQUEEZE of its rest area by the move (and
+ * smaller than it was), or turned over. */
+static int squeezed(double a0, const double *const o[3], const double *const q[3]) {
+  double e1[3], e2[3], n0[3], n1[3];
+  for (int k = 0; k < 3; k++) e1[k] = o[1][k] - o[0][k], e2[k] = o[2][k] - o[0][k];
+  cross3(e1, e2, n0);
+  for (int k = 0; k < 3; k++) e1[k] = q[1][k] - q[0][k], e2[k] = q[2][k] - q[0][k];
+  cross3(e1, e2, n1);
+  const double a1 = 0.5 * sqrt(dot3(n1, n1));
+  return dot3(n0, n1) <= 0.0 || (a1 < SS_COLLIDE_SQUEEZE * a0 && dot3(n1, n1) < dot3(n0, n0));
+}
+
 /* 1 if moving vertex v to p would squeeze one of its skin faces below
  * SS_COLLIDE_SQUEEZE of its rest area or turn it over: vertices of one
  * face pushed out of a crushed crease towards one line of the body (and the
  * solver then iterating to its cap on the squeezed faces). Such a vertex
- * stays, its neighbours go out. */
+ * is moved with its ring (move_patch), else by less. */
 static int squeezes(const ss_collider *c, const ss_collide_in *in, int v, const double *x,
                     const double p[3]) {
   if (!in->faces) return 0;
@@ -551,23 +575,104 @@ static int squeezes(const ss_collider *c, const ss_collide_in *in, int v, const 
     for (int j = 0; j < 3; j++) o[j] = q[j] = x + 3 * fv[j];
     for (int j = 0; j < 3; j++)
       if (fv[j] == v) q[j] = p;
-    double e1[3], e2[3], n0[3], n1[3];
-    for (int k = 0; k < 3; k++) e1[k] = o[1][k] - o[0][k], e2[k] = o[2][k] - o[0][k];
-    cross3(e1, e2, n0);
-    for (int k = 0; k < 3; k++) e1[k] = q[1][k] - q[0][k], e2[k] = q[2][k] - q[0][k];
-    cross3(e1, e2, n1);
-    const double a1 = 0.5 * sqrt(dot3(n1, n1));
-    if (dot3(n0, n1) <= 0.0 || (a1 < SS_COLLIDE_SQUEEZE * in->rest_area[f] && dot3(n1, n1) < dot3(n0, n0)))
-      return 1;
+    if (squeezed(in->rest_area[f], o, q)) return 1;
   }
   return 0;
 }
 
+/* 1 if a skin face (corners fv, at o before a move and at q after it)
+ * turns over against the body under it (its corners' anchor faces'
+ * normals summed), as the count of faces turned off the body judges
+ * (ss_sim_count_off_body). */
+static int turns_off_body(const ss_collide_in *in, const int *fv, const double *const o[3],
+                          const double *const q[3]) {
+  double e1[3], e2[3], n0[3], n1[3], nb[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; k++) e1[k] = o[1][k] - o[0][k], e2[k] = o[2][k] - o[0][k];
+  cross3(e1, e2, n0);
+  for (int k = 0; k < 3; k++) e1[k] = q[1][k] - q[0][k], e2[k] = q[2][k] - q[0][k];
+  cross3(e1, e2, n1);
+  for (int j = 0; j < 3; j++) {
+    const int a = in->anchor_face[fv[j]];
+    if (a >= 0)
+      for (int k = 0; k < 3; k++) nb[k] += in->fr->normal[3 * a + k];
+  }
+  const double b0 = dot3(n0, nb), b1 = dot3(n1, nb);
+  return (b0 > 0.0 && b1 <= 0.0) || (b0 < 0.0 && b1 >= 0.0);
+}
+
+/* Signed distance of p along the pseudo-normal of the local nearest point
+ * of the surface a descent from face f finds (infinity if none). */
+static double local_depth(const ss_collide_in *in, int f, const double p[3]) {
+  double uv[2], d2, n[3], cp[3], sd;
+  int settled;
+  const int lf = f < 0 ? -1 : descend(in, f, p, uv, &d2, &settled);
+  if (lf < 0 || !surface_at(in, lf, uv, p, d2, n, cp, &sd)) return INFINITY;
+  return sd;
+}
+
+/* Vertex v moved to p with the free vertices of its ring carried by the
+ * same displacement, for a move that would squeeze a face of v alone (a
+ * fold of the skin at the body's surface, a face across the move's
+ * direction): v's own faces move whole, and what strain there is falls on
+ * the faces of the ring's outer edges. Not made (nothing moves) if that
+ * squeezes or turns over a face of the patch, turns one off the body under
+ * it, or carries a vertex of the ring deeper behind the surface near it
+ * (across a crushed crease, into the far wall): in the quadruped's crushed
+ * creases such patches more than doubled the faces turned off the body. 1 if
+ * made. */
+static int move_patch(const ss_collider *c, const ss_collide_in *in, int v, const double p[3], double *x) {
+  if (!in->faces) return 0;
+  int pv[SS_COLLIDE_PATCH];
+  double old[SS_COLLIDE_PATCH][3];
+  int np = 0;
+  pv[np++] = v;
+  for (int i = c->vf_start[v]; i < c->vf_start[v + 1]; i++) {
+    const int *fv = in->faces + 3 * c->vf_face[i];
+    for (int j = 0; j < 3; j++) {
+      const int u = fv[j];
+      int seen = !c->free_vert[u];
+      for (int q = 0; q < np && !seen; q++) seen = pv[q] == u;
+      if (seen) continue;
+      if (np == SS_COLLIDE_PATCH) return 0;
+      pv[np++] = u;
+    }
+  }
+  const double dx[3] = {p[0] - x[3 * v], p[1] - x[3 * v + 1], p[2] - x[3 * v + 2]};
+  for (int q = 0; q < np; q++)
+    for (int k = 0; k < 3; k++) old[q][k] = x[3 * pv[q] + k], x[3 * pv[q] + k] += dx[k];
+  int bad = 0;
+  for (int q = 0; q < np && !bad; q++) {
+    const int u = pv[q];
+    for (int i = c->vf_start[u]; i < c->vf_start[u + 1] && !bad; i++) {
+      const int f = c->vf_face[i];
+      if (!(in->rest_area[f] > 0.0)) continue;
+      const int *fv = in->faces + 3 * f;
+      const double *o[3], *n[3];
+      for (int j = 0; j < 3; j++) {
+        n[j] = o[j] = x + 3 * fv[j];
+        for (int r = 0; r < np; r++)
+          if (pv[r] == fv[j]) o[j] = old[r];
+      }
+      bad = squeezed(in->rest_area[f], o, n);
+      if (!bad) bad = turns_off_body(in, fv, o, n);
+    }
+  }
+  for (int q = 1; q < np && !bad; q++) {
+    const int u = pv[q];
+    const int f = c->hint[u] >= 0 ? c->hint[u] : in->anchor_face[u];
+    const double sd = local_depth(in, f, x + 3 * u);
+    bad = sd < in->thickness && sd < local_depth(in, f, old[q]);
+  }
+  if (bad)
+    for (int q = 0; q < np; q++) memcpy(x + 3 * pv[q], old[q], 3 * sizeof(double));
+  return !bad;
+}
+
 /* Vertex k of the pass (dof_vert[k] at x), first look: look_face, look_d2. */
-static inline void look_local_k(ss_collider *c, const ss_collide_in *in, long long step, const int *dof_vert,
-                                const double *x, int k) {
+static inline void look_local_k(ss_collider *c, const ss_collide_in *in, const int *dof_vert, const double *x,
+                                int k) {
   const int v = dof_vert[k];
-  c->look_face[k] = look_local(c, in, step, v, x + 3 * v, c->look_d2 + k);
+  c->look_face[k] = look_local(c, in, v, x + 3 * v, c->look_d2 + k);
 }
 
 /* Vertex k, looked at further: cand_face (and cand_x, cand_n); 1 if a
@@ -592,14 +697,14 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
 #ifdef _OPENMP
   if (nthread > 1 && ndof > 1024) {
 #pragma omp parallel for schedule(static) num_threads(nthread)
-    for (int k = 0; k < ndof; k++) look_local_k(c, in, step, dof_vert, x, k);
+    for (int k = 0; k < ndof; k++) look_local_k(c, in, dof_vert, x, k);
 #pragma omp parallel for schedule(static) num_threads(nthread) reduction(+ : ncand)
     for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   } else
 #endif
   {
     (void)nthread;
-    for (int k = 0; k < ndof; k++) look_local_k(c, in, step, dof_vert, x, k);
+    for (int k = 0; k < ndof; k++) look_local_k(c, in, dof_vert, x, k);
     for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   }
   if (ncand == 0) return 0;
@@ -612,27 +717,40 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
     if (buried(c, in, step, g) || (fa != g && buried(c, in, step, fa))) c->cand_face[k] = -1;
   }
   /* the whole moves that squeeze no skin face first; then, their neighbours
-   * moved meanwhile, the rest: the whole move, else half, else a quarter
-   * (in vertex order alone, a vertex that went before its neighbours had
-   * its move halved for a face their moves then opened again, and stayed
-   * half as deep) */
+   * moved meanwhile, the rest: the whole move, else the move carrying the
+   * vertex's ring along, else half, else a quarter. A vertex moved only
+   * part of the way tries the rest in the next sweep, its neighbours moved
+   * meanwhile (in vertex order alone, a vertex that went before its
+   * neighbours had its move halved for a face their moves then opened
+   * again, and stayed half as deep). */
+  memset(c->free_vert, 0, (size_t)c->nvert);
+  for (int k = 0; k < ndof; k++) c->free_vert[dof_vert[k]] = 1;
   int moved = 0;
-  for (int sweep = 0; sweep < 2; sweep++)
+  for (int sweep = 0; sweep < SS_COLLIDE_SWEEPS; sweep++)
     for (int k = 0; k < ndof; k++) {
       if (c->cand_face[k] == -1) continue;
       const int v = dof_vert[k];
       const double x0[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
-      double *q = c->cand_x + 3 * k;
+      double q[3] = {c->cand_x[3 * k], c->cand_x[3 * k + 1], c->cand_x[3 * k + 2]};
       int ok = !squeezes(c, in, v, x, q);
       if (!ok && sweep == 0) continue;
-      for (int h = 0; h < 2 && !ok; h++) {
+      if (!ok && move_patch(c, in, v, q, x)) {
+        /* v is where it goes: its velocity as for a move of its own */
+        c->cand_face[k] = -1;
+        move_to(c, k, v, q, x, vel);
+        moved++;
+        continue;
+      }
+      int part = 0;
+      for (int h = 0; h < 2 && !ok; h++, part = 1) {
         for (int i = 0; i < 3; i++) q[i] = 0.5 * (x0[i] + q[i]);
         ok = !squeezes(c, in, v, x, q);
       }
-      c->cand_face[k] = -1;
+      const int last = !part || sweep == SS_COLLIDE_SWEEPS - 1;
+      if (last) c->cand_face[k] = -1;
       if (!ok) continue;
-      move(c, k, v, x, vel);
-      moved++;
+      move_to(c, k, v, q, x, vel);
+      moved += last;
     }
   return moved;
 }
