@@ -18,8 +18,7 @@
  *               (slide a rate per second, so any substep count converges to
  *               one relaxation), then the mover carries (face, u, v) over the
  *               body to a* (walk / project / nring), and the tether walks it
- *               towards home (sim_anchor.c); where each free vertex's anchor
- *               now is, still in this pose, is the next substep's guess.
+ *               towards home (sim_anchor.c).
  * A solve that meets a non-finite value keeps the last finite state and is
  * counted in the statistics; nothing non-finite ever enters the state.
  * Create, destroy and the model / data split: sim_model.c; the thread count
@@ -144,9 +143,6 @@ static void stage_pose(ss_sim *sim, const ss_substep *in, ss_sim_stats *st) {
    * of the solve moves each vertex along with its anchor. */
   const ss_frames *fr_prev = ss_mover_frames(sim->mover);
   const int ndof = sim->m->ndof;
-  if (sim->guess_ready) {
-    /* the anchor pass after the last solve left them (sim_anchor.c) */
-  } else
 #ifdef _OPENMP
   if (sim->nthread > 1) {
 #pragma omp parallel for schedule(static) num_threads(sim->nthread)
@@ -156,7 +152,6 @@ static void stage_pose(ss_sim *sim, const ss_substep *in, ss_sim_stats *st) {
   {
     for (int k = 0; k < ndof; k++) guess_position(sim, fr_prev, k);
   }
-  sim->guess_ready = 0; /* the mover leaves the pose they are in */
   ss_mover_set_pose_threads(sim->mover, sim->body_sub, sim->nthread);
   ss_sim_anchor_positions_update(sim, sim->body_sub);
   st->pose_ms += ss_now_ms() - t0;
@@ -287,7 +282,6 @@ void ss_sim_reset(ss_sim *sim) {
   memcpy(sim->anchor_face, sim->m->anchor_face0, (size_t)sim->m->nanchor * sizeof(int));
   memcpy(sim->anchor_uv, sim->m->anchor_uv0, 2 * (size_t)sim->m->nanchor * sizeof(double));
   memcpy(sim->body_prev, sim->m->body_rest, 3 * (size_t)sim->m->nbvert * sizeof(double));
-  sim->guess_ready = 0;
   if (sim->mover) {
     ss_mover_set_pose(sim->mover, sim->m->body_rest);
     ss_sim_anchor_positions_update(sim, sim->m->body_rest);

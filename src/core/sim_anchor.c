@@ -82,7 +82,6 @@ typedef struct anchor_pass {
   const int *dof, *faces, *anchor_face0;
   int *anchor_face;
   double *anchor_uv;
-  double *guess; /* (ndof x 3) each free vertex's anchor after its move */
   double slide, tether; /* this substep's fractions of the way */
   int nv, nanchor, max_steps;
   int walks;   /* the mover's method is the walk */
@@ -103,7 +102,6 @@ static anchor_pass anchor_pass_of(ss_sim *sim, const ss_substep *in) {
       .anchor_face0 = sim->m->anchor_face0,
       .anchor_face = sim->anchor_face,
       .anchor_uv = sim->anchor_uv,
-      .guess = sim->guess,
       .slide = in->slide_frac,
       .tether = in->tether_frac,
       .nv = sim->m->nvert,
@@ -194,7 +192,7 @@ static int tether_from_afar(const anchor_pass *P, int a, ss_walker *walker, ss_w
 /* Moves anchor a (if it holds a free point) with walker (NULL: one thread;
  * the walk then takes walkers[0], projection and n-ring the mover's own
  * scratch). */
-static inline SS_ALWAYS_INLINE void slide_anchor(const anchor_pass *P, int a, ss_walker *walker,
+static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_walker *walker,
                                                 anchor_counts *c, const int walks, const int measure,
                                                 const int leashed) {
   const ss_frames *fr = P->fr;
@@ -286,25 +284,6 @@ static inline SS_ALWAYS_INLINE void slide_anchor(const anchor_pass *P, int a, ss
   c->moved += moved;
 }
 
-/* slide_anchor, then, for a free vertex's anchor, where it now is in the pose
- * the mover holds (the pose the next substep starts from): the next pose
- * stage's guess, computed while the anchor's frame record is in cache rather
- * than in a pass of its own. The operations of that pass's (sim.c,
- * guess_position), so the same bits. */
-static inline SS_ALWAYS_INLINE void move_anchor(const anchor_pass *P, int a, ss_walker *walker,
-                                                anchor_counts *c, const int walks, const int measure,
-                                                const int leashed) {
-  slide_anchor(P, a, walker, c, walks, measure, leashed);
-  if (a >= P->nv) return;
-  const int k = P->dof[a];
-  if (k < 0) return;
-  const int face = P->anchor_face[a];
-  if (face >= 0)
-    ss_anchor_position(P->fr, face, P->anchor_uv + 2 * a, P->guess + 3 * k);
-  else
-    memcpy(P->guess + 3 * k, P->anchor_pos + 3 * a, 3 * sizeof(double));
-}
-
 /* Anchors [a0, a1) with walker (NULL: one thread), in each instruction set
  * (isa.h): the pass's arithmetic is the leash's slide for most anchors. */
 SS_ISA_VARIANTS(anchor_range, (const anchor_pass *P, int a0, int a1, ss_walker *walker, anchor_counts *c),
@@ -355,6 +334,5 @@ void ss_sim_move_anchors(ss_sim *sim, const ss_substep *in, ss_sim_stats *st) {
   st->anchors_boundary += (int)c.boundary;
   st->anchors_crease += (int)c.crease;
   st->anchors_step_limit += (int)c.step_limit;
-  sim->guess_ready = 1;
 }
 

@@ -112,8 +112,6 @@ struct ss_sim {
   int probe_period;           /* threads 0: steps in the current probe period */
   double probe_ms[2];         /* threads 0: step times with nthread_max and with 1 thread */
   int measure_anchors;        /* ss_sim_measure_anchors: anchor_pull and anchor_path summed */
-  int guess_ready;            /* the last anchor pass left guess (its anchors in the pose the
-                                 mover holds), so the next pose stage need not compute it */
   /* CHOLMOD */
   cholmod_common cc;
   int cc_started;
