@@ -45,7 +45,10 @@ ss_run_settings ss_reference_settings(const ss_run_settings *run) {
   r.sim.iterations = SS_REFERENCE_ITERATIONS;
   r.sim.tol = run->sim.tol > 0.0 && run->sim.tol < SS_REFERENCE_TOL ? run->sim.tol
                                                                     : SS_REFERENCE_TOL;
-  r.sim.lbfgs_history = def.lbfgs_history; /* unused by Newton: keeps keys equal */
+  /* unused by Newton (the safety net is quasi-Newton's): keeps keys equal */
+  r.sim.lbfgs_history = def.lbfgs_history;
+  r.sim.safety_residual = def.safety_residual;
+  r.sim.iterations_max = def.iterations_max;
   r.sim.dt = def.dt;                       /* a run steps 1 / fps whatever dt says */
   if (r.sim.mover.method != SS_METHOD_NRING) r.sim.mover.nring_rings = def.mover.nring_rings;
   return r;

@@ -2,7 +2,8 @@
  * physical settings that every method is measured against. Checked on the
  * `fold` scene (small, a few frames):
  *  - the truth's key does not depend on the run's anchor method, solver,
- *    iterations, tolerance or substeps, and
+ *    iterations, tolerance, substeps or quasi-Newton settings (safety net,
+ *    L-BFGS pairs: Newton has none), and
  *    does depend on a physical setting;
  *  - a run with the truth's own settings has error_vs_truth exactly 0;
  *  - the error shrinks as the step shrinks: the walk with Newton converged at
@@ -63,6 +64,17 @@ static void test_keys(const ss_body *body) {
   b.sim.tol = 1e-2;
   t = ss_truth_settings(&b);
   CHECK(ss_reference_key(body, &t, &k, NULL, 0) == SS_OK && k == k0);
+  b = a; /* the quasi-Newton run's own settings: the truth is Newton's */
+  b.sim.safety_residual = 0.0;
+  b.sim.iterations_max = 8;
+  b.sim.lbfgs_history = 3;
+  t = ss_truth_settings(&b);
+  CHECK(ss_reference_key(body, &t, &k, NULL, 0) == SS_OK && k == k0);
+  t = ss_reference_settings(&b); /* and so is the reference */
+  ss_run_settings r = ss_reference_settings(&a);
+  unsigned long long kr = 0;
+  CHECK(ss_reference_key(body, &r, &kr, NULL, 0) == SS_OK &&
+        ss_reference_key(body, &t, &k, NULL, 0) == SS_OK && k == kr);
   for (int sub = 2; sub <= 32; sub *= 4) { /* 2 and 32 substeps */
     b = converged_walk(sub);
     t = ss_truth_settings(&b);
