@@ -332,14 +332,32 @@ static int build(ssa_robot *r, const ssa_urdf_data *d, const char *what, const c
       return ss_fail(err, err_sz, SS_E_ARG, "%s: mimic joints form a cycle through '%s'", what,
                      r->joint_name[j]);
   }
-  /* link order: breadth-first from the root */
+  /* link order: breadth-first from the root, each link's children in index
+   * order, through per-parent child lists (a robot of thousands of parts) */
+  int *child_start = calloc((size_t)r->nlink + 1, sizeof(int));
+  int *child = malloc((size_t)r->nlink * sizeof(int));
+  if (!child_start || !child) {
+    free(child_start);
+    free(child);
+    return ss_fail(err, err_sz, SS_E_NOMEM, "%s: out of memory for %d links", what, r->nlink);
+  }
+  for (int c = 0; c < r->nlink; c++)
+    if (r->link_parent[c] >= 0) child_start[r->link_parent[c] + 1]++;
+  for (int l = 0; l < r->nlink; l++) child_start[l + 1] += child_start[l];
+  for (int c = 0; c < r->nlink; c++)
+    if (r->link_parent[c] >= 0) child[child_start[r->link_parent[c]]++] = c;
+  /* filling moved each start to the next one's: back by one */
+  for (int l = r->nlink; l > 0; l--) child_start[l] = child_start[l - 1];
+  child_start[0] = 0;
   int n = 0;
   r->link_order[n++] = r->root_link;
   for (int head = 0; head < n; head++) {
     int l = r->link_order[head];
-    for (int c = 0; c < r->nlink; c++)
-      if (r->link_parent[c] == l && n < r->nlink) r->link_order[n++] = c;
+    for (int i = child_start[l]; i < child_start[l + 1] && n < r->nlink; i++)
+      r->link_order[n++] = child[i];
   }
+  free(child_start);
+  free(child);
   if (n != r->nlink)
     return ss_fail(err, err_sz, SS_E_IO, "%s: %d of %d links are not connected to root '%s'",
                    what, r->nlink - n, r->nlink, r->link_name[r->root_link]);
