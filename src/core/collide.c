@@ -26,9 +26,13 @@
  * the faces' frame records, walk.h). A vertex within SS_COLLIDE_NEAR of it
  * is no deeper and is left (over 40% of the 19k quadruped's skin in
  * motion); one in front of it and within SS_COLLIDE_FRONT is left too: it
- * can be no deeper than that behind another part. 2. The rest (behind
- * the local surface, or further in front of it, where another
- * part or the far wall of a crease may be nearer) search the body's tree for the
+ * can be no deeper than that behind another part. One further in front is
+ * left if no face within that distance has it behind the face's plane
+ * (tree_behind: a plane test a face): it is then in front of the surface at
+ * its nearest point, whichever face that is (four in five of them on the
+ * 19k quadruped; the skin's gap off the body). 2. The rest (behind the
+ * local surface, or in front of it with another part or the far wall of a
+ * crease near) search the body's tree for the
  * nearest point within the distance the descent found, starting at the
  * leaf of the face it found and going up (the boxes a search from the root
  * tests, but not the root's way down). The descent replaced the look at
