@@ -29,7 +29,7 @@
  * can be no deeper than that behind another part. One further in front is
  * left if no face within that distance has it behind the face's plane
  * (tree_behind: a plane test a face): it is then in front of the surface at
- * its nearest point, whichever face that is (four in five of them on the
+ * its nearest point, whichever face that is (39 in 40 of them on the
  * 19k quadruped; the skin's gap off the body). 2. The rest (behind the
  * local surface, or in front of it with another part or the far wall of a
  * crease near) search the body's tree for the
