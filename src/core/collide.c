@@ -28,7 +28,7 @@
  * motion); one in front of it and within SS_COLLIDE_FRONT is left too: it
  * can be no deeper than that behind another part. One further in front is
  * left if no face within that distance has it behind the face's plane
- * (tree_behind: a plane test a face): it is then in front of the surface at
+ * (collide_behind.c: a plane test a face): it is then in front of the surface at
  * its nearest point, whichever face that is (39 in 40 of them on the
  * 19k quadruped; the skin's gap off the body). 2. The rest (behind the
  * local surface, or in front of it with another part or the far wall of a
@@ -80,6 +80,7 @@
 
 #include "bvh.h"
 #include "closest.h"
+#include "collide_behind.h"
 #include "inside.h"
 #include "sim_internal.h"
 #include "ss_free.h"
@@ -338,69 +339,6 @@ static double tree_nearest(const ss_collider *c, const ss_collide_in *in, int f0
 
 /* 1 if a face of the subtree of node (its box within bound of p) is
  * within bound of p and has p less than lim in front of its plane. */
-/* 1 if box b meets the box lo hi (a ball's: a test of six comparisons
- * that passes over fewer boxes than the ball's own but costs far less) */
-static inline int box_meets(const double *b, const double lo[3], const double hi[3]) {
-  return b[0] <= hi[0] && b[3] >= lo[0] && b[1] <= hi[1] && b[4] >= lo[1] && b[2] <= hi[2] && b[5] >= lo[2];
-}
-
-static int subtree_behind(const ss_collider *c, const ss_collide_in *in, int node, const double p[3],
-                          double bound, double lim) {
-  const ss_bvh_shape *s = &c->shape;
-  const double *box = ss_bvh_boxes(c->bvh);
-  const double far2 = bound * (1.0 + 1e-6);
-  const double r = sqrt(far2);
-  const double lo[3] = {p[0] - r, p[1] - r, p[2] - r}, hi[3] = {p[0] + r, p[1] + r, p[2] + r};
-  int stack[SS_COLLIDE_STACK];
-  int top = 0;
-  stack[top++] = node;
-  while (top > 0) {
-    const int q = stack[--top];
-    if (s->left[q] >= 0) {
-      if (top + 2 > (int)(sizeof stack / sizeof stack[0])) return 1; /* never on trees bvh.c builds */
-      const int l = s->left[q], rt = s->right[q];
-      if (box_meets(box + 6 * (size_t)l, lo, hi)) stack[top++] = l;
-      if (box_meets(box + 6 * (size_t)rt, lo, hi)) stack[top++] = rt;
-      continue;
-    }
-    for (int i = s->first[q]; i < s->first[q] + s->count[q]; i++) {
-      const int f = s->face_order[i];
-      const double *o = ss_frames_origin(in->fr, f), *nf = in->fr->normal + 3 * f;
-      const double h = nf[0] * (p[0] - o[0]) + nf[1] * (p[1] - o[1]) + nf[2] * (p[2] - o[2]);
-      if (h >= lim || h * h > far2) continue;
-      double uv[2];
-      if (tri_dist2(in, f, p, uv) <= bound) return 1;
-    }
-  }
-  return 0;
-}
-
-/* 1 if p may be behind the body's surface at its nearest point within
- * bound (squared) of it: some face within bound has p less than lim in
- * front of its plane (a face without a normal counts). Else p is at least
- * lim in front of every face there, and so of the pseudo-normal at its
- * nearest point (a normalised sum of those faces' normals), whichever face
- * that is: the question a full search answers, at a test of a plane
- * instead of a nearest point on each face, and with no nearest point to
- * keep. The search goes up from the leaf of face f0, a face near p. */
-static int tree_behind(const ss_collider *c, const ss_collide_in *in, int f0, const double p[3], double bound,
-                       double lim) {
-  const ss_bvh_shape *s = &c->shape;
-  const double *box = ss_bvh_boxes(c->bvh);
-  if (s->nnode <= 0) return 0;
-  const double r = sqrt(bound * (1.0 + 1e-6));
-  const double lo[3] = {p[0] - r, p[1] - r, p[2] - r}, hi[3] = {p[0] + r, p[1] + r, p[2] + r};
-  int node = c->leaf_of[f0];
-  if (subtree_behind(c, in, node, p, bound, lim)) return 1;
-  while (node > 0) {
-    const int up = c->parent[node];
-    const int other = s->left[up] == node ? s->right[up] : s->left[up];
-    if (box_meets(box + 6 * (size_t)other, lo, hi) && subtree_behind(c, in, other, p, bound, lim)) return 1;
-    node = up;
-  }
-  return 0;
-}
-
 /* The pseudo-normal of the body at c, the nearest point of face nf to x
  * (Baerentzen and Aanaes 2005: the sum of the normals of the faces nearest
  * there; one face's inside it, an edge's two, a corner's ring). */
@@ -554,7 +492,8 @@ static int look_local(ss_collider *col, const ss_collide_in *in, int v, const do
   /* further in front: searched only if some face within its distance has
    * it behind the face's plane (or less than the thickness in front), as
    * few in the skin's mere gap off the body are */
-  if (infront == 1 && !tree_behind(col, in, lf, x, *d2 * (1.0 + 1e-9) + 1e-300, in->thickness + 1e-9 * in->reach))
+  if (infront == 1 && !ss_collide_behind(&col->shape, ss_bvh_boxes(col->bvh), col->parent, col->leaf_of[lf], in, x,
+                                          *d2 * (1.0 + 1e-9) + 1e-300, in->thickness + 1e-9 * in->reach))
     return -1;
   return lf;
 }
