@@ -7,15 +7,14 @@
  * pseudo-normal there is a normalised sum of the normals of the faces at
  * that point, each of which has the vertex at least lim in front of its
  * plane otherwise, so the sum does too, whichever face is nearest. The
- * test is a plane's a face, a nearest point only for the faces it flags,
- * and it stops at the first face within the distance that is flagged: 39
+ * test is a plane's a face, a nearest point (from the face's frame record,
+ * as the descents take it) only for the faces it flags, and it stops at
+ * the first face within the distance that is flagged: 39
  * in 40 such vertices on the 19k quadruped (the skin's gap off the body)
  * are left without the full nearest-point search, at the same result. */
 #include "collide_behind.h"
 
 #include <math.h>
-
-#include "closest.h"
 
 #define SS_BEHIND_STACK (2 * 96 + 2) /* bvh.c's MAX_DEPTH 96, two children a level */
 
@@ -47,12 +46,9 @@ static int subtree_behind(const ss_bvh_shape *s, const double *box, int node, co
       const double *o = ss_frames_origin(in->fr, f), *nf = in->fr->normal + 3 * f;
       const double h = nf[0] * (p[0] - o[0]) + nf[1] * (p[1] - o[1]) + nf[2] * (p[2] - o[2]);
       if (h >= lim || h * h > far2) continue; /* in front, or its plane (so the face) too far */
-      const int *fv = in->topo->face_vert + 3 * f;
       double uv[2];
       /* the margin far above rounding: a face at the bound's edge counts */
-      if (ss_closest_point_triangle(p, in->body + 3 * fv[0], in->body + 3 * fv[1], in->body + 3 * fv[2], uv) <=
-          far2)
-        return 1;
+      if (ss_collide_tri_dist2(in, f, p, uv) <= far2) return 1;
     }
   }
   return 0;
