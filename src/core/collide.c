@@ -507,17 +507,29 @@ static void move_to(const ss_collider *c, int k, int v, const double p[3], doubl
     for (int i = 0; i < 3; i++) u[i] -= un * n[i];
 }
 
-/* 1 if a skin face of rest area a0 whose corners were at o and are at q
- * is squeezed below SS_COLLIDE_SQUEEZE of its rest area by the move (and
- * smaller than it was), or turned over. */
-static int squeezed(double a0, const double *const o[3], const double *const q[3]) {
-  double e1[3], e2[3], n0[3], n1[3];
+/* The (area-scaled) normals of a skin face whose corners were at o and are
+ * at q: what the squeeze and turn tests of a move compare. */
+static void move_normals(const double *const o[3], const double *const q[3], double n0[3], double n1[3]) {
+  double e1[3], e2[3];
   for (int k = 0; k < 3; k++) e1[k] = o[1][k] - o[0][k], e2[k] = o[2][k] - o[0][k];
   cross3(e1, e2, n0);
   for (int k = 0; k < 3; k++) e1[k] = q[1][k] - q[0][k], e2[k] = q[2][k] - q[0][k];
   cross3(e1, e2, n1);
+}
+
+/* squeezed() of a face of rest area a0 by its move_normals n0 (before), n1 (after). */
+static int squeezed_normals(double a0, const double n0[3], const double n1[3]) {
   const double a1 = 0.5 * sqrt(dot3(n1, n1));
   return dot3(n0, n1) <= 0.0 || (a1 < SS_COLLIDE_SQUEEZE * a0 && dot3(n1, n1) < dot3(n0, n0));
+}
+
+/* 1 if a skin face of rest area a0 whose corners were at o and are at q
+ * is squeezed below SS_COLLIDE_SQUEEZE of its rest area by the move (and
+ * smaller than it was), or turned over. */
+static int squeezed(double a0, const double *const o[3], const double *const q[3]) {
+  double n0[3], n1[3];
+  move_normals(o, q, n0, n1);
+  return squeezed_normals(a0, n0, n1);
 }
 
 /* 1 if moving vertex v to p would squeeze one of its skin faces below
@@ -541,17 +553,12 @@ static int squeezes(const ss_collider *c, const ss_collide_in *in, int v, const 
   return 0;
 }
 
-/* 1 if a skin face (corners fv, at o before a move and at q after it)
- * turns over against the body under it (its corners' anchor faces'
+/* 1 if a skin face (corners fv; move_normals n0 before a move, n1 after
+ * it) turns over against the body under it (its corners' anchor faces'
  * normals summed), as the count of faces turned off the body judges
  * (ss_sim_count_off_body). */
-static int turns_off_body(const ss_collide_in *in, const int *fv, const double *const o[3],
-                          const double *const q[3]) {
-  double e1[3], e2[3], n0[3], n1[3], nb[3] = {0.0, 0.0, 0.0};
-  for (int k = 0; k < 3; k++) e1[k] = o[1][k] - o[0][k], e2[k] = o[2][k] - o[0][k];
-  cross3(e1, e2, n0);
-  for (int k = 0; k < 3; k++) e1[k] = q[1][k] - q[0][k], e2[k] = q[2][k] - q[0][k];
-  cross3(e1, e2, n1);
+static int turns_off_body(const ss_collide_in *in, const int *fv, const double n0[3], const double n1[3]) {
+  double nb[3] = {0.0, 0.0, 0.0};
   for (int j = 0; j < 3; j++) {
     const int a = in->anchor_face[fv[j]];
     if (a >= 0)
@@ -614,8 +621,9 @@ static int move_patch(const ss_collider *c, const ss_collide_in *in, int v, cons
         for (int r = 0; r < np; r++)
           if (pv[r] == fv[j]) o[j] = old[r];
       }
-      bad = squeezed(in->rest_area[f], o, n);
-      if (!bad) bad = turns_off_body(in, fv, o, n);
+      double n0[3], n1[3];
+      move_normals(o, n, n0, n1);
+      bad = squeezed_normals(in->rest_area[f], n0, n1) || turns_off_body(in, fv, n0, n1);
     }
   }
   for (int q = 1; q < np && !bad; q++) {
