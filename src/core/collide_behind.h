@@ -12,6 +12,17 @@
 #include "collide.h"
 #include "ss_vec.h"
 
+/* Squared distance from q to the segment from 0 to e, and where on it
+ * (*s in [0, 1]; 0 for a segment without length). */
+static inline double ss_collide_edge_dist2(const double q[3], const double e[3], double *s) {
+  const double ee = dot3(e, e), qe = dot3(q, e);
+  const double t = qe <= 0.0 || !(ee > 0.0) ? 0.0 : qe >= ee ? 1.0 : qe / ee;
+  double r2 = 0.0;
+  for (int k = 0; k < 3; k++) r2 += (q[k] - t * e[k]) * (q[k] - t * e[k]);
+  *s = t;
+  return r2;
+}
+
 /* Squared distance from p to body face g (any face) and uv of its nearest
  * point (p0 + u e1 + v e2), from the face's frame record (walk.h): p's
  * projection onto the plane by the canonical map, inside the face its own
@@ -37,28 +48,18 @@ static inline double ss_collide_tri_dist2(const ss_collide_in *in, int g, const 
     uv[0] = u, uv[1] = v;
     return r2;
   }
-  double best = INFINITY;
+  double best = INFINITY, s;
   if (v < 0.0) { /* beyond edge v0 v1 */
-    const double ee = dot3(e1, e1), de = dot3(d, e1);
-    const double s = de <= 0.0 || !(ee > 0.0) ? 0.0 : de >= ee ? 1.0 : de / ee;
-    double r2 = 0.0;
-    for (int k = 0; k < 3; k++) r2 += (d[k] - s * e1[k]) * (d[k] - s * e1[k]);
-    best = r2, uv[0] = s, uv[1] = 0.0;
+    best = ss_collide_edge_dist2(d, e1, &s), uv[0] = s, uv[1] = 0.0;
   }
   if (u < 0.0) { /* beyond edge v0 v2 */
-    const double ee = dot3(e2, e2), de = dot3(d, e2);
-    const double s = de <= 0.0 || !(ee > 0.0) ? 0.0 : de >= ee ? 1.0 : de / ee;
-    double r2 = 0.0;
-    for (int k = 0; k < 3; k++) r2 += (d[k] - s * e2[k]) * (d[k] - s * e2[k]);
+    const double r2 = ss_collide_edge_dist2(d, e2, &s);
     if (r2 < best) best = r2, uv[0] = 0.0, uv[1] = s;
   }
   if (u + v > 1.0) { /* beyond edge v1 v2 */
     const double f[3] = {e2[0] - e1[0], e2[1] - e1[1], e2[2] - e1[2]};
     const double q[3] = {d[0] - e1[0], d[1] - e1[1], d[2] - e1[2]};
-    const double ff = dot3(f, f), qf = dot3(q, f);
-    const double s = qf <= 0.0 || !(ff > 0.0) ? 0.0 : qf >= ff ? 1.0 : qf / ff;
-    double r2 = 0.0;
-    for (int k = 0; k < 3; k++) r2 += (q[k] - s * f[k]) * (q[k] - s * f[k]);
+    const double r2 = ss_collide_edge_dist2(q, f, &s);
     if (r2 < best) best = r2, uv[0] = 1.0 - s, uv[1] = s;
   }
   return best;
