@@ -79,9 +79,13 @@ def main():
     if not a.load and not (a.skinsim and a.bench_sim):
         ap.error("SKINSIM and BENCH_SIM are needed (or --load FILE)")
     if a.load:
-        with open(a.load) as f:
-            saved = json.load(f)
-        a.tris, a.frames, threads, rows = saved["tris"], saved["frames"], saved["threads"], saved["rows"]
+        try:
+            with open(a.load) as f:
+                saved = json.load(f)
+            a.tris, a.frames, threads, rows = saved["tris"], saved["frames"], saved["threads"], saved["rows"]
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            print("pareto.py: cannot read the rows of %s: %s" % (a.load, e), file=sys.stderr)
+            return 2
         for r in rows:
             print("substeps %d iterations %2d: error_vs_truth %.4f, %s, %.2f iterations/frame" %
                   (r["substeps"], r["iterations"], r["error"],
