@@ -19,6 +19,8 @@
 #
 # NODES_FROM=OTHER_BUILD_DIR runs avatar_node and skin_sim_node of another build (an
 # earlier commit, for a before/after in one run); motion_node stays this build's.
+# SKIN_ARGS="_collide:=true ..." adds private parameters of skin_sim_node (split at
+# spaces), e.g. to time an option through the nodes.
 #
 # Per run it prints one row: inputs (kinematic_mesh published), answered (skin
 # steps whose stamp is an input's, as a share of inputs), latency (skin_stats:
@@ -60,7 +62,9 @@ run_one() { # body hogs
     [ -n "$urdf" ] && ros_env_set_robot_description "$urdf"
     local nodes="${NODES_FROM:-$bld}/devel/lib/skin_sim"
     ros_env_bg avatar "$nodes/avatar_node" "${avatar_args[@]}"
-    ros_env_bg skin "$nodes/skin_sim_node" _step_budget:="$budget" _marker_rate:=0
+    local skin_args=()
+    read -r -a skin_args <<< "${SKIN_ARGS:-}"
+    ros_env_bg skin "$nodes/skin_sim_node" _step_budget:="$budget" _marker_rate:=0 "${skin_args[@]}"
     ros_env_wait_node /avatar 60 > /dev/null && ros_env_wait_node /skin_sim 60 > /dev/null \
       || { echo "$body: nodes did not come up"; tail -5 "$ROS_ENV_DIR"/*.log; exit 1; }
     local hog_pids=()

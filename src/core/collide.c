@@ -58,16 +58,20 @@
  * in), and the winding-number moments are refitted with the tree's boxes
  * in one sweep.
  *
- * No move squeezes a skin face: a move that would leave a face of the
- * vertex under SS_COLLIDE_SQUEEZE of its rest area, or turn it over, waits
- * for its neighbours' moves; then the vertex moves with its ring carried
- * along (its own faces move whole), unless that squeezes or turns a face
- * of the patch; else it is halved (twice), and what is left of the move is
- * tried again in the next sweep, the neighbours moved meanwhile (up to
- * SS_COLLIDE_SWEEPS). Vertices of one face pushed out of a crushed crease
- * towards one line of the body made frames fail; moves only halved left
- * the skin in the folds at the quadruped's paws, the elbow's crease and
- * the Fox's legs a quarter to a half edge deep.
+ * No move squeezes or stretches a skin face: a move that would leave a
+ * face of the vertex under SS_COLLIDE_SQUEEZE of its rest area, or turn it
+ * over, or stretch it past SS_COLLIDE_STRETCH times it, waits for its
+ * neighbours' moves; then the vertex moves with its ring carried along
+ * (its own faces move whole), unless that squeezes, stretches or turns a
+ * face of the patch; else it is halved (twice), and what is left of the
+ * move is tried again in the next sweep, the neighbours moved meanwhile
+ * (up to SS_COLLIDE_SWEEPS). Vertices of one face pushed out of a crushed
+ * crease towards one line of the body made frames fail; moves only halved
+ * left the skin in the folds at the quadruped's paws, the elbow's crease
+ * and the Fox's legs a quarter to a half edge deep. The vertices around a
+ * paw's pole, pushed out along normals that part there, stretched the
+ * small faces of its fan 18 to 23 times for a frame: a spike of skin, and
+ * past 20 times a failed frame.
  *
  * Deterministic: the descents and searches per vertex alone (on the
  * threads; the face a vertex's descent ended on is its own, where its next
@@ -144,7 +148,15 @@ struct ss_collider {
  * 0.22, at 1 0.29) while it visits two thirds of the nodes of 2. */
 #define SS_COLLIDE_WIND_BETA 1.5
 #define SS_COLLIDE_PASSES 4  /* moves along normals before one onto the nearest point */
-#define SS_COLLIDE_SQUEEZE 0.2 /* least area ratio a move may leave a skin face at */
+/* Least and most area ratio (to the rest area) a move may leave a skin face
+ * at, if it makes the face smaller or larger. A tenth: a fifth kept skin a
+ * fifth to two thirds of an edge deep in the elbow's crease, the 19k
+ * mannequin's folds and the 5k quadruped's; below a twentieth the faces
+ * so squeezed made frames fail. Ten times: short of the twenty that makes
+ * a frame fail, and above what the skin stretches without contact (under
+ * two times). */
+#define SS_COLLIDE_SQUEEZE 0.1
+#define SS_COLLIDE_STRETCH 10.0
 #define SS_COLLIDE_PATCH 32 /* vertices a patch move carries at most (a vertex and its ring) */
 #define SS_COLLIDE_SWEEPS 4 /* sweeps over the moves (a move made part of the way tries the rest) */
 #define SS_COLLIDE_DESCENT 32 /* faces a descent crosses at most */
@@ -519,13 +531,15 @@ static void move_normals(const double *const o[3], const double *const q[3], dou
 
 /* squeezed() of a face of rest area a0 by its move_normals n0 (before), n1 (after). */
 static int squeezed_normals(double a0, const double n0[3], const double n1[3]) {
-  const double a1 = 0.5 * sqrt(dot3(n1, n1));
-  return dot3(n0, n1) <= 0.0 || (a1 < SS_COLLIDE_SQUEEZE * a0 && dot3(n1, n1) < dot3(n0, n0));
+  const double a1 = 0.5 * sqrt(dot3(n1, n1)), grows = dot3(n1, n1) > dot3(n0, n0);
+  return dot3(n0, n1) <= 0.0 || (a1 < SS_COLLIDE_SQUEEZE * a0 && !grows) ||
+         (a1 > SS_COLLIDE_STRETCH * a0 && grows);
 }
 
 /* 1 if a skin face of rest area a0 whose corners were at o and are at q
  * is squeezed below SS_COLLIDE_SQUEEZE of its rest area by the move (and
- * smaller than it was), or turned over. */
+ * smaller than it was), stretched past SS_COLLIDE_STRETCH times it (and
+ * larger than it was), or turned over. */
 static int squeezed(double a0, const double *const o[3], const double *const q[3]) {
   double n0[3], n1[3];
   move_normals(o, q, n0, n1);
@@ -533,10 +547,12 @@ static int squeezed(double a0, const double *const o[3], const double *const q[3
 }
 
 /* 1 if moving vertex v to p would squeeze one of its skin faces below
- * SS_COLLIDE_SQUEEZE of its rest area or turn it over: vertices of one
- * face pushed out of a crushed crease towards one line of the body (and the
- * solver then iterating to its cap on the squeezed faces). Such a vertex
- * is moved with its ring (move_patch), else by less. */
+ * SS_COLLIDE_SQUEEZE of its rest area, stretch one past SS_COLLIDE_STRETCH
+ * times it, or turn one over (squeezed()): vertices of one face pushed out
+ * of a crushed crease towards one line of the body (and the solver then
+ * iterating to its cap on the squeezed faces), or out of a paw's pole along
+ * parting normals. Such a vertex is moved with its ring (move_patch), else
+ * by less. */
 static int squeezes(const ss_collider *c, const ss_collide_in *in, int v, const double *x,
                     const double p[3]) {
   if (!in->faces) return 0;
@@ -583,7 +599,7 @@ static double local_depth(const ss_collide_in *in, int f, const double p[3]) {
  * fold of the skin at the body's surface, a face across the move's
  * direction): v's own faces move whole, and what strain there is falls on
  * the faces of the ring's outer edges. Not made (nothing moves) if that
- * squeezes or turns over a face of the patch, turns one off the body under
+ * squeezes, stretches or turns over a face of the patch, turns one off the body under
  * it, or carries a vertex of the ring deeper behind the surface near it
  * (across a crushed crease, into the far wall): in the quadruped's crushed
  * creases such patches more than doubled the faces turned off the body. 1 if
@@ -667,7 +683,9 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   if (nthread > 1 && ndof > 1024) {
 #pragma omp parallel for schedule(static) num_threads(nthread)
     for (int k = 0; k < ndof; k++) look_local_k(c, in, dof_vert, x, k);
-#pragma omp parallel for schedule(static) num_threads(nthread) reduction(+ : ncand)
+    /* in chunks taken as threads free up: the vertices searched are few
+     * and gather where the body folds, so equal halves finished apart */
+#pragma omp parallel for schedule(dynamic, 128) num_threads(nthread) reduction(+ : ncand)
     for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   } else
 #endif
