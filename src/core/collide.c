@@ -69,9 +69,10 @@
  * the skin in the folds at the quadruped's paws, the elbow's crease and
  * the Fox's legs a quarter to a half edge deep.
  *
- * Deterministic: the descents and searches per vertex alone (on the
- * threads; the face a vertex's descent ended on is its own, where its next
- * starts), the tests and the moves in vertex order on one thread. */
+ * Deterministic: the refit per subtree of the tree (inside.c), the
+ * descents and searches per vertex alone (on the threads; the face a
+ * vertex's descent ended on is its own, where its next starts), the tests
+ * and the moves in vertex order on one thread. */
 #include "collide.h"
 
 #include <math.h>
@@ -656,8 +657,9 @@ static inline int look_global_k(ss_collider *c, const ss_collide_in *in, const i
 
 int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int *dof_vert,
                     int nthread, long long step, double *x, double *vel) {
-  /* the tree's boxes and winding-number moments in this pose, in one sweep */
-  ss_wind_refit_boxes(c->wind, in->body, ss_bvh_boxes_write(c->bvh));
+  /* the tree's boxes and winding-number moments in this pose, in one sweep (its
+   * subtrees on the threads) */
+  ss_wind_refit_boxes(c->wind, in->body, ss_bvh_boxes_write(c->bvh), nthread);
   /* 1. each vertex's local nearest point of the surface, by descent; 2. for
    * those it leaves, the nearest point of the body, and where they go (on
    * the threads where there are enough vertices; one thread calls no
