@@ -70,9 +70,10 @@
  * the Fox's legs a quarter to a half edge deep.
  *
  * Deterministic: the refit per subtree of the tree (inside.c), the
- * descents and searches per vertex alone (on the threads; the face a
- * vertex's descent ended on is its own, where its next starts), the tests
- * and the moves in vertex order on one thread. */
+ * descents and searches per vertex alone and the clean-surface tests per
+ * face alone (on the threads; the face a vertex's descent ended on is its
+ * own, where its next starts), their results applied and the moves made
+ * in vertex order on one thread. */
 #include "collide.h"
 
 #include <math.h>
@@ -93,6 +94,7 @@ struct ss_collider {
   int nbface;
   long long *face_step;        /* (nbface) step of the cached face_buried (-1: none) */
   unsigned char *face_buried;  /* (nbface) */
+  int *test_face;              /* (nbface) the faces to test in a step, each once */
   int *cand_face;              /* (nvert) nearest face of a vertex behind the surface, or -1 */
   double *cand_x;              /* (nvert x 3) where it goes */
   double *cand_n;              /* (nvert x 3) the surface normal it goes along */
@@ -184,6 +186,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   if (c->face_step)
     for (int f = 0; f < btopo->nface; f++) c->face_step[f] = -1;
   c->face_buried = calloc((size_t)btopo->nface + 1, 1);
+  c->test_face = malloc(sizeof(int) * ((size_t)btopo->nface + 1));
   c->cand_face = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->cand_x = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->cand_n = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
@@ -201,8 +204,8 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int v = 0; v < nvert; v++) c->vf_start[v + 2] += c->vf_start[v + 1];
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
-  if (!status && !(c->face_step && c->face_buried && c->cand_face && c->cand_x && c->cand_n && c->hint &&
-                   c->look_face && c->look_d2 && c->free_vert && c->vf_start && c->vf_face))
+  if (!status && !(c->face_step && c->face_buried && c->test_face && c->cand_face && c->cand_x && c->cand_n &&
+                   c->hint && c->look_face && c->look_d2 && c->free_vert && c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
     ss_collider_destroy(c);
@@ -216,8 +219,8 @@ void ss_collider_destroy(ss_collider *c) {
   if (!c) return;
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
-  SS_FREE_ALL(c->face_step, c->face_buried, c->cand_face, c->cand_x, c->cand_n, c->hint, c->vf_start,
-              c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of, c);
+  SS_FREE_ALL(c->face_step, c->face_buried, c->test_face, c->cand_face, c->cand_x, c->cand_n, c->hint,
+              c->vf_start, c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of, c);
 }
 
 /* Leaf node's faces against p: the nearest within best (ties to the lower
@@ -336,12 +339,31 @@ static int fresh(const ss_collider *c, long long step, int g) {
   return c->face_step[g] >= 0 && step - c->face_step[g] < keep && step >= c->face_step[g];
 }
 
-static int buried(ss_collider *c, const ss_collide_in *in, long long step, int g) {
-  if (!fresh(c, step, g)) {
-    c->face_step[g] = step;
-    c->face_buried[g] = (unsigned char)ss_wind_face_buried_beta(c->wind, in->body, g, SS_COLLIDE_WIND_BETA);
+/* Face g to be tested in this step (its test not fresh): listed once, its
+ * step set so that it is fresh from now on. */
+static void to_test(ss_collider *c, long long step, int g, int *n) {
+  if (fresh(c, step, g)) return;
+  c->face_step[g] = step;
+  c->test_face[(*n)++] = g;
+}
+
+/* Face g's clean-surface test (inside.h), kept in face_buried. */
+static void test_face(ss_collider *c, const ss_collide_in *in, int g) {
+  c->face_buried[g] = (unsigned char)ss_wind_face_buried_beta(c->wind, in->body, g, SS_COLLIDE_WIND_BETA);
+}
+
+/* The tests of the n faces listed (on the threads where nthread > 1: each
+ * reads the body and the tree alone and writes its own face's result). */
+static void test_listed(ss_collider *c, const ss_collide_in *in, int n, int nthread) {
+#ifdef _OPENMP
+  if (nthread > 1 && n > 1) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthread)
+    for (int i = 0; i < n; i++) test_face(c, in, c->test_face[i]);
+    return;
   }
-  return c->face_buried[g];
+#endif
+  (void)nthread;
+  for (int i = 0; i < n; i++) test_face(c, in, c->test_face[i]);
 }
 
 /* Squared distance from p to body face g (its nearest point at uv), or
@@ -680,12 +702,27 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   }
   if (ncand == 0) return 0;
   /* a deep move only out of the clean surface: neither the nearest face nor
-   * the anchor's buried in the body (as the inside measure judges) */
+   * the anchor's buried in the body (as the inside measure judges). The
+   * faces whose test is not fresh are tested once each, the nearest faces
+   * first and then the anchor faces of the vertices whose nearest face is
+   * clean: the faces a sweep in vertex order would test (it tests an anchor
+   * face only past a clean nearest face), and each test reads only the
+   * body, so on the threads too the results are those of that sweep. */
+  int ntest = 0;
+  for (int k = 0; k < ndof; k++)
+    if (c->cand_face[k] >= 0) to_test(c, step, c->cand_face[k], &ntest);
+  test_listed(c, in, ntest, nthread);
+  ntest = 0;
+  for (int k = 0; k < ndof; k++) {
+    const int g = c->cand_face[k], fa = in->anchor_face[dof_vert[k]];
+    if (g >= 0 && !c->face_buried[g] && fa != g) to_test(c, step, fa, &ntest);
+  }
+  test_listed(c, in, ntest, nthread);
   for (int k = 0; k < ndof; k++) {
     const int g = c->cand_face[k];
     if (g < 0) continue;
     const int fa = in->anchor_face[dof_vert[k]];
-    if (buried(c, in, step, g) || (fa != g && buried(c, in, step, fa))) c->cand_face[k] = -1;
+    if (c->face_buried[g] || (fa != g && c->face_buried[fa])) c->cand_face[k] = -1;
   }
   /* the whole moves that squeeze no skin face first; then, their neighbours
    * moved meanwhile, the rest: the whole move, else the move carrying the
