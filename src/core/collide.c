@@ -96,6 +96,7 @@ struct ss_collider {
   unsigned char *face_buried;  /* (nbface) */
   int *test_face;              /* (nbface) the faces to test in a step, each once */
   int *cand_face;              /* (nvert) nearest face of a vertex behind the surface, or -1 */
+  int *move_k;                 /* (nvert) the candidates a sweep over the moves goes over */
   double *cand_x;              /* (nvert x 3) where it goes */
   double *cand_n;              /* (nvert x 3) the surface normal it goes along */
   int *hint;                   /* (nvert) the body face the vertex's last descent ended on, or -1:
@@ -188,6 +189,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   c->face_buried = calloc((size_t)btopo->nface + 1, 1);
   c->test_face = malloc(sizeof(int) * ((size_t)btopo->nface + 1));
   c->cand_face = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->move_k = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->cand_x = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->cand_n = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->hint = malloc(sizeof(int) * ((size_t)nvert + 1));
@@ -204,8 +206,9 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int v = 0; v < nvert; v++) c->vf_start[v + 2] += c->vf_start[v + 1];
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
-  if (!status && !(c->face_step && c->face_buried && c->test_face && c->cand_face && c->cand_x && c->cand_n &&
-                   c->hint && c->look_face && c->look_d2 && c->free_vert && c->vf_start && c->vf_face))
+  if (!status && !(c->face_step && c->face_buried && c->test_face && c->cand_face && c->move_k &&
+                   c->cand_x && c->cand_n && c->hint && c->look_face && c->look_d2 && c->free_vert &&
+                   c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
     ss_collider_destroy(c);
@@ -219,8 +222,9 @@ void ss_collider_destroy(ss_collider *c) {
   if (!c) return;
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
-  SS_FREE_ALL(c->face_step, c->face_buried, c->test_face, c->cand_face, c->cand_x, c->cand_n, c->hint,
-              c->vf_start, c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of, c);
+  SS_FREE_ALL(c->face_step, c->face_buried, c->test_face, c->cand_face, c->move_k, c->cand_x, c->cand_n,
+              c->hint, c->vf_start, c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of,
+              c);
 }
 
 /* Leaf node's faces against p: the nearest within best (ties to the lower
@@ -718,11 +722,13 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
     if (g >= 0 && !c->face_buried[g] && fa != g) to_test(c, step, fa, &ntest);
   }
   test_listed(c, in, ntest, nthread);
+  int nmove = 0; /* the candidates left, in vertex order: what the sweeps go over */
   for (int k = 0; k < ndof; k++) {
     const int g = c->cand_face[k];
-    if (g < 0) continue;
+    if (g == -1) continue;
     const int fa = in->anchor_face[dof_vert[k]];
-    if (c->face_buried[g] || (fa != g && c->face_buried[fa])) c->cand_face[k] = -1;
+    if (g >= 0 && (c->face_buried[g] || (fa != g && c->face_buried[fa]))) c->cand_face[k] = -1;
+    else c->move_k[nmove++] = k;
   }
   /* the whole moves that squeeze no skin face first; then, their neighbours
    * moved meanwhile, the rest: the whole move, else the move carrying the
@@ -734,9 +740,9 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   memset(c->free_vert, 0, (size_t)c->nvert);
   for (int k = 0; k < ndof; k++) c->free_vert[dof_vert[k]] = 1;
   int moved = 0;
-  for (int sweep = 0; sweep < SS_COLLIDE_SWEEPS; sweep++)
-    for (int k = 0; k < ndof; k++) {
-      if (c->cand_face[k] == -1) continue;
+  for (int sweep = 0; sweep < SS_COLLIDE_SWEEPS && nmove > 0; sweep++) {
+    for (int j = 0; j < nmove; j++) {
+      const int k = c->move_k[j];
       const int v = dof_vert[k];
       const double x0[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
       double q[3] = {c->cand_x[3 * k], c->cand_x[3 * k + 1], c->cand_x[3 * k + 2]};
@@ -760,6 +766,12 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
       move_to(c, k, v, q, x, vel);
       moved += last;
     }
+    /* those made or given up leave the list */
+    int left = 0;
+    for (int i = 0; i < nmove; i++)
+      if (c->cand_face[c->move_k[i]] != -1) c->move_k[left++] = c->move_k[i];
+    nmove = left;
+  }
   return moved;
 }
 
