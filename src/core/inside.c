@@ -22,6 +22,7 @@
 #include <stdlib.h>
 
 #include "closest.h"
+#include "isa.h"
 #include "ss_free.h"
 
 #define WIND_STACK 256 /* bvh.c's MAX_DEPTH 96 with both children pushed */
@@ -141,83 +142,94 @@ void ss_wind_destroy(ss_wind *w) {
   SS_FREE_ALL(w->mom, w->corner, w->vstart, w->vert, w->cut, w->cut_lo, w->cut_end, w->top, w);
 }
 
-static double dist2(const double a[3], const double b[3]) {
-  const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-  return x * x + y * y + z * z;
-}
-
 /* max(a, b) as fmax for the values here (a NaN passed over), inline. */
 static inline double max_num(double a, double b) { return a > b || b != b ? a : b; }
 
-/* Node q's moments (and its box into box, if not NULL). A leaf's from its
- * faces: the radius bounds every corner of its faces around its centroid,
- * each distinct corner once, and the box is over the same corners as bvh.c's
+/* Leaf q's moments from its faces (and its box into box, if not NULL): the
+ * radius bounds every corner of its faces around its centroid, each
+ * distinct corner once, and the box is over the same corners as bvh.c's
  * face boxes (a NaN passed over; a corner met again changes no minimum or
- * maximum, so the bits are those of a sweep over every face's corners). An
- * internal node's from its children's (refitted before it): its radius
- * bounds their balls. */
-static void refit_node(ss_wind *w, const double *pos, double *box, int q) {
-  double *m = w->mom + 8 * (size_t)q;
-  if (w->s.left[q] >= 0) {
-    const double *l = w->mom + 8 * (size_t)w->s.left[q];
-    const double *r = w->mom + 8 * (size_t)w->s.right[q];
-    const double area = l[7] + r[7];
-    for (int k = 0; k < 3; k++) {
-      m[k] = l[k] + r[k];
-      m[3 + k] = area > 0.0 ? (l[7] * l[3 + k] + r[7] * r[3 + k]) / area : 0.5 * (l[3 + k] + r[3 + k]);
-    }
-    m[6] = max_num(sqrt(dist2(l + 3, m + 3)) + l[6], sqrt(dist2(r + 3, m + 3)) + r[6]);
-    m[7] = area;
-    if (box) {
-      double *bx = box + 6 * (size_t)q;
-      const double *bl = box + 6 * (size_t)w->s.left[q], *br = box + 6 * (size_t)w->s.right[q];
-      for (int k = 0; k < 3; k++) {
-        bx[k] = bl[k] < br[k] ? bl[k] : br[k];
-        bx[3 + k] = bl[3 + k] > br[3 + k] ? bl[3 + k] : br[3 + k];
-      }
-    }
-    return;
-  }
-  double N[3] = {0, 0, 0}, c[3] = {0, 0, 0}, area = 0.0;
-  const int i0 = w->s.first[q], i1 = i0 + w->s.count[q];
-  for (int i = i0; i < i1; i++) {
-    const int *fv = w->corner + 3 * i;
+ * maximum, so the bits are those of a sweep over every face's corners).
+ * Written out per coordinate, in locals: one pass over the faces, one over
+ * the distinct corners (L1-hot by then). */
+static void refit_leaf(ss_wind *w, const double *pos, double *box, int q) {
+  double Nx = 0.0, Ny = 0.0, Nz = 0.0, cx = 0.0, cy = 0.0, cz = 0.0, area = 0.0;
+  const int *fv = w->corner + 3 * w->s.first[q], *fend = fv + 3 * w->s.count[q];
+  for (; fv < fend; fv += 3) {
     const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *d = pos + 3 * fv[2];
-    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-    const double n[3] = {0.5 * (e1[1] * e2[2] - e1[2] * e2[1]), 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]),
-                         0.5 * (e1[0] * e2[1] - e1[1] * e2[0])};
-    const double A = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int k = 0; k < 3; k++) {
-      N[k] += n[k];
-      c[k] += A * (a[k] + b[k] + d[k]); /* 3 x the area-weighted centroid */
-    }
+    const double e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+    const double e2x = d[0] - a[0], e2y = d[1] - a[1], e2z = d[2] - a[2];
+    const double nx = 0.5 * (e1y * e2z - e1z * e2y), ny = 0.5 * (e1z * e2x - e1x * e2z),
+                 nz = 0.5 * (e1x * e2y - e1y * e2x);
+    const double A = sqrt(nx * nx + ny * ny + nz * nz);
+    Nx += nx, Ny += ny, Nz += nz;
+    /* 3 x the area-weighted centroid */
+    cx += A * (a[0] + b[0] + d[0]), cy += A * (a[1] + b[1] + d[1]), cz += A * (a[2] + b[2] + d[2]);
     area += A;
   }
   if (area > 0.0) {
-    for (int k = 0; k < 3; k++) c[k] /= 3.0 * area;
+    cx /= 3.0 * area, cy /= 3.0 * area, cz /= 3.0 * area;
   } else { /* faces without area: the mean of their corners */
-    for (int k = 0; k < 3; k++) c[k] = 0.0;
-    for (int i = i0; i < i1; i++) {
-      const int *fv = w->corner + 3 * i;
-      for (int k = 0; k < 3; k++) c[k] += pos[3 * fv[0] + k] + pos[3 * fv[1] + k] + pos[3 * fv[2] + k];
+    cx = cy = cz = 0.0;
+    for (fv = w->corner + 3 * w->s.first[q]; fv < fend; fv += 3) {
+      const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *d = pos + 3 * fv[2];
+      cx += a[0] + b[0] + d[0], cy += a[1] + b[1] + d[1], cz += a[2] + b[2] + d[2];
     }
-    for (int k = 0; k < 3; k++) c[k] /= 3.0 * (i1 - i0);
+    const int n3 = 3 * w->s.count[q];
+    cx /= n3, cy /= n3, cz /= n3;
   }
-  double r2 = 0.0;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (int u = w->vstart[q]; u < w->vstart[q + 1]; u++) {
-    const double *p = pos + 3 * w->vert[u];
-    for (int k = 0; k < 3; k++) {
-      lo[k] = p[k] < lo[k] ? p[k] : lo[k];
-      hi[k] = p[k] > hi[k] ? p[k] : hi[k];
-    }
-    r2 = max_num(r2, dist2(p, c));
+  double r2 = 0.0, lox = INFINITY, loy = INFINITY, loz = INFINITY, hix = -INFINITY, hiy = -INFINITY,
+         hiz = -INFINITY;
+  for (const int *u = w->vert + w->vstart[q], *uend = w->vert + w->vstart[q + 1]; u < uend; u++) {
+    const double *p = pos + 3 * *u;
+    const double px = p[0], py = p[1], pz = p[2];
+    lox = px < lox ? px : lox, loy = py < loy ? py : loy, loz = pz < loz ? pz : loz;
+    hix = px > hix ? px : hix, hiy = py > hiy ? py : hiy, hiz = pz > hiz ? pz : hiz;
+    const double x = px - cx, y = py - cy, z = pz - cz;
+    r2 = max_num(r2, x * x + y * y + z * z);
   }
-  m[0] = N[0], m[1] = N[1], m[2] = N[2], m[3] = c[0], m[4] = c[1], m[5] = c[2];
-  m[6] = sqrt(r2), m[7] = area;
-  if (box)
-    for (int k = 0; k < 3; k++) box[6 * (size_t)q + k] = lo[k], box[6 * (size_t)q + 3 + k] = hi[k];
+  double *m = w->mom + 8 * (size_t)q;
+  m[0] = Nx, m[1] = Ny, m[2] = Nz, m[3] = cx, m[4] = cy, m[5] = cz, m[6] = sqrt(r2), m[7] = area;
+  if (box) {
+    double *bx = box + 6 * (size_t)q;
+    bx[0] = lox, bx[1] = loy, bx[2] = loz, bx[3] = hix, bx[4] = hiy, bx[5] = hiz;
+  }
+}
+
+/* Internal node q's moments (and box) from its children's, refitted before
+ * it: its radius bounds their balls. */
+static inline void refit_merge(ss_wind *w, double *box, int q) {
+  const int lq = w->s.left[q], rq = w->s.right[q];
+  double *m = w->mom + 8 * (size_t)q;
+  const double *l = w->mom + 8 * (size_t)lq, *r = w->mom + 8 * (size_t)rq;
+  const double la = l[7], ra = r[7], area = la + ra;
+  m[0] = l[0] + r[0], m[1] = l[1] + r[1], m[2] = l[2] + r[2];
+  double cx, cy, cz;
+  if (area > 0.0) {
+    cx = (la * l[3] + ra * r[3]) / area, cy = (la * l[4] + ra * r[4]) / area;
+    cz = (la * l[5] + ra * r[5]) / area;
+  } else {
+    cx = 0.5 * (l[3] + r[3]), cy = 0.5 * (l[4] + r[4]), cz = 0.5 * (l[5] + r[5]);
+  }
+  m[3] = cx, m[4] = cy, m[5] = cz;
+  const double lx = l[3] - cx, ly = l[4] - cy, lz = l[5] - cz;
+  const double rx = r[3] - cx, ry = r[4] - cy, rz = r[5] - cz;
+  m[6] = max_num(sqrt(lx * lx + ly * ly + lz * lz) + l[6], sqrt(rx * rx + ry * ry + rz * rz) + r[6]);
+  m[7] = area;
+  if (box) {
+    double *bx = box + 6 * (size_t)q;
+    const double *bl = box + 6 * (size_t)lq, *br = box + 6 * (size_t)rq;
+    bx[0] = bl[0] < br[0] ? bl[0] : br[0], bx[1] = bl[1] < br[1] ? bl[1] : br[1];
+    bx[2] = bl[2] < br[2] ? bl[2] : br[2], bx[3] = bl[3] > br[3] ? bl[3] : br[3];
+    bx[4] = bl[4] > br[4] ? bl[4] : br[4], bx[5] = bl[5] > br[5] ? bl[5] : br[5];
+  }
+}
+
+/* Node q's moments and box, a leaf's or a parent's (inlined in the sweeps:
+ * a merge is a few dozen operations). */
+static inline SS_ALWAYS_INLINE void refit_node(ss_wind *w, const double *pos, double *box, int q) {
+  if (w->s.left[q] < 0) refit_leaf(w, pos, box, q);
+  else refit_merge(w, box, q);
 }
 
 /* Subtree i of the cut: its descendants (children after their parent in
