@@ -693,9 +693,9 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   int ncand = 0;
 #ifdef _OPENMP
   if (nthread > 1 && ndof > 1024) {
-#pragma omp parallel for schedule(static) num_threads(nthread)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(nthread)
     for (int k = 0; k < ndof; k++) look_local_k(c, in, dof_vert, x, k);
-#pragma omp parallel for schedule(static) num_threads(nthread) reduction(+ : ncand)
+#pragma omp parallel for schedule(dynamic, 64) num_threads(nthread) reduction(+ : ncand)
     for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   } else
 #endif
