@@ -689,7 +689,10 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   /* 1. each vertex's local nearest point of the surface, by descent; 2. for
    * those it leaves, the nearest point of the body, and where they go (on
    * the threads where there are enough vertices; one thread calls no
-   * OpenMP, which allocates) */
+   * OpenMP, which allocates). Scheduled dynamically: the searches are a
+   * few hundred vertices gathered in the folds, and halves made in advance
+   * left one thread idle; each vertex writes only its own slots, so any
+   * schedule gives the same bits. */
   int ncand = 0;
 #ifdef _OPENMP
   if (nthread > 1 && ndof > 1024) {
