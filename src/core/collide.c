@@ -73,9 +73,11 @@
  * small faces of its fan 18 to 23 times for a frame: a spike of skin, and
  * past 20 times a failed frame.
  *
- * Deterministic: the descents and searches per vertex alone (on the
- * threads; the face a vertex's descent ended on is its own, where its next
- * starts), the tests and the moves in vertex order on one thread. */
+ * Deterministic: the refit per subtree of the tree (inside.c), the
+ * descents and searches per vertex alone and the clean-surface tests per
+ * face alone (on the threads; the face a vertex's descent ended on is its
+ * own, where its next starts), their results applied and the moves made
+ * in vertex order on one thread. */
 #include "collide.h"
 
 #include <math.h>
@@ -96,7 +98,9 @@ struct ss_collider {
   int nbface;
   long long *face_step;        /* (nbface) step of the cached face_buried (-1: none) */
   unsigned char *face_buried;  /* (nbface) */
+  int *test_face;              /* (nbface) the faces to test in a step, each once */
   int *cand_face;              /* (nvert) nearest face of a vertex behind the surface, or -1 */
+  int *move_k;                 /* (nvert) the candidates a sweep over the moves goes over */
   double *cand_x;              /* (nvert x 3) where it goes */
   double *cand_n;              /* (nvert x 3) the surface normal it goes along */
   int *hint;                   /* (nvert) the body face the vertex's last descent ended on, or -1:
@@ -195,7 +199,9 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   if (c->face_step)
     for (int f = 0; f < btopo->nface; f++) c->face_step[f] = -1;
   c->face_buried = calloc((size_t)btopo->nface + 1, 1);
+  c->test_face = malloc(sizeof(int) * ((size_t)btopo->nface + 1));
   c->cand_face = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->move_k = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->cand_x = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->cand_n = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   c->hint = malloc(sizeof(int) * ((size_t)nvert + 1));
@@ -212,8 +218,9 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int v = 0; v < nvert; v++) c->vf_start[v + 2] += c->vf_start[v + 1];
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
-  if (!status && !(c->face_step && c->face_buried && c->cand_face && c->cand_x && c->cand_n && c->hint &&
-                   c->look_face && c->look_d2 && c->free_vert && c->vf_start && c->vf_face))
+  if (!status && !(c->face_step && c->face_buried && c->test_face && c->cand_face && c->move_k &&
+                   c->cand_x && c->cand_n && c->hint && c->look_face && c->look_d2 && c->free_vert &&
+                   c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
     ss_collider_destroy(c);
@@ -227,8 +234,9 @@ void ss_collider_destroy(ss_collider *c) {
   if (!c) return;
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
-  SS_FREE_ALL(c->face_step, c->face_buried, c->cand_face, c->cand_x, c->cand_n, c->hint, c->vf_start,
-              c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of, c);
+  SS_FREE_ALL(c->face_step, c->face_buried, c->test_face, c->cand_face, c->move_k, c->cand_x, c->cand_n,
+              c->hint, c->vf_start, c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of,
+              c);
 }
 
 /* Leaf node's faces against p: the nearest within best (ties to the lower
@@ -347,12 +355,31 @@ static int fresh(const ss_collider *c, long long step, int g) {
   return c->face_step[g] >= 0 && step - c->face_step[g] < keep && step >= c->face_step[g];
 }
 
-static int buried(ss_collider *c, const ss_collide_in *in, long long step, int g) {
-  if (!fresh(c, step, g)) {
-    c->face_step[g] = step;
-    c->face_buried[g] = (unsigned char)ss_wind_face_buried_beta(c->wind, in->body, g, SS_COLLIDE_WIND_BETA);
+/* Face g to be tested in this step (its test not fresh): listed once, its
+ * step set so that it is fresh from now on. */
+static void to_test(ss_collider *c, long long step, int g, int *n) {
+  if (fresh(c, step, g)) return;
+  c->face_step[g] = step;
+  c->test_face[(*n)++] = g;
+}
+
+/* Face g's clean-surface test (inside.h), kept in face_buried. */
+static void test_face(ss_collider *c, const ss_collide_in *in, int g) {
+  c->face_buried[g] = (unsigned char)ss_wind_face_buried_beta(c->wind, in->body, g, SS_COLLIDE_WIND_BETA);
+}
+
+/* The tests of the n faces listed (on the threads where nthread > 1: each
+ * reads the body and the tree alone and writes its own face's result). */
+static void test_listed(ss_collider *c, const ss_collide_in *in, int n, int nthread) {
+#ifdef _OPENMP
+  if (nthread > 1 && n > 1) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthread)
+    for (int i = 0; i < n; i++) test_face(c, in, c->test_face[i]);
+    return;
   }
-  return c->face_buried[g];
+#endif
+  (void)nthread;
+  for (int i = 0; i < n; i++) test_face(c, in, c->test_face[i]);
 }
 
 /* Squared distance from p to body face g (its nearest point at uv), or
@@ -672,20 +699,22 @@ static inline int look_global_k(ss_collider *c, const ss_collide_in *in, const i
 
 int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int *dof_vert,
                     int nthread, long long step, double *x, double *vel) {
-  /* the tree's boxes and winding-number moments in this pose, in one sweep */
-  ss_wind_refit_boxes(c->wind, in->body, ss_bvh_boxes_write(c->bvh));
+  /* the tree's boxes and winding-number moments in this pose, in one sweep (its
+   * subtrees on the threads) */
+  ss_wind_refit_boxes(c->wind, in->body, ss_bvh_boxes_write(c->bvh), nthread);
   /* 1. each vertex's local nearest point of the surface, by descent; 2. for
    * those it leaves, the nearest point of the body, and where they go (on
    * the threads where there are enough vertices; one thread calls no
-   * OpenMP, which allocates) */
+   * OpenMP, which allocates). Scheduled dynamically: the searches are a
+   * few hundred vertices gathered in the folds, and halves made in advance
+   * left one thread idle; each vertex writes only its own slots, so any
+   * schedule gives the same bits. */
   int ncand = 0;
 #ifdef _OPENMP
   if (nthread > 1 && ndof > 1024) {
-#pragma omp parallel for schedule(static) num_threads(nthread)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(nthread)
     for (int k = 0; k < ndof; k++) look_local_k(c, in, dof_vert, x, k);
-    /* in chunks taken as threads free up: the vertices searched are few
-     * and gather where the body folds, so equal halves finished apart */
-#pragma omp parallel for schedule(dynamic, 128) num_threads(nthread) reduction(+ : ncand)
+#pragma omp parallel for schedule(dynamic, 64) num_threads(nthread) reduction(+ : ncand)
     for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   } else
 #endif
@@ -696,12 +725,29 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   }
   if (ncand == 0) return 0;
   /* a deep move only out of the clean surface: neither the nearest face nor
-   * the anchor's buried in the body (as the inside measure judges) */
+   * the anchor's buried in the body (as the inside measure judges). The
+   * faces whose test is not fresh are tested once each, the nearest faces
+   * first and then the anchor faces of the vertices whose nearest face is
+   * clean: the faces a sweep in vertex order would test (it tests an anchor
+   * face only past a clean nearest face), and each test reads only the
+   * body, so on the threads too the results are those of that sweep. */
+  int ntest = 0;
+  for (int k = 0; k < ndof; k++)
+    if (c->cand_face[k] >= 0) to_test(c, step, c->cand_face[k], &ntest);
+  test_listed(c, in, ntest, nthread);
+  ntest = 0;
+  for (int k = 0; k < ndof; k++) {
+    const int g = c->cand_face[k], fa = in->anchor_face[dof_vert[k]];
+    if (g >= 0 && !c->face_buried[g] && fa != g) to_test(c, step, fa, &ntest);
+  }
+  test_listed(c, in, ntest, nthread);
+  int nmove = 0; /* the candidates left, in vertex order: what the sweeps go over */
   for (int k = 0; k < ndof; k++) {
     const int g = c->cand_face[k];
-    if (g < 0) continue;
+    if (g == -1) continue;
     const int fa = in->anchor_face[dof_vert[k]];
-    if (buried(c, in, step, g) || (fa != g && buried(c, in, step, fa))) c->cand_face[k] = -1;
+    if (g >= 0 && (c->face_buried[g] || (fa != g && c->face_buried[fa]))) c->cand_face[k] = -1;
+    else c->move_k[nmove++] = k;
   }
   /* the whole moves that squeeze no skin face first; then, their neighbours
    * moved meanwhile, the rest: the whole move, else the move carrying the
@@ -713,9 +759,9 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   memset(c->free_vert, 0, (size_t)c->nvert);
   for (int k = 0; k < ndof; k++) c->free_vert[dof_vert[k]] = 1;
   int moved = 0;
-  for (int sweep = 0; sweep < SS_COLLIDE_SWEEPS; sweep++)
-    for (int k = 0; k < ndof; k++) {
-      if (c->cand_face[k] == -1) continue;
+  for (int sweep = 0; sweep < SS_COLLIDE_SWEEPS && nmove > 0; sweep++) {
+    for (int j = 0; j < nmove; j++) {
+      const int k = c->move_k[j];
       const int v = dof_vert[k];
       const double x0[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
       double q[3] = {c->cand_x[3 * k], c->cand_x[3 * k + 1], c->cand_x[3 * k + 2]};
@@ -739,6 +785,12 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
       move_to(c, k, v, q, x, vel);
       moved += last;
     }
+    /* those made or given up leave the list */
+    int left = 0;
+    for (int i = 0; i < nmove; i++)
+      if (c->cand_face[c->move_k[i]] != -1) c->move_k[left++] = c->move_k[i];
+    nmove = left;
+  }
   return moved;
 }
 

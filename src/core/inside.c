@@ -12,23 +12,84 @@
  * the exact sum, far from the thresholds (1/2, and 1/2 +- 1/4 on the surface; the core test
  * test_inside checks it against the exact sum on a body with both).
  *
- * Deterministic: a fixed traversal order, no threads. */
+ * Deterministic: a fixed traversal order. The refit's subtrees may run on
+ * the sim's threads (each its own nodes, the few nodes above them merged
+ * on one), the same bits for any count; a number is one point's, on the
+ * caller's thread. */
 #include "inside.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 #include "closest.h"
+#include "isa.h"
 #include "ss_free.h"
 
 #define WIND_STACK 256 /* bvh.c's MAX_DEPTH 96 with both children pushed */
 #define FOUR_PI 12.566370614359172953850573533118 /* 4 pi: the full solid angle */
 
+/* Subtrees the refit cuts the tree into for the threads (its nodes at this
+ * depth, and leaves above it): 16 of about equal size on bvh.c's median
+ * splits, enough for two threads to share evenly. */
+#define WIND_CUT_DEPTH 4
+
 struct ss_wind {
   const ss_topo *topo;
   ss_bvh_shape s;
-  double *mom; /* (nnode x 8) N xyz, c xyz, r, area */
+  double *mom;   /* (nnode x 8) N xyz, c xyz, r, area */
+  int *corner;   /* (3 nface) the corners of face face_order[i] at 3 i: a leaf's faces' corners
+                    side by side, one load of indices away from their positions */
+  int *vstart;   /* (nnode + 1) CSR: leaf q's distinct corners vert[vstart[q] .. vstart[q + 1]) */
+  int *vert;     /* (none for an internal node), in the order first met among its faces' corners:
+                    its box and radius over each once (the 19k quadruped's leaves: 7.2 distinct
+                    corners of 8.6) */
+  int ncut;      /* subtrees for the threads (0: the tree is swept whole) */
+  int *cut;      /* (ncut) their roots, */
+  int *cut_lo;   /* (ncut) a root's descendants nodes cut_lo .. cut_end - 1 */
+  int *cut_end;  /* (ncut) */
+  int ntop;      /* nodes above the subtrees, */
+  int *top;      /* (ntop) in decreasing order: merged after them */
 };
+
+/* The subtrees of the refit on the threads: the nodes at WIND_CUT_DEPTH
+ * (and leaves above it), each with its descendants in one range of the
+ * order (as bvh.c numbers them: a node's two children side by side, then
+ * the left one's descendants, then the right one's); none if they are not.
+ * tmp: scratch of 4 nnode ints. */
+static void find_cuts(ss_wind *w, int *tmp) {
+  const ss_bvh_shape *s = &w->s;
+  int *depth = tmp, *size = tmp + s->nnode, *dlo = tmp + 2 * s->nnode, *dhi = tmp + 3 * s->nnode;
+  depth[0] = 0;
+  for (int q = 0; q < s->nnode; q++)
+    if (s->left[q] >= 0) depth[s->left[q]] = depth[s->right[q]] = depth[q] + 1;
+  for (int q = s->nnode - 1; q >= 0; q--) { /* children after their parent */
+    const int l = s->left[q], r = s->right[q];
+    if (l < 0) {
+      size[q] = 1, dlo[q] = s->nnode, dhi[q] = -1; /* no descendants */
+      continue;
+    }
+    size[q] = 1 + size[l] + size[r];
+    dlo[q] = l < r ? l : r;
+    dlo[q] = dlo[l] < dlo[q] ? dlo[l] : dlo[q];
+    dlo[q] = dlo[r] < dlo[q] ? dlo[r] : dlo[q];
+    dhi[q] = l > r ? l : r;
+    dhi[q] = dhi[l] > dhi[q] ? dhi[l] : dhi[q];
+    dhi[q] = dhi[r] > dhi[q] ? dhi[r] : dhi[q];
+  }
+  w->ncut = w->ntop = 0;
+  for (int q = 0; q < s->nnode; q++) {
+    if (depth[q] > WIND_CUT_DEPTH || (depth[q] < WIND_CUT_DEPTH && s->left[q] >= 0)) continue;
+    if (s->left[q] >= 0 && dhi[q] - dlo[q] + 2 != size[q]) {
+      w->ncut = 0; /* descendants not in one range: the tree is swept whole */
+      return;
+    }
+    w->cut[w->ncut] = q;
+    w->cut_lo[w->ncut] = s->left[q] < 0 ? 0 : dlo[q];
+    w->cut_end[w->ncut++] = s->left[q] < 0 ? 0 : dhi[q] + 1;
+  }
+  for (int q = s->nnode - 1; q >= 0; q--)
+    if (depth[q] < WIND_CUT_DEPTH && s->left[q] >= 0) w->top[w->ntop++] = q;
+}
 
 int ss_wind_create(ss_wind **out, const ss_bvh *bvh, const ss_topo *topo) {
   if (!out || !bvh || !topo) return SS_E_ARG;
@@ -39,105 +100,162 @@ int ss_wind_create(ss_wind **out, const ss_bvh *bvh, const ss_topo *topo) {
   if (!w) return SS_E_NOMEM;
   w->topo = topo;
   w->s = s;
+  int nslot = 0; /* faces under the leaves */
+  for (int q = 0; q < s.nnode; q++)
+    if (s.left[q] < 0 && s.first[q] + s.count[q] > nslot) nslot = s.first[q] + s.count[q];
+  const size_t nn = (size_t)s.nnode + 1;
   w->mom = malloc(sizeof(double) * 8 * (size_t)s.nnode);
-  if (!w->mom) {
-    free(w);
+  w->corner = malloc(sizeof(int) * (3 * (size_t)nslot + 1));
+  w->vstart = malloc(sizeof(int) * nn);
+  w->vert = malloc(sizeof(int) * (3 * (size_t)nslot + 1));
+  w->cut = malloc(sizeof(int) * nn);
+  w->cut_lo = malloc(sizeof(int) * nn);
+  w->cut_end = malloc(sizeof(int) * nn);
+  w->top = malloc(sizeof(int) * nn);
+  int *tmp = malloc(sizeof(int) * 4 * nn);
+  if (!w->mom || !w->corner || !w->vstart || !w->vert || !w->cut || !w->cut_lo || !w->cut_end || !w->top || !tmp) {
+    free(tmp);
+    ss_wind_destroy(w);
     return SS_E_NOMEM;
   }
+  int nv = 0;
+  for (int q = 0; q < s.nnode; q++) {
+    w->vstart[q] = nv;
+    if (s.left[q] >= 0) continue;
+    for (int i = s.first[q]; i < s.first[q] + s.count[q]; i++)
+      for (int k = 0; k < 3; k++) {
+        const int v = topo->face_vert[3 * s.face_order[i] + k];
+        w->corner[3 * i + k] = v;
+        int seen = 0;
+        for (int u = w->vstart[q]; u < nv && !seen; u++) seen = w->vert[u] == v;
+        if (!seen) w->vert[nv++] = v;
+      }
+  }
+  w->vstart[s.nnode] = nv;
+  find_cuts(w, tmp);
+  free(tmp);
   *out = w;
   return SS_OK;
 }
 
 void ss_wind_destroy(ss_wind *w) {
   if (!w) return;
-  SS_FREE_ALL(w->mom, w);
-}
-
-static double dist2(const double a[3], const double b[3]) {
-  const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-  return x * x + y * y + z * z;
+  SS_FREE_ALL(w->mom, w->corner, w->vstart, w->vert, w->cut, w->cut_lo, w->cut_end, w->top, w);
 }
 
 /* max(a, b) as fmax for the values here (a NaN passed over), inline. */
 static inline double max_num(double a, double b) { return a > b || b != b ? a : b; }
 
-/* Leaf moments from its faces; internal nodes from their children, in one
- * reverse sweep (children after their parent in the order). The radius
- * bounds every corner of the node's faces around its centroid: a leaf's from
- * its corners, a parent's from its children's balls. */
-void ss_wind_refit(ss_wind *w, const double *pos) { ss_wind_refit_boxes(w, pos, NULL); }
-
-void ss_wind_refit_boxes(ss_wind *w, const double *pos, double *box) {
-  const ss_topo *t = w->topo;
-  for (int node = w->s.nnode - 1; node >= 0; node--) {
-    double *m = w->mom + 8 * (size_t)node;
-    if (w->s.left[node] < 0) {
-      double N[3] = {0, 0, 0}, c[3] = {0, 0, 0}, area = 0.0;
-      double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-      const int i0 = w->s.first[node], i1 = i0 + w->s.count[node];
-      for (int i = i0; i < i1; i++) {
-        const int *fv = t->face_vert + 3 * w->s.face_order[i];
-        const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *d = pos + 3 * fv[2];
-        if (box)
-          for (int k = 0; k < 3; k++) { /* as bvh.c's face boxes (a NaN passed over) */
-            if (a[k] < lo[k]) lo[k] = a[k];
-            if (b[k] < lo[k]) lo[k] = b[k];
-            if (d[k] < lo[k]) lo[k] = d[k];
-            if (a[k] > hi[k]) hi[k] = a[k];
-            if (b[k] > hi[k]) hi[k] = b[k];
-            if (d[k] > hi[k]) hi[k] = d[k];
-          }
-        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        const double e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-        const double n[3] = {0.5 * (e1[1] * e2[2] - e1[2] * e2[1]),
-                             0.5 * (e1[2] * e2[0] - e1[0] * e2[2]),
-                             0.5 * (e1[0] * e2[1] - e1[1] * e2[0])};
-        const double A = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (int k = 0; k < 3; k++) {
-          N[k] += n[k];
-          c[k] += A * (a[k] + b[k] + d[k]); /* 3 x the area-weighted centroid */
-        }
-        area += A;
-      }
-      if (area > 0.0) {
-        for (int k = 0; k < 3; k++) c[k] /= 3.0 * area;
-      } else { /* faces without area: the mean of their corners */
-        for (int k = 0; k < 3; k++) c[k] = 0.0;
-        for (int i = i0; i < i1; i++) {
-          const int *fv = t->face_vert + 3 * w->s.face_order[i];
-          for (int k = 0; k < 3; k++) c[k] += pos[3 * fv[0] + k] + pos[3 * fv[1] + k] + pos[3 * fv[2] + k];
-        }
-        for (int k = 0; k < 3; k++) c[k] /= 3.0 * (i1 - i0);
-      }
-      double r2 = 0.0;
-      for (int i = i0; i < i1; i++) {
-        const int *fv = t->face_vert + 3 * w->s.face_order[i];
-        for (int k = 0; k < 3; k++) r2 = max_num(r2, dist2(pos + 3 * fv[k], c));
-      }
-      m[0] = N[0], m[1] = N[1], m[2] = N[2], m[3] = c[0], m[4] = c[1], m[5] = c[2];
-      m[6] = sqrt(r2), m[7] = area;
-      if (box)
-        for (int k = 0; k < 3; k++) box[6 * (size_t)node + k] = lo[k], box[6 * (size_t)node + 3 + k] = hi[k];
-    } else {
-      const double *l = w->mom + 8 * (size_t)w->s.left[node];
-      const double *r = w->mom + 8 * (size_t)w->s.right[node];
-      const double area = l[7] + r[7];
-      for (int k = 0; k < 3; k++) {
-        m[k] = l[k] + r[k];
-        m[3 + k] = area > 0.0 ? (l[7] * l[3 + k] + r[7] * r[3 + k]) / area : 0.5 * (l[3 + k] + r[3 + k]);
-      }
-      m[6] = max_num(sqrt(dist2(l + 3, m + 3)) + l[6], sqrt(dist2(r + 3, m + 3)) + r[6]);
-      m[7] = area;
-      if (box) {
-        double *bx = box + 6 * (size_t)node;
-        const double *bl = box + 6 * (size_t)w->s.left[node], *br = box + 6 * (size_t)w->s.right[node];
-        for (int k = 0; k < 3; k++) {
-          bx[k] = bl[k] < br[k] ? bl[k] : br[k];
-          bx[3 + k] = bl[3 + k] > br[3 + k] ? bl[3 + k] : br[3 + k];
-        }
-      }
-    }
+/* Leaf q's moments from its faces (and its box into box, if not NULL): the
+ * radius bounds every corner of its faces around its centroid, each
+ * distinct corner once, and the box is over the same corners as bvh.c's
+ * face boxes (a NaN passed over; a corner met again changes no minimum or
+ * maximum, so the bits are those of a sweep over every face's corners).
+ * Written out per coordinate, in locals: one pass over the faces, one over
+ * the distinct corners (L1-hot by then). */
+static void refit_leaf(ss_wind *w, const double *pos, double *box, int q) {
+  double Nx = 0.0, Ny = 0.0, Nz = 0.0, cx = 0.0, cy = 0.0, cz = 0.0, area = 0.0;
+  const int *fv = w->corner + 3 * w->s.first[q], *fend = fv + 3 * w->s.count[q];
+  for (; fv < fend; fv += 3) {
+    const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *d = pos + 3 * fv[2];
+    const double e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+    const double e2x = d[0] - a[0], e2y = d[1] - a[1], e2z = d[2] - a[2];
+    const double nx = 0.5 * (e1y * e2z - e1z * e2y), ny = 0.5 * (e1z * e2x - e1x * e2z),
+                 nz = 0.5 * (e1x * e2y - e1y * e2x);
+    const double A = sqrt(nx * nx + ny * ny + nz * nz);
+    Nx += nx, Ny += ny, Nz += nz;
+    /* 3 x the area-weighted centroid */
+    cx += A * (a[0] + b[0] + d[0]), cy += A * (a[1] + b[1] + d[1]), cz += A * (a[2] + b[2] + d[2]);
+    area += A;
   }
+  if (area > 0.0) {
+    cx /= 3.0 * area, cy /= 3.0 * area, cz /= 3.0 * area;
+  } else { /* faces without area: the mean of their corners */
+    cx = cy = cz = 0.0;
+    for (fv = w->corner + 3 * w->s.first[q]; fv < fend; fv += 3) {
+      const double *a = pos + 3 * fv[0], *b = pos + 3 * fv[1], *d = pos + 3 * fv[2];
+      cx += a[0] + b[0] + d[0], cy += a[1] + b[1] + d[1], cz += a[2] + b[2] + d[2];
+    }
+    const int n3 = 3 * w->s.count[q];
+    cx /= n3, cy /= n3, cz /= n3;
+  }
+  double r2 = 0.0, lox = INFINITY, loy = INFINITY, loz = INFINITY, hix = -INFINITY, hiy = -INFINITY,
+         hiz = -INFINITY;
+  for (const int *u = w->vert + w->vstart[q], *uend = w->vert + w->vstart[q + 1]; u < uend; u++) {
+    const double *p = pos + 3 * *u;
+    const double px = p[0], py = p[1], pz = p[2];
+    lox = px < lox ? px : lox, loy = py < loy ? py : loy, loz = pz < loz ? pz : loz;
+    hix = px > hix ? px : hix, hiy = py > hiy ? py : hiy, hiz = pz > hiz ? pz : hiz;
+    const double x = px - cx, y = py - cy, z = pz - cz;
+    r2 = max_num(r2, x * x + y * y + z * z);
+  }
+  double *m = w->mom + 8 * (size_t)q;
+  m[0] = Nx, m[1] = Ny, m[2] = Nz, m[3] = cx, m[4] = cy, m[5] = cz, m[6] = sqrt(r2), m[7] = area;
+  if (box) {
+    double *bx = box + 6 * (size_t)q;
+    bx[0] = lox, bx[1] = loy, bx[2] = loz, bx[3] = hix, bx[4] = hiy, bx[5] = hiz;
+  }
+}
+
+/* Internal node q's moments (and box) from its children's, refitted before
+ * it: its radius bounds their balls. */
+static inline void refit_merge(ss_wind *w, double *box, int q) {
+  const int lq = w->s.left[q], rq = w->s.right[q];
+  double *m = w->mom + 8 * (size_t)q;
+  const double *l = w->mom + 8 * (size_t)lq, *r = w->mom + 8 * (size_t)rq;
+  const double la = l[7], ra = r[7], area = la + ra;
+  m[0] = l[0] + r[0], m[1] = l[1] + r[1], m[2] = l[2] + r[2];
+  double cx, cy, cz;
+  if (area > 0.0) {
+    cx = (la * l[3] + ra * r[3]) / area, cy = (la * l[4] + ra * r[4]) / area;
+    cz = (la * l[5] + ra * r[5]) / area;
+  } else {
+    cx = 0.5 * (l[3] + r[3]), cy = 0.5 * (l[4] + r[4]), cz = 0.5 * (l[5] + r[5]);
+  }
+  m[3] = cx, m[4] = cy, m[5] = cz;
+  const double lx = l[3] - cx, ly = l[4] - cy, lz = l[5] - cz;
+  const double rx = r[3] - cx, ry = r[4] - cy, rz = r[5] - cz;
+  m[6] = max_num(sqrt(lx * lx + ly * ly + lz * lz) + l[6], sqrt(rx * rx + ry * ry + rz * rz) + r[6]);
+  m[7] = area;
+  if (box) {
+    double *bx = box + 6 * (size_t)q;
+    const double *bl = box + 6 * (size_t)lq, *br = box + 6 * (size_t)rq;
+    bx[0] = bl[0] < br[0] ? bl[0] : br[0], bx[1] = bl[1] < br[1] ? bl[1] : br[1];
+    bx[2] = bl[2] < br[2] ? bl[2] : br[2], bx[3] = bl[3] > br[3] ? bl[3] : br[3];
+    bx[4] = bl[4] > br[4] ? bl[4] : br[4], bx[5] = bl[5] > br[5] ? bl[5] : br[5];
+  }
+}
+
+/* Node q's moments and box, a leaf's or a parent's (inlined in the sweeps:
+ * a merge is a few dozen operations). */
+static inline SS_ALWAYS_INLINE void refit_node(ss_wind *w, const double *pos, double *box, int q) {
+  if (w->s.left[q] < 0) refit_leaf(w, pos, box, q);
+  else refit_merge(w, box, q);
+}
+
+/* Subtree i of the cut: its descendants (children after their parent in
+ * the order: one reverse sweep), then its root. */
+static void refit_subtree(ss_wind *w, const double *pos, double *box, int i) {
+  for (int q = w->cut_end[i] - 1; q >= w->cut_lo[i]; q--) refit_node(w, pos, box, q);
+  refit_node(w, pos, box, w->cut[i]);
+}
+
+/* In one reverse sweep of the order (children after their parent), or on
+ * the threads the subtrees of the cut (each its own nodes) and then the
+ * nodes above them: each node from the same operands either way. */
+void ss_wind_refit(ss_wind *w, const double *pos) { ss_wind_refit_boxes(w, pos, NULL, 1); }
+
+void ss_wind_refit_boxes(ss_wind *w, const double *pos, double *box, int nthread) {
+#ifdef _OPENMP
+  if (nthread > 1 && w->ncut > 0 && w->s.nnode >= 512) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthread)
+    for (int i = 0; i < w->ncut; i++) refit_subtree(w, pos, box, i);
+    for (int j = 0; j < w->ntop; j++) refit_node(w, pos, box, w->top[j]);
+    return;
+  }
+#endif
+  (void)nthread;
+  for (int q = w->s.nnode - 1; q >= 0; q--) refit_node(w, pos, box, q);
 }
 
 double ss_wind_triangle(const double p[3], const double a[3], const double b[3],
@@ -165,7 +283,6 @@ double ss_wind_number(const ss_wind *w, const double *pos, const double p[3]) {
 
 double ss_wind_number_beta(const ss_wind *w, const double *pos, const double p[3], double beta) {
   if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])) || w->s.nnode <= 0) return 0.0;
-  const ss_topo *t = w->topo;
   double sum = 0.0, far = 0.0; /* exact and dipole parts, summed apart */
   int stack[WIND_STACK];
   int top = 0;
@@ -184,7 +301,7 @@ double ss_wind_number_beta(const ss_wind *w, const double *pos, const double p[3
        * exactly, which is slower, never wrong) */
       const int i0 = w->s.first[node], i1 = i0 + w->s.count[node];
       for (int i = i0; i < i1; i++) {
-        const int *fv = t->face_vert + 3 * w->s.face_order[i];
+        const int *fv = w->corner + 3 * i;
         sum += ss_wind_triangle(p, pos + 3 * fv[0], pos + 3 * fv[1], pos + 3 * fv[2]);
       }
       continue;

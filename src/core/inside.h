@@ -21,8 +21,10 @@ void ss_wind_destroy(ss_wind *w);
  * body's caller vertices x 3). Allocates nothing. */
 void ss_wind_refit(ss_wind *w, const double *pos);
 /* The same, and the boxes of the BVH the hierarchy is on (ss_bvh_boxes_write
- * of it: as ss_bvh_refit sets them) in the same sweep, if box is not NULL. */
-void ss_wind_refit_boxes(ss_wind *w, const double *pos, double *box);
+ * of it: as ss_bvh_refit sets them) in the same sweep, if box is not NULL;
+ * its subtrees on nthread threads (OpenMP entered only for more than one),
+ * the same bits for any count. */
+void ss_wind_refit_boxes(ss_wind *w, const double *pos, double *box, int nthread);
 /* Winding number of the body (pose of the last refit) around p: 1 inside a
  * closed outward-wound body, 0 outside, 1/2 on its surface, 2 inside two
  * overlapping parts. Exact per triangle near p (within SS_WIND_BETA node

@@ -3,7 +3,8 @@
  * "clean" and "buried" on a body built to have both: two overlapping closed
  * boxes (the second's end and the parts of its sides within the first lie
  * inside the body, as linear blend skinning buries a crushed crease), with
- * points placed inside at known depths. */
+ * points placed inside at known depths; and the refit with the tree's boxes
+ * (the contact pass's), on one thread and two. */
 #include <string.h>
 
 #include "bvh.h"
@@ -108,6 +109,36 @@ int main(void) {
   double c2[3] = {0.5, 0.5, 1.0};
   ss_bvh_closest(bvh, pos, c2, &face, uv);
   CHECK(!ss_wind_face_buried(w, pos, face));
+
+  /* the refit with the tree's boxes in a bent pose: the boxes ss_bvh_refit
+   * sets, bit for bit, and on one thread and two the same boxes and
+   * moments (the numbers, near field and far, bit for bit) */
+  static double bent[2 * 3 * NV_BOX];
+  for (int i = 0; i < 3 * nvert; i++) bent[i] = pos[i] + 0.02 * ss_test_randu(&s);
+  ss_bvh *bref = NULL, *bw = NULL;
+  CHECK_EQ_INT(ss_bvh_create_on(&bref, bvh), SS_OK);
+  CHECK_EQ_INT(ss_bvh_create_on(&bw, bvh), SS_OK);
+  if (bref && bw) {
+    const int nnode = ss_bvh_get_shape(bvh).nnode;
+    CHECK(nnode >= 512); /* enough nodes for the threads (inside.c) */
+    ss_bvh_refit(bref, bent);
+    double num[2][64];
+    for (int threads = 1; threads <= 2; threads++) {
+      memset(ss_bvh_boxes_write(bw), 0, sizeof(double) * 6 * (size_t)nnode);
+      ss_wind_refit_boxes(w, bent, ss_bvh_boxes_write(bw), threads);
+      CHECK_MSG(memcmp(ss_bvh_boxes(bw), ss_bvh_boxes(bref), sizeof(double) * 6 * (size_t)nnode) == 0,
+                "%d threads: the refit's boxes are not ss_bvh_refit's", threads);
+      unsigned long long sp = 11;
+      for (int i = 0; i < 64; i++) {
+        const double p[3] = {4.0 * ss_test_rand(&sp) - 0.5, 1.6 * ss_test_rand(&sp) - 0.3,
+                             1.6 * ss_test_rand(&sp) - 0.3};
+        num[threads - 1][i] = ss_wind_number_beta(w, bent, p, i % 2 ? 1.5 : SS_WIND_BETA);
+      }
+    }
+    CHECK_MSG(memcmp(num[0], num[1], sizeof num[0]) == 0, "the refit on two threads moved the numbers");
+  }
+  ss_bvh_destroy(bw);
+  ss_bvh_destroy(bref);
 
   ss_wind_destroy(w);
   ss_bvh_destroy(bvh);
