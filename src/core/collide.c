@@ -19,7 +19,8 @@
  * (more iterations, no shallower). What is measured is the skin a step
  * leaves, and that is what the pass corrects.
  *
- * Where, cheap first. 1. Each vertex descends over the body's faces to a
+ * Where, cheap first (collide_surface.c). 1. Each vertex descends over the
+ * body's faces to a
  * local nearest point of the surface (from the face its last descent ended
  * on, else its anchor face: across the edge or around the corner the
  * nearest point lies on, while that is nearer; usually one face or two, by
@@ -87,6 +88,7 @@
 #include "bvh.h"
 #include "closest.h"
 #include "collide_behind.h"
+#include "collide_surface.h"
 #include "inside.h"
 #include "sim_internal.h"
 #include "ss_free.h"
@@ -163,7 +165,6 @@ struct ss_collider {
 #define SS_COLLIDE_STRETCH 10.0
 #define SS_COLLIDE_PATCH 32 /* vertices a patch move carries at most (a vertex and its ring) */
 #define SS_COLLIDE_SWEEPS 4 /* sweeps over the moves (a move made part of the way tries the rest) */
-#define SS_COLLIDE_DESCENT 32 /* faces a descent crosses at most */
 #define SS_COLLIDE_STACK (2 * 96 + 2) /* a search's stack: bvh.c's MAX_DEPTH 96, two children a level */
 
 int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *body_rest,
@@ -305,47 +306,6 @@ static double tree_nearest(const ss_collider *c, const ss_collide_in *in, int f0
   return best;
 }
 
-/* 1 if a face of the subtree of node (its box within bound of p) is
- * within bound of p and has p less than lim in front of its plane. */
-/* The pseudo-normal of the body at c, the nearest point of face nf to x
- * (Baerentzen and Aanaes 2005: the sum of the normals of the faces nearest
- * there; one face's inside it, an edge's two, a corner's ring). */
-static int pseudo_normal(const ss_collide_in *in, int nf, const double uv[2], const double x[3],
-                         double d2, double n[3]) {
-  const ss_topo *t = in->topo;
-  const ss_frames *fr = in->fr;
-  const double eps = 1e-9;
-  if (uv[0] > eps && uv[1] > eps && 1.0 - uv[0] - uv[1] > eps) {
-    memcpy(n, fr->normal + 3 * nf, 3 * sizeof(double));
-  } else {
-    /* the faces around nf's corners at the same distance (an edge's or a
-     * corner's faces), each once */
-    const double tie = d2 + 1e-12 * in->reach * in->reach;
-    const int *fv = t->face_vert + 3 * nf;
-    n[0] = n[1] = n[2] = 0.0;
-    for (int c = 0; c < 3; c++) {
-      const int w = t->vert_weld[fv[c]];
-      for (int i = t->vf_start[w]; i < t->vf_start[w + 1]; i++) {
-        const int g = t->vf_face[i];
-        const int *gv = t->face_vert + 3 * g;
-        int seen = 0; /* met around an earlier corner of nf */
-        for (int e = 0; e < c && !seen; e++) {
-          const int we = t->vert_weld[fv[e]];
-          seen = t->vert_weld[gv[0]] == we || t->vert_weld[gv[1]] == we || t->vert_weld[gv[2]] == we;
-        }
-        if (seen || t->face_degenerate[g] || !(fr->area[g] > 0.0)) continue;
-        double guv[2];
-        if (g == nf || ss_collide_tri_dist2(in, g, x, guv) <= tie)
-          for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * g + k];
-      }
-    }
-  }
-  const double len = sqrt(dot3(n, n));
-  if (!(len > 0.0)) return 0;
-  for (int k = 0; k < 3; k++) n[k] /= len;
-  return 1;
-}
-
 /* Face g's clean-surface test, kept SS_COLLIDE_RECHECK steps (the body's
  * self-intersections move far slower than a step: a leg through the belly
  * takes a tenth of a second), each face's age its own so that the tests of
@@ -382,74 +342,6 @@ static void test_listed(ss_collider *c, const ss_collide_in *in, int n, int nthr
   for (int i = 0; i < n; i++) test_face(c, in, c->test_face[i]);
 }
 
-/* Squared distance from p to body face g (its nearest point at uv), or
- * infinity for a face with no area. */
-static double face_dist2(const ss_collide_in *in, int g, const double p[3], double uv[2]) {
-  const ss_topo *t = in->topo;
-  if (g < 0 || t->face_degenerate[g] || !(in->fr->area[g] > 0.0)) return INFINITY;
-  return ss_collide_tri_dist2(in, g, p, uv);
-}
-
-/* A local nearest point of the body's surface to p: from face f, over to
- * the face across the edge, or around the corner, that the nearest point so
- * far lies on, while one is nearer (the distance falls at every move, so
- * the descent never returns to a face). Its face (-1 if f has no area),
- * uv and squared distance; *settled 0 if it was still moving after
- * SS_COLLIDE_DESCENT faces. */
-static int descend(const ss_collide_in *in, int f, const double p[3], double uv[2], double *d2,
-                   int *settled) {
-  const ss_topo *t = in->topo;
-  const double eps = 1e-9;
-  *settled = 1;
-  *d2 = face_dist2(in, f, p, uv);
-  if (!(*d2 < INFINITY)) return -1;
-  for (int s = 0; s < SS_COLLIDE_DESCENT; s++) {
-    const double w[3] = {1.0 - uv[0] - uv[1], uv[0], uv[1]}; /* at corners 0, 1, 2 */
-    const int z0 = w[0] <= eps, z1 = w[1] <= eps, z2 = w[2] <= eps;
-    if (!(z0 || z1 || z2)) return f; /* inside the face: a local nearest point */
-    int next = -1;
-    double nuv[2], guv[2];
-    if (z0 + z1 + z2 == 1) {
-      /* on edge k (corners k, k + 1), the corner k + 2 opposite it */
-      const int k = z0 ? 1 : z1 ? 2 : 0;
-      const int g = t->face_adj[3 * f + k];
-      const double e = face_dist2(in, g, p, guv);
-      if (e < *d2) next = g, *d2 = e, nuv[0] = guv[0], nuv[1] = guv[1];
-    } else {
-      /* at a corner: the faces around it */
-      const int c = !z0 ? 0 : !z1 ? 1 : 2;
-      const int wv = t->vert_weld[t->face_vert[3 * f + c]];
-      for (int i = t->vf_start[wv]; i < t->vf_start[wv + 1]; i++) {
-        const int g = t->vf_face[i];
-        if (g == f) continue;
-        const double e = face_dist2(in, g, p, guv);
-        if (e < *d2) next = g, *d2 = e, nuv[0] = guv[0], nuv[1] = guv[1];
-      }
-    }
-    if (next < 0) return f;
-    f = next, uv[0] = nuv[0], uv[1] = nuv[1];
-  }
-  *settled = 0;
-  return f;
-}
-
-/* Where point p is against the body's surface near face nf (its nearest
- * point there at uv, squared distance d2): the signed distance along the
- * pseudo-normal n and the nearest point c. 0 if no normal. */
-static int surface_at(const ss_collide_in *in, int nf, const double uv[2], const double p[3], double d2,
-                      double n[3], double c[3], double *sd) {
-  if (!pseudo_normal(in, nf, uv, p, d2, n)) return 0;
-  const int *fv = in->topo->face_vert + 3 * nf;
-  const double *p0 = in->body + 3 * fv[0], *p1 = in->body + 3 * fv[1], *p2 = in->body + 3 * fv[2];
-  double rel[3];
-  for (int k = 0; k < 3; k++) {
-    c[k] = p0[k] + uv[0] * (p1[k] - p0[k]) + uv[1] * (p2[k] - p0[k]);
-    rel[k] = p[k] - c[k];
-  }
-  *sd = dot3(rel, n);
-  return 1;
-}
-
 /* Vertex v at x, first look: the face of a local nearest point of the
  * surface (its squared distance into *d2) if the vertex may be deeper than
  * SS_COLLIDE_NEAR behind the surface, else -1. */
@@ -462,8 +354,8 @@ static int look_local(ss_collider *col, const ss_collide_in *in, int v, const do
   double uv[2];
   int settled = 0, lf = -1;
   const int hf = col->hint[v];
-  if (hf >= 0) lf = descend(in, hf, x, uv, d2, &settled);
-  if (lf < 0 && hf != fa) lf = descend(in, fa, x, uv, d2, &settled);
+  if (hf >= 0) lf = ss_collide_descend(in, hf, x, uv, d2, &settled);
+  if (lf < 0 && hf != fa) lf = ss_collide_descend(in, fa, x, uv, d2, &settled);
   if (lf < 0) return -1;
   col->hint[v] = lf;
   const double near = SS_COLLIDE_NEAR * in->reach - in->thickness;
@@ -474,7 +366,7 @@ static int look_local(ss_collider *col, const ss_collide_in *in, int v, const do
   const double front = SS_COLLIDE_FRONT * in->reach - in->thickness;
   double n[3], cp[3], sd;
   if (!settled) return lf;
-  const int infront = !surface_at(in, lf, uv, x, *d2, n, cp, &sd) ? -1 : !(sd < in->thickness - 1e-9 * in->reach);
+  const int infront = !ss_collide_surface_at(in, lf, uv, x, *d2, n, cp, &sd) ? -1 : !(sd < in->thickness - 1e-9 * in->reach);
   if (infront != 0 && front > 0.0 && *d2 <= front * front) return -1;
   /* further in front: searched only if some face within its distance has
    * it behind the face's plane (or less than the thickness in front), as
@@ -501,7 +393,7 @@ static int look_global(const ss_collider *col, const ss_collide_in *in, int lf, 
     /* the nearest body point, within the bound known */
     int nf;
     const double e2 = tree_nearest(col, in, from, p, bound2 * (1.0 + 1e-9) + 1e-300, &nf, uv);
-    if (nf < 0 || !surface_at(in, nf, uv, p, e2, n, cp, &sd)) break;
+    if (nf < 0 || !ss_collide_surface_at(in, nf, uv, p, e2, n, cp, &sd)) break;
     if (!(sd < in->thickness - tiny)) break;
     from = nf;
     if (first < 0) {
@@ -616,8 +508,8 @@ static int turns_off_body(const ss_collide_in *in, const int *fv, const double n
 static double local_depth(const ss_collide_in *in, int f, const double p[3]) {
   double uv[2], d2, n[3], cp[3], sd;
   int settled;
-  const int lf = f < 0 ? -1 : descend(in, f, p, uv, &d2, &settled);
-  if (lf < 0 || !surface_at(in, lf, uv, p, d2, n, cp, &sd)) return INFINITY;
+  const int lf = f < 0 ? -1 : ss_collide_descend(in, f, p, uv, &d2, &settled);
+  if (lf < 0 || !ss_collide_surface_at(in, lf, uv, p, d2, n, cp, &sd)) return INFINITY;
   return sd;
 }
 
