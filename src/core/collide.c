@@ -23,8 +23,9 @@
  * body's faces to a local nearest point of the surface (from the face its
  * last descent ended on, else its anchor face: across the edge or around
  * the corner the nearest point lies on, while that is nearer; usually one
- * face or two, by the faces' frame records, walk.h). A vertex within SS_COLLIDE_NEAR of it
- * is no deeper and is left (over 40% of the 19k quadruped's skin in
+ * face or two, by the faces' frame records, walk.h). A vertex within
+ * SS_COLLIDE_NEAR of it is no deeper and is left (over 40% of the 19k
+ * quadruped's skin in
  * motion); one in front of it and within SS_COLLIDE_FRONT is left too: it
  * can be no deeper than that behind another part. One further in front is
  * left if no face within that distance has it behind the face's plane
