@@ -25,20 +25,19 @@
  * the corner the nearest point lies on, while that is nearer; usually one
  * face or two, by the faces' frame records, walk.h). A vertex within
  * SS_COLLIDE_NEAR of it is no deeper and is left (over 40% of the 19k
- * quadruped's skin in
- * motion); one in front of it and within SS_COLLIDE_FRONT is left too: it
- * can be no deeper than that behind another part. One further in front is
- * left if no face within that distance has it behind the face's plane
- * (collide_behind.c: a plane test a face): it is then in front of the surface at
- * its nearest point, whichever face that is (39 in 40 of them on the
- * 19k quadruped; the skin's gap off the body). 2. The rest (behind the
- * local surface, or in front of it with another part or the far wall of a
- * crease near) search the body's tree for the
- * nearest point within the distance the descent found, starting at the
+ * quadruped's skin in motion); one in front of it and within
+ * SS_COLLIDE_FRONT is left too: it can be no deeper than that behind
+ * another part. One further in front is left if no face within that
+ * distance has it behind the face's plane (collide_behind.c: a plane test a
+ * face): it is then in front of the surface at its nearest point, whichever
+ * face that is (39 in 40 of them on the 19k quadruped; the skin's gap off
+ * the body). 2. The rest (behind the local surface, or in front of it with
+ * another part or the far wall of a crease near) search the body's tree for
+ * the nearest point within the distance the descent found, starting at the
  * leaf of the face it found and going up (the boxes a search from the root
- * tests, but not the root's way down). The descent replaced the look at
- * the anchor face and its neighbours, which left half the skin on their rim
- * (the anchors lag) and so searched it. Behind the surface (by the
+ * tests, but not the root's way down). A descent, not a look at the anchor
+ * face and its neighbours: that leaves half the skin on their rim (the
+ * anchors lag), and so searched. Behind the surface (by the
  * pseudo-normal at the nearest point: the normals of the faces nearest
  * there summed, one face's inside it, an edge's two, a corner's ring;
  * Baerentzen and Aanaes 2005), the vertex moves out along that normal by
