@@ -1,6 +1,7 @@
 /* Determinism against fixed values (after Box2D's test/test_determinism.c):
- * a built-in scene stepped with the quasi-Newton solver, and the anchor walk
- * alone over a built-in scene, each hashed (FNV-1a, ss_hash_bytes) after the
+ * a built-in scene stepped with the quasi-Newton solver, another with
+ * contact on as well, and the anchor walk alone over a built-in scene, each
+ * hashed (FNV-1a, ss_hash_bytes) after the
  * last frame and compared with a value written here.
  *
  * Neither path goes through the BLAS (quasi-Newton factors a scalar matrix with
@@ -25,6 +26,9 @@
  * sim_settings below (the value changes only with the arithmetic or the
  * physics of a setting there; each change says why in its commit message) */
 static const unsigned long long EXPECT_SIM_QN = 0x4e00a6e172c386f6ULL;
+/* elbow, 2000 triangles, 30 frames, the same settings with contact on
+ * (collide: the skin moved out of the clean body after each step) */
+static const unsigned long long EXPECT_SIM_COLLIDE = 0x1eb45e6aedcf33b5ULL;
 /* twist, 2000 triangles, 30 frames: one anchor per face barycenter walked to its
  * last world position lifted 0.1 mean edge lengths along the normal */
 static const unsigned long long EXPECT_WALK = 0xcf014d8c35056d78ULL;
@@ -34,7 +38,7 @@ enum { TRIS = 2000, FRAMES = 30 };
 /* Every setting written out, not ss_sim_default_settings(): a change of a
  * default does not move the hash (tests of the defaults' behaviour are
  * test_stability, test_rest_return and the bench's error against the truth). */
-static ss_sim_settings sim_settings(int threads) {
+static ss_sim_settings sim_settings(int threads, int collide) {
   return (ss_sim_settings){
       .solver = SS_SOLVER_QUASI_NEWTON,
       .dt = 1.0 / 30.0,
@@ -56,7 +60,7 @@ static ss_sim_settings sim_settings(int threads) {
       .tether = 3.0,
       .orient = 200.0,
       .compression = 0.1,
-      .collide = 0,
+      .collide = collide,
       .collide_thickness = 0.0,
       .mover = {.method = SS_METHOD_WALK, .walk_max_steps = 512, .nring_rings = 2},
       .threads = threads,
@@ -64,8 +68,8 @@ static ss_sim_settings sim_settings(int threads) {
   };
 }
 
-static unsigned long long sim_hash(const ss_scene *sc, int threads) {
-  ss_sim_settings set = sim_settings(threads);
+static unsigned long long sim_hash(const ss_scene *sc, int threads, int collide) {
+  ss_sim_settings set = sim_settings(threads, collide);
   ss_sim *sim = NULL;
   char err[256] = "";
   int nv = ss_scene_nvert(sc);
@@ -146,12 +150,24 @@ int main(void) {
   CHECK_MSG(ss_scene_create(&sc, "twist", TRIS, err, sizeof err) == SS_OK, "%s", err);
   if (!sc) return ss_test_finish("test_determinism");
 
-  unsigned long long qn = sim_hash(sc, 1);
+  unsigned long long qn = sim_hash(sc, 1, 0);
   printf("quasi-Newton, twist %d tris, %d frames: %016llx\n", TRIS, FRAMES, qn);
   CHECK_MSG(qn == EXPECT_SIM_QN, "quasi-Newton hash %016llx, expected %016llx", qn,
             EXPECT_SIM_QN);
-  unsigned long long qn2 = sim_hash(sc, 2);
+  unsigned long long qn2 = sim_hash(sc, 2, 0);
   CHECK_MSG(qn2 == qn, "2 threads: %016llx, 1 thread: %016llx", qn2, qn);
+
+  ss_scene *elbow = NULL;
+  CHECK_MSG(ss_scene_create(&elbow, "elbow", TRIS, err, sizeof err) == SS_OK, "%s", err);
+  if (elbow) {
+    unsigned long long co = sim_hash(elbow, 1, 1);
+    printf("quasi-Newton with contact, elbow %d tris, %d frames: %016llx\n", TRIS, FRAMES, co);
+    CHECK_MSG(co == EXPECT_SIM_COLLIDE, "contact hash %016llx, expected %016llx", co, EXPECT_SIM_COLLIDE);
+    unsigned long long co2 = sim_hash(elbow, 2, 1);
+    CHECK_MSG(co2 == co, "contact, 2 threads: %016llx, 1 thread: %016llx", co2, co);
+    CHECK_MSG(sim_hash(elbow, 1, 0) != co, "contact must move the elbow's skin");
+    ss_scene_destroy(elbow);
+  }
 
   unsigned long long walk = walk_hash(sc);
   printf("walk, twist %d tris, %d frames: %016llx\n", TRIS, FRAMES, walk);
