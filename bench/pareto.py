@@ -38,7 +38,7 @@ def bench(bench_sim, tris, frames, sub, it, threads):
 def place_labels(fig, ax, points, names):
     """Each point's name beside it where it meets no other name and no marker:
     the first free of a few offsets around the point (points taken left to
-    right), else the first offset."""
+    right), else the last of them."""
     offsets = [(4, 2), (4, -10), (-6, 6), (-6, -12), (6, 10), (6, -16), (-10, 12), (-10, -18)]
     fig.canvas.draw()
     render = fig.canvas.get_renderer()
@@ -49,13 +49,13 @@ def place_labels(fig, ax, points, names):
     meets = lambda a, b: a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
     order = sorted(range(len(points)), key=lambda i: points[i])
     for i in order:
+        others = taken[:i] + taken[i + 1:]  # the other markers and the names placed so far
         for k, (dx, dy) in enumerate(offsets):
             ha = "left" if dx >= 0 else "right"
             t = ax.annotate(names[i], points[i], fontsize=8, xytext=(dx, dy), textcoords="offset points", ha=ha)
             e = t.get_window_extent(render)
             box = (e.x0, e.y0, e.x1, e.y1)
-            own = [j for j in range(len(points)) if j != i]
-            if not any(meets(box, b) for b in taken[len(points):]) and not any(meets(box, taken[j]) for j in own):
+            if not any(meets(box, b) for b in others):
                 break
             if k < len(offsets) - 1:
                 t.remove()

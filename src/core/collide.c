@@ -517,11 +517,11 @@ static double local_depth(const ss_collide_in *in, int f, const double p[3]) {
  * fold of the skin at the body's surface, a face across the move's
  * direction): v's own faces move whole, and what strain there is falls on
  * the faces of the ring's outer edges. Not made (nothing moves) if that
- * squeezes, stretches or turns over a face of the patch, turns one off the body under
- * it, or carries a vertex of the ring deeper behind the surface near it
- * (across a crushed crease, into the far wall): in the quadruped's crushed
- * creases such patches more than doubled the faces turned off the body. 1 if
- * made. */
+ * squeezes, stretches or turns over a face of the patch, turns one off the
+ * body under it, or carries a vertex of the ring deeper behind the surface
+ * near it (across a crushed crease, into the far wall): in the quadruped's
+ * crushed creases such patches more than doubled the faces turned off the
+ * body. 1 if made. */
 static int move_patch(const ss_collider *c, const ss_collide_in *in, int v, const double p[3], double *x) {
   if (!in->faces) return 0;
   int pv[SS_COLLIDE_PATCH];

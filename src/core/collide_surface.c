@@ -59,12 +59,8 @@ static double face_dist2(const ss_collide_in *in, int g, const double p[3], doub
   return ss_collide_tri_dist2(in, g, p, uv);
 }
 
-/* A local nearest point of the body's surface to p: from face f, over to
- * the face across the edge, or around the corner, that the nearest point so
- * far lies on, while one is nearer (the distance falls at every move, so
- * the descent never returns to a face). Its face (-1 if f has no area),
- * uv and squared distance; *settled 0 if it was still moving after
- * SS_COLLIDE_DESCENT faces. */
+/* (collide_surface.h) Each move lowers the distance, so the descent never
+ * returns to a face; SS_COLLIDE_DESCENT bounds its length all the same. */
 int ss_collide_descend(const ss_collide_in *in, int f, const double p[3], double uv[2], double *d2,
                        int *settled) {
   const ss_topo *t = in->topo;
@@ -102,9 +98,7 @@ int ss_collide_descend(const ss_collide_in *in, int f, const double p[3], double
   return f;
 }
 
-/* Where point p is against the body's surface near face nf (its nearest
- * point there at uv, squared distance d2): the signed distance along the
- * pseudo-normal n and the nearest point c. 0 if no normal. */
+/* (collide_surface.h) */
 int ss_collide_surface_at(const ss_collide_in *in, int nf, const double uv[2], const double p[3], double d2,
                           double n[3], double c[3], double *sd) {
   if (!pseudo_normal(in, nf, uv, p, d2, n)) return 0;

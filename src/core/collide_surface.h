@@ -9,8 +9,8 @@
  * the face across the edge, or around the corner, that the nearest point so
  * far lies on, while one is nearer (the distance falls at every move, so
  * the descent never returns to a face). Its face (-1 if f has no area),
- * uv and squared distance; *settled 0 if it was still moving after 32
- * faces. */
+ * uv and squared distance; *settled 0 if it was still moving after
+ * SS_COLLIDE_DESCENT (32) faces. */
 int ss_collide_descend(const ss_collide_in *in, int f, const double p[3], double uv[2], double *d2,
                        int *settled);
 
