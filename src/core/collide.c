@@ -58,20 +58,11 @@
  * in), and the winding-number moments are refitted with the tree's boxes
  * in one sweep.
  *
- * No move squeezes or stretches a skin face: a move that would leave a
- * face of the vertex under SS_COLLIDE_SQUEEZE of its rest area, or turn it
- * over, or stretch it past SS_COLLIDE_STRETCH times it, waits for its
- * neighbours' moves; then the vertex moves with its ring carried along
- * (its own faces move whole), unless that squeezes, stretches or turns a
- * face of the patch; else it is halved (twice), and what is left of the
- * move is tried again in the next sweep, the neighbours moved meanwhile
- * (up to SS_COLLIDE_SWEEPS). Vertices of one face pushed out of a crushed
- * crease towards one line of the body made frames fail; moves only halved
- * left the skin in the folds at the quadruped's paws, the elbow's crease
- * and the Fox's legs a quarter to a half edge deep. The vertices around a
- * paw's pole, pushed out along normals that part there, stretched the
- * small faces of its fan 18 to 23 times for a frame: a spike of skin, and
- * past 20 times a failed frame.
+ * No move squeezes or stretches a skin face (collide_move.c): a move
+ * that would is made with its neighbours', with its ring, or in part. The
+ * vertices a move carried with its ring are looked at again from where
+ * they are: one carried across a narrow gap (between two toes) into the
+ * other part is behind that part's surface, and moved out on its own.
  *
  * Deterministic: the refit per subtree of the tree (inside.c), the
  * descents and searches per vertex alone and the clean-surface tests per
@@ -87,36 +78,13 @@
 #include "bvh.h"
 #include "closest.h"
 #include "collide_behind.h"
+#include "collide_pass.h"
 #include "collide_surface.h"
 #include "inside.h"
 #include "sim_internal.h"
 #include "ss_free.h"
 
-struct ss_collider {
-  const ss_topo *topo;
-  ss_bvh *bvh;
-  ss_wind *wind;
-  int nbface;
-  long long *face_step;        /* (nbface) step of the cached face_buried (-1: none) */
-  unsigned char *face_buried;  /* (nbface) */
-  int *test_face;              /* (nbface) the faces to test in a step, each once */
-  int *cand_face;              /* (nvert) nearest face of a vertex behind the surface, or -1 */
-  int *move_k;                 /* (nvert) the candidates a sweep over the moves goes over */
-  double *cand_x;              /* (nvert x 3) where it goes */
-  double *cand_n;              /* (nvert x 3) the surface normal it goes along */
-  int *hint;                   /* (nvert) the body face the vertex's last descent ended on, or -1:
-                                  where the next one starts */
-  int *vf_start, *vf_face;     /* (nvert + 1), (3 nface) CSR: the skin's faces around each
-                                  vertex, for the squeeze guard */
-  ss_bvh_shape shape;          /* the tree (bvh's) */
-  int *parent;                 /* (nnode) each node's parent (-1 at the root) */
-  int *leaf_of;                /* (nbface) the leaf that holds each face */
-  int *look_face;              /* (nvert) the face of the local nearest point of a vertex to look
-                                  further at, or -1 */
-  double *look_d2;             /* (nvert) its squared distance */
-  int nvert;
-  unsigned char *free_vert;    /* (nvert) 1 for a vertex of the pass: what a patch move may carry */
-};
+/* struct ss_collider: collide_pass.h */
 
 /* A move of at most this many edge lengths does not ask whether the face is
  * on the clean surface: the test is a large part of the pass's cost, and
@@ -153,17 +121,6 @@ struct ss_collider {
  * 0.22, at 1 0.29) while it visits two thirds of the nodes of 2. */
 #define SS_COLLIDE_WIND_BETA 1.5
 #define SS_COLLIDE_PASSES 4  /* moves along normals before one onto the nearest point */
-/* Least and most area ratio (to the rest area) a move may leave a skin face
- * at, if it makes the face smaller or larger. A tenth: a fifth kept skin a
- * fifth to two thirds of an edge deep in the elbow's crease, the 19k
- * mannequin's folds and the 5k quadruped's; below a twentieth the faces
- * so squeezed made frames fail. Ten times: short of the twenty that makes
- * a frame fail, and above what the skin stretches without contact (under
- * two times). */
-#define SS_COLLIDE_SQUEEZE 0.1
-#define SS_COLLIDE_STRETCH 10.0
-#define SS_COLLIDE_PATCH 32 /* vertices a patch move carries at most (a vertex and its ring) */
-#define SS_COLLIDE_SWEEPS 4 /* sweeps over the moves (a move made part of the way tries the rest) */
 #define SS_COLLIDE_STACK (2 * 96 + 2) /* a search's stack: bvh.c's MAX_DEPTH 96, two children a level */
 
 int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *body_rest,
@@ -208,7 +165,13 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   c->look_face = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->look_d2 = malloc(sizeof(double) * ((size_t)nvert + 1));
   c->nvert = nvert;
-  c->free_vert = calloc((size_t)nvert + 1, 1);
+  c->dof_of = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->carried = calloc((size_t)nvert + 1, 1);
+  c->relook_k = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->joint_of = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->joint_old = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
+  if (c->joint_of)
+    for (int v = 0; v <= nvert; v++) c->joint_of[v] = -1;
   if (c->hint)
     for (int v = 0; v <= nvert; v++) c->hint[v] = -1;
   c->vf_start = calloc((size_t)nvert + 2, sizeof(int));
@@ -219,7 +182,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
   if (!status && !(c->face_step && c->face_buried && c->test_face && c->cand_face && c->move_k &&
-                   c->cand_x && c->cand_n && c->hint && c->look_face && c->look_d2 && c->free_vert &&
+                   c->cand_x && c->cand_n && c->hint && c->look_face && c->look_d2 && c->dof_of && c->carried && c->relook_k && c->joint_of && c->joint_old &&
                    c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
@@ -235,7 +198,7 @@ void ss_collider_destroy(ss_collider *c) {
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
   SS_FREE_ALL(c->face_step, c->face_buried, c->test_face, c->cand_face, c->move_k, c->cand_x, c->cand_n,
-              c->hint, c->vf_start, c->vf_face, c->look_face, c->look_d2, c->free_vert, c->parent, c->leaf_of,
+              c->hint, c->vf_start, c->vf_face, c->look_face, c->look_d2, c->dof_of, c->carried, c->relook_k, c->joint_of, c->joint_old, c->parent, c->leaf_of,
               c);
 }
 
@@ -423,154 +386,6 @@ static int look_global(const ss_collider *col, const ss_collide_in *in, int lf, 
   return first;
 }
 
-/* Candidate k (vertex v) to where it goes; its velocity loses the part
- * into the body (an inelastic contact). The move itself is not turned into
- * velocity: a move of half an edge in a substep of 1/480 s launched the
- * skin off the body at 16 substeps. */
-static void move_to(const ss_collider *c, int k, int v, const double p[3], double *x, double *vel) {
-  memcpy(x + 3 * v, p, 3 * sizeof(double));
-  if (!vel) return;
-  const double *n = c->cand_n + 3 * k;
-  double *u = vel + 3 * v;
-  const double un = dot3(u, n);
-  if (un < 0.0)
-    for (int i = 0; i < 3; i++) u[i] -= un * n[i];
-}
-
-/* The (area-scaled) normals of a skin face whose corners were at o and are
- * at q: what the squeeze and turn tests of a move compare. */
-static void move_normals(const double *const o[3], const double *const q[3], double n0[3], double n1[3]) {
-  double e1[3], e2[3];
-  for (int k = 0; k < 3; k++) e1[k] = o[1][k] - o[0][k], e2[k] = o[2][k] - o[0][k];
-  cross3(e1, e2, n0);
-  for (int k = 0; k < 3; k++) e1[k] = q[1][k] - q[0][k], e2[k] = q[2][k] - q[0][k];
-  cross3(e1, e2, n1);
-}
-
-/* squeezed() of a face of rest area a0 by its move_normals n0 (before), n1 (after). */
-static int squeezed_normals(double a0, const double n0[3], const double n1[3]) {
-  const double a1 = 0.5 * sqrt(dot3(n1, n1)), grows = dot3(n1, n1) > dot3(n0, n0);
-  return dot3(n0, n1) <= 0.0 || (a1 < SS_COLLIDE_SQUEEZE * a0 && !grows) ||
-         (a1 > SS_COLLIDE_STRETCH * a0 && grows);
-}
-
-/* 1 if a skin face of rest area a0 whose corners were at o and are at q
- * is squeezed below SS_COLLIDE_SQUEEZE of its rest area by the move (and
- * smaller than it was), stretched past SS_COLLIDE_STRETCH times it (and
- * larger than it was), or turned over. */
-static int squeezed(double a0, const double *const o[3], const double *const q[3]) {
-  double n0[3], n1[3];
-  move_normals(o, q, n0, n1);
-  return squeezed_normals(a0, n0, n1);
-}
-
-/* 1 if moving vertex v to p would squeeze one of its skin faces below
- * SS_COLLIDE_SQUEEZE of its rest area, stretch one past SS_COLLIDE_STRETCH
- * times it, or turn one over (squeezed()): vertices of one face pushed out
- * of a crushed crease towards one line of the body (and the solver then
- * iterating to its cap on the squeezed faces), or out of a paw's pole along
- * parting normals. Such a vertex is moved with its ring (move_patch), else
- * by less. */
-static int squeezes(const ss_collider *c, const ss_collide_in *in, int v, const double *x,
-                    const double p[3]) {
-  if (!in->faces) return 0;
-  for (int i = c->vf_start[v]; i < c->vf_start[v + 1]; i++) {
-    const int f = c->vf_face[i];
-    if (!(in->rest_area[f] > 0.0)) continue;
-    const int *fv = in->faces + 3 * f;
-    const double *q[3], *o[3];
-    for (int j = 0; j < 3; j++) o[j] = q[j] = x + 3 * fv[j];
-    for (int j = 0; j < 3; j++)
-      if (fv[j] == v) q[j] = p;
-    if (squeezed(in->rest_area[f], o, q)) return 1;
-  }
-  return 0;
-}
-
-/* 1 if a skin face (corners fv; move_normals n0 before a move, n1 after
- * it) turns over against the body under it (its corners' anchor faces'
- * normals summed), as the count of faces turned off the body judges
- * (ss_sim_count_off_body). */
-static int turns_off_body(const ss_collide_in *in, const int *fv, const double n0[3], const double n1[3]) {
-  double nb[3] = {0.0, 0.0, 0.0};
-  for (int j = 0; j < 3; j++) {
-    const int a = in->anchor_face[fv[j]];
-    if (a >= 0)
-      for (int k = 0; k < 3; k++) nb[k] += in->fr->normal[3 * a + k];
-  }
-  const double b0 = dot3(n0, nb), b1 = dot3(n1, nb);
-  return (b0 > 0.0 && b1 <= 0.0) || (b0 < 0.0 && b1 >= 0.0);
-}
-
-/* Signed distance of p along the pseudo-normal of the local nearest point
- * of the surface a descent from face f finds (infinity if none). */
-static double local_depth(const ss_collide_in *in, int f, const double p[3]) {
-  double uv[2], d2, n[3], cp[3], sd;
-  int settled;
-  const int lf = f < 0 ? -1 : ss_collide_descend(in, f, p, uv, &d2, &settled);
-  if (lf < 0 || !ss_collide_surface_at(in, lf, uv, p, d2, n, cp, &sd)) return INFINITY;
-  return sd;
-}
-
-/* Vertex v moved to p with the free vertices of its ring carried by the
- * same displacement, for a move that would squeeze a face of v alone (a
- * fold of the skin at the body's surface, a face across the move's
- * direction): v's own faces move whole, and what strain there is falls on
- * the faces of the ring's outer edges. Not made (nothing moves) if that
- * squeezes, stretches or turns over a face of the patch, turns one off the
- * body under it, or carries a vertex of the ring deeper behind the surface
- * near it (across a crushed crease, into the far wall): in the quadruped's
- * crushed creases such patches more than doubled the faces turned off the
- * body. 1 if made. */
-static int move_patch(const ss_collider *c, const ss_collide_in *in, int v, const double p[3], double *x) {
-  if (!in->faces) return 0;
-  int pv[SS_COLLIDE_PATCH];
-  double old[SS_COLLIDE_PATCH][3];
-  int np = 0;
-  pv[np++] = v;
-  for (int i = c->vf_start[v]; i < c->vf_start[v + 1]; i++) {
-    const int *fv = in->faces + 3 * c->vf_face[i];
-    for (int j = 0; j < 3; j++) {
-      const int u = fv[j];
-      int seen = !c->free_vert[u];
-      for (int q = 0; q < np && !seen; q++) seen = pv[q] == u;
-      if (seen) continue;
-      if (np == SS_COLLIDE_PATCH) return 0;
-      pv[np++] = u;
-    }
-  }
-  const double dx[3] = {p[0] - x[3 * v], p[1] - x[3 * v + 1], p[2] - x[3 * v + 2]};
-  for (int q = 0; q < np; q++)
-    for (int k = 0; k < 3; k++) old[q][k] = x[3 * pv[q] + k], x[3 * pv[q] + k] += dx[k];
-  int bad = 0;
-  for (int q = 0; q < np && !bad; q++) {
-    const int u = pv[q];
-    for (int i = c->vf_start[u]; i < c->vf_start[u + 1] && !bad; i++) {
-      const int f = c->vf_face[i];
-      if (!(in->rest_area[f] > 0.0)) continue;
-      const int *fv = in->faces + 3 * f;
-      const double *o[3], *n[3];
-      for (int j = 0; j < 3; j++) {
-        n[j] = o[j] = x + 3 * fv[j];
-        for (int r = 0; r < np; r++)
-          if (pv[r] == fv[j]) o[j] = old[r];
-      }
-      double n0[3], n1[3];
-      move_normals(o, n, n0, n1);
-      bad = squeezed_normals(in->rest_area[f], n0, n1) || turns_off_body(in, fv, n0, n1);
-    }
-  }
-  for (int q = 1; q < np && !bad; q++) {
-    const int u = pv[q];
-    const int f = c->hint[u] >= 0 ? c->hint[u] : in->anchor_face[u];
-    const double sd = local_depth(in, f, x + 3 * u);
-    bad = sd < in->thickness && sd < local_depth(in, f, old[q]);
-  }
-  if (bad)
-    for (int q = 0; q < np; q++) memcpy(x + 3 * pv[q], old[q], 3 * sizeof(double));
-  return !bad;
-}
-
 /* Vertex k of the pass (dof_vert[k] at x), first look: look_face, look_d2. */
 static inline void look_local_k(ss_collider *c, const ss_collide_in *in, const int *dof_vert, const double *x,
                                 int k) {
@@ -586,6 +401,42 @@ static inline int look_global_k(ss_collider *c, const ss_collide_in *in, const i
   c->cand_face[k] = lf < 0 ? -1 : look_global(c, in, lf, c->look_d2[k], x + 3 * v, c->cand_x + 3 * k,
                                               c->cand_n + 3 * k);
   return c->cand_face[k] != -1;
+}
+
+/* The candidates (cand_face of the n vertices of list, or of 0 .. n - 1 if
+ * list is NULL) whose move is out of the clean surface, in vertex order
+ * into move_k: neither the nearest face nor the anchor's buried in the
+ * body (as the inside measure judges). The faces whose test is not fresh
+ * are tested once each, the nearest faces first and then the anchor faces
+ * of the vertices whose nearest face is clean: the faces a sweep in vertex
+ * order would test (it tests an anchor face only past a clean nearest
+ * face), and each test reads only the body, so on the threads too the
+ * results are those of that sweep. Returns how many. */
+static int pick_moves(ss_collider *c, const ss_collide_in *in, const int *dof_vert, int nthread, long long step,
+                      const int *list, int n) {
+  int ntest = 0;
+  for (int i = 0; i < n; i++) {
+    const int k = list ? list[i] : i;
+    if (c->cand_face[k] >= 0) to_test(c, step, c->cand_face[k], &ntest);
+  }
+  test_listed(c, in, ntest, nthread);
+  ntest = 0;
+  for (int i = 0; i < n; i++) {
+    const int k = list ? list[i] : i;
+    const int g = c->cand_face[k], fa = in->anchor_face[dof_vert[k]];
+    if (g >= 0 && !c->face_buried[g] && fa != g) to_test(c, step, fa, &ntest);
+  }
+  test_listed(c, in, ntest, nthread);
+  int nmove = 0;
+  for (int i = 0; i < n; i++) {
+    const int k = list ? list[i] : i;
+    const int g = c->cand_face[k];
+    if (g == -1) continue;
+    const int fa = in->anchor_face[dof_vert[k]];
+    if (g >= 0 && (c->face_buried[g] || (fa != g && c->face_buried[fa]))) c->cand_face[k] = -1;
+    else c->move_k[nmove++] = k;
+  }
+  return nmove;
 }
 
 int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int *dof_vert,
@@ -615,73 +466,21 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
     for (int k = 0; k < ndof; k++) ncand += look_global_k(c, in, dof_vert, x, k);
   }
   if (ncand == 0) return 0;
-  /* a deep move only out of the clean surface: neither the nearest face nor
-   * the anchor's buried in the body (as the inside measure judges). The
-   * faces whose test is not fresh are tested once each, the nearest faces
-   * first and then the anchor faces of the vertices whose nearest face is
-   * clean: the faces a sweep in vertex order would test (it tests an anchor
-   * face only past a clean nearest face), and each test reads only the
-   * body, so on the threads too the results are those of that sweep. */
-  int ntest = 0;
+  for (int v = 0; v < c->nvert; v++) c->dof_of[v] = -1;
+  for (int k = 0; k < ndof; k++) c->dof_of[dof_vert[k]] = k;
+  int moved = ss_collide_sweep_moves(c, in, dof_vert, pick_moves(c, in, dof_vert, nthread, step, NULL, ndof), 1, x, vel);
+  /* the ring vertices patch moves carried, looked at again (moved on their
+   * own: their own patches would carry further) */
+  int nre = 0;
   for (int k = 0; k < ndof; k++)
-    if (c->cand_face[k] >= 0) to_test(c, step, c->cand_face[k], &ntest);
-  test_listed(c, in, ntest, nthread);
-  ntest = 0;
-  for (int k = 0; k < ndof; k++) {
-    const int g = c->cand_face[k], fa = in->anchor_face[dof_vert[k]];
-    if (g >= 0 && !c->face_buried[g] && fa != g) to_test(c, step, fa, &ntest);
+    if (c->carried[k]) c->carried[k] = 0, c->relook_k[nre++] = k;
+  int nrecand = 0;
+  for (int i = 0; i < nre; i++) {
+    look_local_k(c, in, dof_vert, x, c->relook_k[i]);
+    nrecand += look_global_k(c, in, dof_vert, x, c->relook_k[i]);
   }
-  test_listed(c, in, ntest, nthread);
-  int nmove = 0; /* the candidates left, in vertex order: what the sweeps go over */
-  for (int k = 0; k < ndof; k++) {
-    const int g = c->cand_face[k];
-    if (g == -1) continue;
-    const int fa = in->anchor_face[dof_vert[k]];
-    if (g >= 0 && (c->face_buried[g] || (fa != g && c->face_buried[fa]))) c->cand_face[k] = -1;
-    else c->move_k[nmove++] = k;
-  }
-  /* the whole moves that squeeze no skin face first; then, their neighbours
-   * moved meanwhile, the rest: the whole move, else the move carrying the
-   * vertex's ring along, else half, else a quarter. A vertex moved only
-   * part of the way tries the rest in the next sweep, its neighbours moved
-   * meanwhile (in vertex order alone, a vertex that went before its
-   * neighbours had its move halved for a face their moves then opened
-   * again, and stayed half as deep). */
-  memset(c->free_vert, 0, (size_t)c->nvert);
-  for (int k = 0; k < ndof; k++) c->free_vert[dof_vert[k]] = 1;
-  int moved = 0;
-  for (int sweep = 0; sweep < SS_COLLIDE_SWEEPS && nmove > 0; sweep++) {
-    for (int j = 0; j < nmove; j++) {
-      const int k = c->move_k[j];
-      const int v = dof_vert[k];
-      const double x0[3] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
-      double q[3] = {c->cand_x[3 * k], c->cand_x[3 * k + 1], c->cand_x[3 * k + 2]};
-      int ok = !squeezes(c, in, v, x, q);
-      if (!ok && sweep == 0) continue;
-      if (!ok && move_patch(c, in, v, q, x)) {
-        /* v is where it goes: its velocity as for a move of its own */
-        c->cand_face[k] = -1;
-        move_to(c, k, v, q, x, vel);
-        moved++;
-        continue;
-      }
-      int part = 0;
-      for (int h = 0; h < 2 && !ok; h++, part = 1) {
-        for (int i = 0; i < 3; i++) q[i] = 0.5 * (x0[i] + q[i]);
-        ok = !squeezes(c, in, v, x, q);
-      }
-      const int last = !part || sweep == SS_COLLIDE_SWEEPS - 1;
-      if (last) c->cand_face[k] = -1;
-      if (!ok) continue;
-      move_to(c, k, v, q, x, vel);
-      moved += last;
-    }
-    /* those made or given up leave the list */
-    int left = 0;
-    for (int i = 0; i < nmove; i++)
-      if (c->cand_face[c->move_k[i]] != -1) c->move_k[left++] = c->move_k[i];
-    nmove = left;
-  }
+  if (nrecand > 0)
+    moved += ss_collide_sweep_moves(c, in, dof_vert, pick_moves(c, in, dof_vert, nthread, step, c->relook_k, nre), 0, x, vel);
   return moved;
 }
 
