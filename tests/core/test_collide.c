@@ -8,10 +8,10 @@
  * goes out of the second; the same bits on one thread and two. */
 #include <string.h>
 
-#include "bvh.h"
 #include "collide.h"
 #include "inside.h"
 #include "ss_test.h"
+#include "ss_test_body.h"
 #include "ss_test_mesh.h"
 
 #define GRID 8
@@ -26,19 +26,17 @@ int main(void) {
   test_box(alo, ahi, GRID, pos, faces, 0);
   test_box(blo, bhi, GRID, pos + 3 * NV_BOX, faces + 3 * NF_BOX, NV_BOX);
   const int nvert = 2 * NV_BOX, nface = 2 * NF_BOX;
-  char err[256];
-  ss_topo *topo = NULL;
-  ss_bvh *bvh = NULL;
-  ss_frames *fr = NULL;
+  test_body body;
+  if (!test_body_create(&body, nvert, pos, nface, faces)) return ss_test_finish("test_collide");
+  const ss_topo *topo = body.topo;
+  const ss_bvh *bvh = body.bvh;
+  const ss_frames *fr = body.fr;
   ss_collider *col = NULL;
-  CHECK_EQ_INT(ss_topo_create(&topo, nvert, pos, nface, faces, -1.0, err, sizeof err), SS_OK);
-  CHECK_EQ_INT(ss_bvh_create(&bvh, topo), SS_OK);
-  CHECK_EQ_INT(ss_frames_create(&fr, nface), SS_OK);
-  if (!topo || !bvh || !fr) return ss_test_finish("test_collide");
   CHECK_EQ_INT(ss_collider_create(&col, topo, pos, NSKIN, 0, NULL), SS_OK);
-  if (!col) return ss_test_finish("test_collide");
-  ss_bvh_refit(bvh, pos);
-  ss_frames_update(fr, topo, pos);
+  if (!col) {
+    test_body_destroy(&body);
+    return ss_test_finish("test_collide");
+  }
 
   /* skin vertices: where each is anchored (a point on the body), where it is */
   const double edge = 0.25;
@@ -106,8 +104,6 @@ int main(void) {
   for (int i = 0; i < 3 * NSKIN; i++) CHECK_NEAR(x3[i], x[i], 1e-15);
 
   ss_collider_destroy(col);
-  ss_frames_destroy(fr);
-  ss_bvh_destroy(bvh);
-  ss_topo_destroy(topo);
+  test_body_destroy(&body);
   return ss_test_finish("test_collide");
 }

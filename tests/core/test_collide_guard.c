@@ -10,9 +10,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "bvh.h"
 #include "collide.h"
 #include "ss_test.h"
+#include "ss_test_body.h"
 #include "ss_test_mesh.h"
 
 #define GRID 8
@@ -54,16 +54,11 @@ int main(void) {
   static int bfaces[3 * NF_BOX];
   const double lo[3] = {0, 0, 0}, hi[3] = {2, 1, 1};
   test_box(lo, hi, GRID, pos, bfaces, 0);
-  char err[256];
-  ss_topo *topo = NULL;
-  ss_bvh *bvh = NULL;
-  ss_frames *fr = NULL;
-  CHECK_EQ_INT(ss_topo_create(&topo, NV_BOX, pos, NF_BOX, bfaces, -1.0, err, sizeof err), SS_OK);
-  CHECK_EQ_INT(ss_bvh_create(&bvh, topo), SS_OK);
-  CHECK_EQ_INT(ss_frames_create(&fr, NF_BOX), SS_OK);
-  if (!topo || !bvh || !fr) return ss_test_finish("test_collide_guard");
-  ss_bvh_refit(bvh, pos);
-  ss_frames_update(fr, topo, pos);
+  test_body body;
+  if (!test_body_create(&body, NV_BOX, pos, NF_BOX, bfaces)) return ss_test_finish("test_collide_guard");
+  const ss_topo *topo = body.topo;
+  const ss_bvh *bvh = body.bvh;
+  const ss_frames *fr = body.fr;
 
   /* a small triangle 0.3 under the top (1.2 edges), lying flat: out whole,
    * its third corner would stretch it to 30 times its area */
@@ -94,8 +89,6 @@ int main(void) {
   CHECK_MSG(x[8] > 0.7 + 1e-9 && x[8] < 1.0 - 1e-9, "moved part of the way out: z %.17g", x[8]);
   CHECK_MSG(tri_area(x) >= 0.1 * a1 * (1.0 - 1e-12), "squeezed to %.3f", tri_area(x) / a1);
 
-  ss_frames_destroy(fr);
-  ss_bvh_destroy(bvh);
-  ss_topo_destroy(topo);
+  test_body_destroy(&body);
   return ss_test_finish("test_collide_guard");
 }

@@ -9,9 +9,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "bvh.h"
 #include "collide.h"
 #include "ss_test.h"
+#include "ss_test_body.h"
 #include "ss_test_mesh.h"
 
 #define GRID 8
@@ -37,16 +37,8 @@ int main(void) {
   static int bfaces[3 * NF_BOX];
   const double lo[3] = {0, 0, 0}, hi[3] = {2, 1, 1};
   test_box(lo, hi, GRID, pos, bfaces, 0);
-  char err[256];
-  ss_topo *topo = NULL;
-  ss_bvh *bvh = NULL;
-  ss_frames *fr = NULL;
-  CHECK_EQ_INT(ss_topo_create(&topo, NV_BOX, pos, NF_BOX, bfaces, -1.0, err, sizeof err), SS_OK);
-  CHECK_EQ_INT(ss_bvh_create(&bvh, topo), SS_OK);
-  CHECK_EQ_INT(ss_frames_create(&fr, NF_BOX), SS_OK);
-  if (!topo || !bvh || !fr) return ss_test_finish("test_collide_joint");
-  ss_bvh_refit(bvh, pos);
-  ss_frames_update(fr, topo, pos);
+  test_body body;
+  if (!test_body_create(&body, NV_BOX, pos, NF_BOX, bfaces)) return ss_test_finish("test_collide_joint");
 
   /* the skin: an N x N grid of spacing s on the top (z 1) around (1, 0.5),
    * its inner vertices pressed 0.3 under it; rest areas those of the flat
@@ -61,7 +53,7 @@ int main(void) {
       const double p[3] = {1.0 + s * (i - 0.5 * (N - 1)), 0.5 + s * (j - 0.5 * (N - 1)), 1.0};
       double uv[2];
       memcpy(anchor_pos + 3 * v, p, sizeof p);
-      ss_bvh_closest(bvh, pos, p, &anchor_face[v], uv);
+      ss_bvh_closest(body.bvh, pos, p, &anchor_face[v], uv);
       memcpy(x + 3 * v, p, sizeof p);
       if (!rim) x[3 * v + 2] -= depth, dof_vert[ndof++] = v;
     }
@@ -79,9 +71,9 @@ int main(void) {
   for (int f = 0; f < NF; f++) tri_normal(x, faces + 3 * f, before + 3 * f);
 
   ss_collider *col = NULL;
-  CHECK_EQ_INT(ss_collider_create(&col, topo, pos, NV, NF, faces), SS_OK);
+  CHECK_EQ_INT(ss_collider_create(&col, body.topo, pos, NV, NF, faces), SS_OK);
   if (col) {
-    ss_collide_in in = {topo, fr, pos, anchor_face, anchor_pos, faces, rest_area, 0.0, edge};
+    ss_collide_in in = {body.topo, body.fr, pos, anchor_face, anchor_pos, faces, rest_area, 0.0, edge};
     ss_collider_run(col, &in, ndof, dof_vert, 1, 0, x, NULL);
     ss_collider_destroy(col);
   }
@@ -99,8 +91,6 @@ int main(void) {
               "face %d turned over", f);
   }
 
-  ss_frames_destroy(fr);
-  ss_bvh_destroy(bvh);
-  ss_topo_destroy(topo);
+  test_body_destroy(&body);
   return ss_test_finish("test_collide_joint");
 }
