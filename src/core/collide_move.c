@@ -117,6 +117,14 @@ static int turns_off_body(const ss_collide_in *in, const int *fv, const double n
   return (b0 > 0.0 && b1 <= 0.0) || (b0 < 0.0 && b1 >= 0.0);
 }
 
+/* 1 if skin face f, its corners moved from o to q, is squeezed, stretched
+ * or turned over (squeezed()), or turned off the body under it. */
+static int spoils_face(const ss_collide_in *in, int f, const double *const o[3], const double *const q[3]) {
+  double n0[3], n1[3];
+  move_normals(o, q, n0, n1);
+  return squeezed_normals(in->rest_area[f], n0, n1) || turns_off_body(in, in->faces + 3 * f, n0, n1);
+}
+
 /* Signed distance of p along the pseudo-normal of the local nearest point
  * of the surface a descent from face f finds (infinity if none). */
 static double local_depth(const ss_collide_in *in, int f, const double p[3]) {
@@ -170,9 +178,7 @@ static int move_patch(ss_collider *c, const ss_collide_in *in, int v, const doub
         for (int r = 0; r < np; r++)
           if (pv[r] == fv[j]) o[j] = old[r];
       }
-      double n0[3], n1[3];
-      move_normals(o, n, n0, n1);
-      bad = squeezed_normals(in->rest_area[f], n0, n1) || turns_off_body(in, fv, n0, n1);
+      bad = spoils_face(in, f, o, n);
     }
   }
   for (int q = 1; q < np && !bad; q++) {
@@ -230,9 +236,7 @@ static int move_jointly(ss_collider *c, const ss_collide_in *in, const int *dof_
           q[r] = x + 3 * fv[r];
           o[r] = jr >= 0 ? c->joint_old + 3 * jr : q[r];
         }
-        double n0[3], n1[3];
-        move_normals(o, q, n0, n1);
-        bad = squeezed_normals(in->rest_area[f], n0, n1) || turns_off_body(in, fv, n0, n1);
+        bad = spoils_face(in, f, o, q);
       }
       if (!bad) continue;
       memcpy(x + 3 * v, c->joint_old + 3 * j, 3 * sizeof(double));
