@@ -369,6 +369,11 @@ int ssa_auto_weights(int nvert, const double *pos, int nface, const int *faces, 
   cc_started = 1;
   cc.print = 0;
   cc.error_handler = NULL;
+  /* simplicial: no BLAS, so the weights (and every skin over them) are the
+   * same bits for any BLAS thread count; the supernodal factor's BLAS calls
+   * gave OPENBLAS_NUM_THREADS 1 and 2 different weights on the 19k-triangle
+   * mannequin */
+  cc.supernodal = CHOLMOD_SIMPLICIAL;
   T = cholmod_allocate_triplet((size_t)nw, (size_t)nw, (size_t)(6 * nface + nw), 1, CHOLMOD_REAL,
                                &cc);
   if (!T) {

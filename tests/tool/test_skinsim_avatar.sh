@@ -25,6 +25,12 @@ run() {
 }
 
 run demo --avatar demo --frames 40
+# the automatic weights of a large mannequin (a factor CHOLMOD would make
+# supernodal, through the BLAS): the same skin for any BLAS thread count
+OPENBLAS_NUM_THREADS=1 run demo19k_blas1 --avatar demo --avatar-tris 19000 --frames 2
+OPENBLAS_NUM_THREADS=2 run demo19k_blas2 --avatar demo --avatar-tris 19000 --frames 2
+check "demo 19k: the same bits on 1 and 2 BLAS threads" \
+  "[ \"\$(field '$tmp/demo19k_blas1.json' final_hash)\" = \"\$(field '$tmp/demo19k_blas2.json' final_hash)\" ]"
 run demo_region --avatar demo --frames 20 --region l_upper_arm,l_forearm,torso
 check "demo_region: a part of the skin simulated" \
   "$py -c 'import json,sys; a=json.load(open(\"$tmp/demo_region.json\")); sys.exit(0 if 0 < a[\"region_faces\"] < a[\"triangles\"] else 1)'"
