@@ -168,6 +168,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
   c->dof_of = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->carried = calloc((size_t)nvert + 1, 1);
   c->relook_k = malloc(sizeof(int) * ((size_t)nvert + 1));
+  c->tie_face = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->joint_of = malloc(sizeof(int) * ((size_t)nvert + 1));
   c->joint_old = malloc(sizeof(double) * 3 * ((size_t)nvert + 1));
   if (c->joint_of)
@@ -182,7 +183,7 @@ int ss_collider_create(ss_collider **out, const ss_topo *btopo, const double *bo
     for (int i = 0; i < 3 * nface; i++) c->vf_face[c->vf_start[faces[i] + 1]++] = i / 3;
   }
   if (!status && !(c->face_step && c->face_buried && c->test_face && c->cand_face && c->move_k &&
-                   c->cand_x && c->cand_n && c->hint && c->look_face && c->look_d2 && c->dof_of && c->carried && c->relook_k && c->joint_of && c->joint_old &&
+                   c->cand_x && c->cand_n && c->hint && c->look_face && c->look_d2 && c->dof_of && c->carried && c->relook_k && c->tie_face && c->joint_of && c->joint_old &&
                    c->vf_start && c->vf_face))
     status = SS_E_NOMEM;
   if (status) {
@@ -198,7 +199,7 @@ void ss_collider_destroy(ss_collider *c) {
   ss_wind_destroy(c->wind);
   ss_bvh_destroy(c->bvh);
   SS_FREE_ALL(c->face_step, c->face_buried, c->test_face, c->cand_face, c->move_k, c->cand_x, c->cand_n,
-              c->hint, c->vf_start, c->vf_face, c->look_face, c->look_d2, c->dof_of, c->carried, c->relook_k, c->joint_of, c->joint_old, c->parent, c->leaf_of,
+              c->hint, c->vf_start, c->vf_face, c->look_face, c->look_d2, c->dof_of, c->carried, c->relook_k, c->tie_face, c->joint_of, c->joint_old, c->parent, c->leaf_of,
               c);
 }
 
@@ -412,14 +413,28 @@ static inline int look_global_k(ss_collider *c, const ss_collide_in *in, const i
  * order would test (it tests an anchor face only past a clean nearest
  * face), and each test reads only the body, so on the threads too the
  * results are those of that sweep. Returns how many. */
-static int pick_moves(ss_collider *c, const ss_collide_in *in, const int *dof_vert, int nthread, long long step,
-                      const int *list, int n) {
+static int pick_moves(ss_collider *c, const ss_collide_in *in, const int *dof_vert, const double *x, int nthread,
+                      long long step, const int *list, int n) {
   int ntest = 0;
   for (int i = 0; i < n; i++) {
     const int k = list ? list[i] : i;
     if (c->cand_face[k] >= 0) to_test(c, step, c->cand_face[k], &ntest);
   }
   test_listed(c, in, ntest, nthread);
+  /* a buried nearest face tied there with another (the vertex nearest to
+   * the line where the body passes through itself): the other's test
+   * decides, as for the inside measure, which may take either */
+  ntest = 0;
+  for (int i = 0; i < n; i++) {
+    const int k = list ? list[i] : i, g = c->cand_face[k];
+    c->tie_face[k] = g >= 0 && c->face_buried[g] ? ss_collide_tied_face(in, g, x + 3 * dof_vert[k]) : -1;
+    if (c->tie_face[k] >= 0) to_test(c, step, c->tie_face[k], &ntest);
+  }
+  test_listed(c, in, ntest, nthread);
+  for (int i = 0; i < n; i++) {
+    const int k = list ? list[i] : i, h = c->tie_face[k];
+    if (h >= 0 && !c->face_buried[h]) c->cand_face[k] = h;
+  }
   ntest = 0;
   for (int i = 0; i < n; i++) {
     const int k = list ? list[i] : i;
@@ -468,7 +483,7 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
   if (ncand == 0) return 0;
   for (int v = 0; v < c->nvert; v++) c->dof_of[v] = -1;
   for (int k = 0; k < ndof; k++) c->dof_of[dof_vert[k]] = k;
-  int moved = ss_collide_sweep_moves(c, in, dof_vert, pick_moves(c, in, dof_vert, nthread, step, NULL, ndof), 1, x, vel);
+  int moved = ss_collide_sweep_moves(c, in, dof_vert, pick_moves(c, in, dof_vert, x, nthread, step, NULL, ndof), 1, x, vel);
   /* the ring vertices patch moves carried, looked at again (moved on their
    * own: their own patches would carry further) */
   int nre = 0;
@@ -480,7 +495,7 @@ int ss_collider_run(ss_collider *c, const ss_collide_in *in, int ndof, const int
     nrecand += look_global_k(c, in, dof_vert, x, c->relook_k[i]);
   }
   if (nrecand > 0)
-    moved += ss_collide_sweep_moves(c, in, dof_vert, pick_moves(c, in, dof_vert, nthread, step, c->relook_k, nre), 0, x, vel);
+    moved += ss_collide_sweep_moves(c, in, dof_vert, pick_moves(c, in, dof_vert, x, nthread, step, c->relook_k, nre), 0, x, vel);
   return moved;
 }
 

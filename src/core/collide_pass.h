@@ -34,6 +34,8 @@ struct ss_collider {
                                   patch move may carry */
   unsigned char *carried;      /* (ndof) 1 for a vertex a patch move carried in this pass */
   int *relook_k;               /* (nvert) the carried vertices, looked at again */
+  int *tie_face;               /* (nvert) a clean face tied with a candidate's buried nearest one,
+                                  or -1 */
   int *joint_of;               /* (nvert) a vertex's place in a joint move, or -1 */
   double *joint_old;           /* (nvert x 3) where the vertices of a joint move were */
 };

@@ -12,39 +12,51 @@
 
 #define SS_COLLIDE_DESCENT 32 /* faces a descent crosses at most */
 
-/* The pseudo-normal of the body at c, the nearest point of face nf to x
+/* The faces nearest to x at c, the nearest point of face nf to x (at uv,
+ * squared distance d2): nf alone if c is inside it, else the faces around
+ * nf's corners at the same distance (an edge's or a corner's faces), each
+ * once. Their normals summed into n (if not NULL); the lowest of them other
+ * than nf into *other (if not NULL; -1 if none). */
+static void faces_at(const ss_collide_in *in, int nf, const double uv[2], const double x[3], double d2,
+                     double n[3], int *other) {
+  const ss_topo *t = in->topo;
+  const ss_frames *fr = in->fr;
+  const double eps = 1e-9;
+  if (other) *other = -1;
+  if (uv[0] > eps && uv[1] > eps && 1.0 - uv[0] - uv[1] > eps) {
+    if (n) memcpy(n, fr->normal + 3 * nf, 3 * sizeof(double));
+    return;
+  }
+  const double tie = d2 + 1e-12 * in->reach * in->reach;
+  const int *fv = t->face_vert + 3 * nf;
+  if (n) n[0] = n[1] = n[2] = 0.0;
+  for (int c = 0; c < 3; c++) {
+    const int w = t->vert_weld[fv[c]];
+    for (int i = t->vf_start[w]; i < t->vf_start[w + 1]; i++) {
+      const int g = t->vf_face[i];
+      const int *gv = t->face_vert + 3 * g;
+      int seen = 0; /* met around an earlier corner of nf */
+      for (int e = 0; e < c && !seen; e++) {
+        const int we = t->vert_weld[fv[e]];
+        seen = t->vert_weld[gv[0]] == we || t->vert_weld[gv[1]] == we || t->vert_weld[gv[2]] == we;
+      }
+      if (seen || t->face_degenerate[g] || !(fr->area[g] > 0.0)) continue;
+      double guv[2];
+      if (g == nf || ss_collide_tri_dist2(in, g, x, guv) <= tie) {
+        if (n)
+          for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * g + k];
+        if (other && g != nf && (*other < 0 || g < *other)) *other = g;
+      }
+    }
+  }
+}
+
+/* The pseudo-normal of the body at the nearest point of face nf to x
  * (Baerentzen and Aanaes 2005: the sum of the normals of the faces nearest
  * there; one face's inside it, an edge's two, a corner's ring). */
 static int pseudo_normal(const ss_collide_in *in, int nf, const double uv[2], const double x[3],
                          double d2, double n[3]) {
-  const ss_topo *t = in->topo;
-  const ss_frames *fr = in->fr;
-  const double eps = 1e-9;
-  if (uv[0] > eps && uv[1] > eps && 1.0 - uv[0] - uv[1] > eps) {
-    memcpy(n, fr->normal + 3 * nf, 3 * sizeof(double));
-  } else {
-    /* the faces around nf's corners at the same distance (an edge's or a
-     * corner's faces), each once */
-    const double tie = d2 + 1e-12 * in->reach * in->reach;
-    const int *fv = t->face_vert + 3 * nf;
-    n[0] = n[1] = n[2] = 0.0;
-    for (int c = 0; c < 3; c++) {
-      const int w = t->vert_weld[fv[c]];
-      for (int i = t->vf_start[w]; i < t->vf_start[w + 1]; i++) {
-        const int g = t->vf_face[i];
-        const int *gv = t->face_vert + 3 * g;
-        int seen = 0; /* met around an earlier corner of nf */
-        for (int e = 0; e < c && !seen; e++) {
-          const int we = t->vert_weld[fv[e]];
-          seen = t->vert_weld[gv[0]] == we || t->vert_weld[gv[1]] == we || t->vert_weld[gv[2]] == we;
-        }
-        if (seen || t->face_degenerate[g] || !(fr->area[g] > 0.0)) continue;
-        double guv[2];
-        if (g == nf || ss_collide_tri_dist2(in, g, x, guv) <= tie)
-          for (int k = 0; k < 3; k++) n[k] += fr->normal[3 * g + k];
-      }
-    }
-  }
+  faces_at(in, nf, uv, x, d2, n, NULL);
   const double len = sqrt(dot3(n, n));
   if (!(len > 0.0)) return 0;
   for (int k = 0; k < 3; k++) n[k] /= len;
@@ -111,4 +123,13 @@ int ss_collide_surface_at(const ss_collide_in *in, int nf, const double uv[2], c
   }
   *sd = dot3(rel, n);
   return 1;
+}
+
+/* (collide_surface.h) */
+int ss_collide_tied_face(const ss_collide_in *in, int nf, const double p[3]) {
+  double uv[2];
+  const double d2 = ss_collide_tri_dist2(in, nf, p, uv);
+  int other;
+  faces_at(in, nf, uv, p, d2, NULL, &other);
+  return other;
 }

@@ -22,4 +22,9 @@ int ss_collide_descend(const ss_collide_in *in, int f, const double p[3], double
 int ss_collide_surface_at(const ss_collide_in *in, int nf, const double uv[2], const double p[3], double d2,
                           double n[3], double c[3], double *sd);
 
+/* The lowest face other than nf as near to p as nf is, at the edge or the
+ * corner of nf that p's nearest point on nf lies on (a buried face and a
+ * clean one meet there, where the body passes through itself); -1 if none. */
+int ss_collide_tied_face(const ss_collide_in *in, int nf, const double p[3]);
+
 #endif
