@@ -2,9 +2,10 @@
 """Looks at the skin inside the body in frames written by `skinsim run --out DIR`:
 the exact generalized winding number of the body around each skin vertex, the
 split into clean / buried as the run measures it (src/core/inside.h: buried where
-the body face nearest the vertex lies inside the body itself, or where the vertex is
-in front of that face: inside another part), and a picture. The anchor faces are not
-in the files: a vertex anchored on a buried face counts as clean here.
+the body face nearest the vertex, or the face it is anchored on (the skin files'
+anchor_face), lies inside the body itself, or where the vertex is in front of that
+face: inside another part), and a picture. Files without anchor_face (written before
+it was) judge by the nearest face alone.
 
   /usr/bin/python3 bench/inside_view.py DIR FRAME OUT.png [--title T] [--view ELEV,AZIM]
 
@@ -16,6 +17,8 @@ import numpy as np
 
 
 def read_ply(path):
+    """Positions, triangles and the vertices' other properties (by name) of a
+    binary PLY as skinsim run --out writes it."""
     with open(path, "rb") as f:
         nv = nf = 0
         props = []
@@ -23,15 +26,16 @@ def read_ply(path):
             line = f.readline().decode().strip()
             if line.startswith("element vertex"): nv = int(line.split()[2])
             elif line.startswith("element face"): nf = int(line.split()[2])
-            elif line.startswith("property") and nf == 0: props.append(line.split()[1])
+            elif line.startswith("property") and nf == 0: props.append(line.split()[1:3])
             elif line == "end_header": break
-        fmt = {"float": "f4", "double": "f8"}
-        dt = np.dtype([("p%d" % i, "<" + fmt[t]) for i, t in enumerate(props)])
+        fmt = {"float": "f4", "double": "f8", "int": "i4"}
+        dt = np.dtype([(name, "<" + fmt[t]) for t, name in props])
         v = np.frombuffer(f.read(nv * dt.itemsize), dtype=dt)
-        v = np.stack([v["p0"], v["p1"], v["p2"]], axis=1).astype(np.float64)
+        extra = {name: v[name].copy() for _, name in props if name not in ("x", "y", "z")}
+        v = np.stack([v["x"], v["y"], v["z"]], axis=1).astype(np.float64)
         fdt = np.dtype([("n", "u1"), ("i", "<i4", (3,))])
         fa = np.frombuffer(f.read(nf * fdt.itemsize), dtype=fdt)
-        return v, fa["i"].astype(np.int64)
+        return v, fa["i"].astype(np.int64), extra
 
 
 def winding(P, V, F, chunk=200):
@@ -100,10 +104,10 @@ def main():
     ap.add_argument("--title", default=""); ap.add_argument("--view", default="20,-60")
     ap.add_argument("--zoom", type=float, default=8.0, help="half-width of the view in edges")
     a = ap.parse_args()
-    V0, F = read_ply("%s/body_0000.ply" % a.dir) if False else read_ply("%s/body_%04d.ply" % (a.dir, 1))
+    V0, F, _ = read_ply("%s/body_%04d.ply" % (a.dir, 1))
     edge = mean_edge(V0, F)
-    V, F = read_ply("%s/body_%04d.ply" % (a.dir, a.frame))
-    X, SF = read_ply("%s/skin_%04d.ply" % (a.dir, a.frame))
+    V, F, _ = read_ply("%s/body_%04d.ply" % (a.dir, a.frame))
+    X, SF, skin_props = read_ply("%s/skin_%04d.ply" % (a.dir, a.frame))
     w = winding(X, V, F)
     d, f = closest(X, V, F)
     d /= edge
@@ -112,6 +116,12 @@ def main():
     idx = np.where(ins)[0]
     wf = winding(cen[f[idx]], V, F) - own(cen[f[idx]], V, F[f[idx]])
     buried = np.zeros(len(X), bool); buried[idx[np.abs(wf - 0.5) >= 0.25]] = True
+    if "anchor_face" in skin_props:  # anchored on a buried face (another than the nearest)
+        af = skin_props["anchor_face"][idx]
+        other = (af >= 0) & (af < len(F)) & (af != f[idx])
+        ja = idx[other]
+        wa = winding(cen[af[other]], V, F) - own(cen[af[other]], V, F[af[other]])
+        buried[ja[np.abs(wa - 0.5) >= 0.25]] = True
     # in front of the nearest face and yet inside: inside another part of the body
     # (the run judges by the pseudo-normal at the nearest point; the face's plane here)
     A, B, C = V[F[f[idx], 0]], V[F[f[idx], 1]], V[F[f[idx], 2]]

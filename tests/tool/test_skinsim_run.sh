@@ -22,18 +22,43 @@ check "same command twice: same final_hash" \
 check "newton runs" "[ $rc -eq 0 ] && grep -q '\"solver\": \"newton\"' '$tmp/n.json'"
 check "--out wrote 6 skin and 6 body frames" \
   "[ \$(ls '$tmp/out' | grep -c '^skin_.*\.ply$') -eq 6 ] && [ \$(ls '$tmp/out' | grep -c '^body_.*\.ply$') -eq 6 ]"
-check "PLY frame parses: counts match the header, finite positions" "$py - '$tmp/out/skin_0006.ply' '$tmp/a.json' <<'PY'
+check "PLY frame parses: counts match the header, finite positions, each skin vertex's anchor face a body face" "$py - '$tmp/out/skin_0006.ply' '$tmp/a.json' '$tmp/out/body_0006.ply' <<'PY'
 import json, math, struct, sys
-data = open(sys.argv[1], 'rb').read()
-head, body = data.split(b'end_header\n', 1)
-lines = head.decode().splitlines()
-nv = int([l for l in lines if l.startswith('element vertex')][0].split()[2])
-nf = int([l for l in lines if l.startswith('element face')][0].split()[2])
-assert len(body) == nv * 12 + nf * 13, (len(body), nv, nf)
-xyz = struct.unpack('<%df' % (3 * nv), body[:12 * nv])
-assert all(math.isfinite(v) for v in xyz)
+def parse(path):
+    data = open(path, 'rb').read()
+    head, body = data.split(b'end_header\n', 1)
+    lines = head.decode().splitlines()
+    nv = int([l for l in lines if l.startswith('element vertex')][0].split()[2])
+    nf = int([l for l in lines if l.startswith('element face')][0].split()[2])
+    return lines, body, nv, nf
+lines, body, nv, nf = parse(sys.argv[1])
+assert 'property int anchor_face' in lines, lines
+assert len(body) == nv * 16 + nf * 13, (len(body), nv, nf)
+rec = [struct.unpack_from('<fffi', body, 16 * v) for v in range(nv)]
+assert all(math.isfinite(c) for r in rec for c in r[:3])
 d = json.load(open(sys.argv[2]))
 assert nv == d['vertices'] and nf == d['triangles']
+blines, bbody, bnv, bnf = parse(sys.argv[3])
+assert len(bbody) == bnv * 12 + bnf * 13, (len(bbody), bnv, bnf)
+assert all(0 <= r[3] < bnf for r in rec), 'anchor face out of the body'
+PY"
+
+# bench/inside_view.py reads the frames and splits the skin inside the body as the run
+# measures it (the anchor faces in the skin files): the same counts and depth
+"$exe" run --scene elbow --tris 1000 --frames 30 --inside-every 30 --json "$tmp/ev.json" \
+  --out "$tmp/ev" > /dev/null 2>&1
+"$py" "$src/bench/inside_view.py" "$tmp/ev" 30 "$tmp/ev.png" > "$tmp/ev.txt" 2>&1
+check "inside_view.py: the run's clean counts and depth at frame 30, and a picture" "$py - '$tmp/ev.json' '$tmp/ev.txt' '$tmp/ev.png' <<'PY'
+import json, os, re, sys
+d = json.load(open(sys.argv[1]))
+t = open(sys.argv[2]).read()
+m = re.search(r'inside (\d+) of \d+; clean \d+ \(deepest ([\d.]+) edges, >0.05: (\d+), >0.1: (\d+)\)', t)
+assert m, t
+assert d['inside_samples'] == 1 and d['inside_count_max'] > 0, d
+assert int(m.group(1)) == d['inside_count_max'], (m.group(1), d['inside_count_max'])
+assert abs(float(m.group(2)) - d['inside_clean_max']) < 2e-3, (m.group(2), d['inside_clean_max'])
+assert (int(m.group(3)), int(m.group(4))) == (d['inside_clean_over_005_max'], d['inside_clean_over_01_max']), t
+assert os.path.getsize(sys.argv[3]) > 10000
 PY"
 
 "$exe" run --scene fold --tris 300 --frames 4 --settle 0.5 --tether 3 --json "$tmp/r.json" \

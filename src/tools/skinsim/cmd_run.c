@@ -12,18 +12,24 @@
 #include "commands.h"
 #include "ss_run.h"
 
-/* Binary little-endian PLY of float positions and int triangles. */
-static int write_ply(const char *path, int nvert, const double *pos, int nface, const int *faces) {
+/* Binary little-endian PLY of float positions and int triangles; with
+ * anchor_face (one a vertex, or NULL) an int vertex property of that name:
+ * the body face each skin vertex is anchored on, which tells a reader such
+ * as bench/inside_view.py the skin anchored where the body passes through
+ * itself, as the run's inside measure does. */
+static int write_ply(const char *path, int nvert, const double *pos, int nface, const int *faces,
+                     const int *anchor_face) {
   FILE *f = fopen(path, "wb");
   if (!f) return -1;
   fprintf(f,
           "ply\nformat binary_little_endian 1.0\ncomment skin_sim\nelement vertex %d\n"
-          "property float x\nproperty float y\nproperty float z\nelement face %d\n"
+          "property float x\nproperty float y\nproperty float z\n%selement face %d\n"
           "property list uchar int vertex_indices\nend_header\n",
-          nvert, nface);
+          nvert, anchor_face ? "property int anchor_face\n" : "", nface);
   for (int v = 0; v < nvert; v++) {
     float p[3] = {(float)pos[3 * v], (float)pos[3 * v + 1], (float)pos[3 * v + 2]};
     fwrite(p, sizeof p, 1, f);
+    if (anchor_face) fwrite(anchor_face + v, sizeof(int), 1, f);
   }
   for (int t = 0; t < nface; t++) {
     unsigned char three = 3;
@@ -44,13 +50,14 @@ static int write_frame(void *user, int frame, const ss_sim *sim, const double *b
   frame_writer *w = user;
   char path[4096];
   snprintf(path, sizeof path, "%s/skin_%04d.ply", w->dir, frame);
+  /* the vertex anchors come first among the sim's anchors */
   if (write_ply(path, ss_sim_skin_nvert(sim), ss_sim_skin_positions(sim), ss_sim_skin_nface(sim),
-                ss_sim_skin_faces(sim))) {
+                ss_sim_skin_faces(sim), ss_sim_anchor_faces(sim))) {
     snprintf(w->error, sizeof w->error, "cannot write '%s': %s", path, strerror(errno));
     return 1;
   }
   snprintf(path, sizeof path, "%s/body_%04d.ply", w->dir, frame);
-  if (write_ply(path, w->body->nvert, body_pos, w->body->nface, w->body->faces)) {
+  if (write_ply(path, w->body->nvert, body_pos, w->body->nface, w->body->faces, NULL)) {
     snprintf(w->error, sizeof w->error, "cannot write '%s': %s", path, strerror(errno));
     return 1;
   }
