@@ -6,7 +6,7 @@
  * times it, waits for its neighbours' moves. Those still waiting are then
  * moved all at once, each to where it goes, and those whose faces that
  * squeezes, stretches or turns are put back (until none does): a cluster
- * of vertices a fast paw has gone through lies an edge deep, and each
+ * of vertices a fast leg has gone through lies an edge deep, and each
  * vertex's move alone turns the faces it shares with the neighbours left
  * behind. Then the vertex moves with its ring carried along (its own faces
  * move whole), unless that squeezes, stretches or turns a face of the
@@ -207,7 +207,7 @@ static int nmove_left(ss_collider *c, int nmove) {
  * then each whose move squeezes, stretches or turns over a face of it
  * (against where the face's corners were), or turns one off the body
  * under it, is put back, until none does; the rest are made. A cluster of
- * vertices a fast paw has gone through is deeper than an edge, and each
+ * vertices a fast leg has gone through is deeper than an edge, and each
  * vertex's move alone, or with its ring, turns faces its neighbours' moves
  * would turn back. Returns how many were made (their cand_face -1). */
 static int move_jointly(ss_collider *c, const ss_collide_in *in, const int *dof_vert, int nmove, double *x,
