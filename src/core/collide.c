@@ -408,11 +408,12 @@ static inline int look_global_k(ss_collider *c, const ss_collide_in *in, const i
  * list is NULL) whose move is out of the clean surface, in vertex order
  * into move_k: neither the nearest face nor the anchor's buried in the
  * body (as the inside measure judges). The faces whose test is not fresh
- * are tested once each, the nearest faces first and then the anchor faces
- * of the vertices whose nearest face is clean: the faces a sweep in vertex
- * order would test (it tests an anchor face only past a clean nearest
- * face), and each test reads only the body, so on the threads too the
- * results are those of that sweep. Returns how many. */
+ * are tested once each: the nearest faces first, then the faces tied with
+ * buried nearest ones, then the anchor faces of the vertices whose nearest
+ * face is clean: the faces a sweep in vertex order would test (it tests a
+ * face only past the test before it), and each test reads only the body,
+ * so on the threads too the results are those of that sweep. Returns how
+ * many. */
 static int pick_moves(ss_collider *c, const ss_collide_in *in, const int *dof_vert, const double *x, int nthread,
                       long long step, const int *list, int n) {
   int ntest = 0;
